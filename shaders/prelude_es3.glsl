@@ -1,0 +1,7 @@
+#version 300 es
+/* GLSL ES 3.00 (GLES 3): the few spellings that differ from 1.00. */
+#define FT_ES3 1
+#define FT_IN_VS in
+#define FT_OUT_VS out
+#define FT_IN_FS in
+precision highp float;

@@ -1,0 +1,95 @@
+#include "terrain.h"
+
+#include <math.h>
+
+#define FT_PI 3.14159265358979323846
+
+static double m_per_deg_lat(void)
+{
+    return FT_EARTH_RADIUS_M * FT_PI / 180.0;
+}
+
+/* Latitude of the grid's middle row: the equirectangular plane keeps
+ * east-west scale exact there (error over one 1-degree tile < 1%). */
+static double lat_ref_deg(const ft_terrain *t)
+{
+    if (t->unit == FT_UNIT_DEGREE) {
+        return t->origin_y + 0.5 * t->spacing_y * (double)(t->height - 1u);
+    }
+    return t->anchor_lat_deg;
+}
+
+ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
+{
+    if (!(t->spacing_x > 0.0) || !(t->spacing_y > 0.0) || !isfinite(t->spacing_x) ||
+        !isfinite(t->spacing_y)) {
+        return ft_fail(err, FT_ERR_FORMAT, "terrain spacing %g x %g is not positive and finite",
+                       t->spacing_x, t->spacing_y);
+    }
+    if (!isfinite(t->origin_x) || !isfinite(t->origin_y) || !isfinite(t->anchor_lat_deg) ||
+        !isfinite(t->anchor_lon_deg) || fabs(t->anchor_lat_deg) > 89.0 ||
+        fabs(t->anchor_lon_deg) > 360.0) {
+        return ft_fail(err, FT_ERR_FORMAT,
+                       "terrain origin/anchor not finite or outside |lat|<=89, |lon|<=360");
+    }
+    if (t->unit == FT_UNIT_DEGREE) {
+        double lat = lat_ref_deg(t);
+        if (fabs(lat) > 89.0) {
+            return ft_fail(err, FT_ERR_FORMAT, "terrain latitude %.3f too close to a pole", lat);
+        }
+        t->cell_y_m = t->spacing_y * m_per_deg_lat();
+        t->cell_x_m = t->spacing_x * m_per_deg_lat() * cos(lat * FT_PI / 180.0);
+        t->origin_world_x_m = 0.0;
+        t->origin_world_y_m = 0.0;
+        t->anchor_lat_deg = t->origin_y;
+        t->anchor_lon_deg = t->origin_x;
+    } else if (t->unit == FT_UNIT_METRE) {
+        t->cell_x_m = t->spacing_x;
+        t->cell_y_m = t->spacing_y;
+        t->origin_world_x_m = t->origin_x;
+        t->origin_world_y_m = t->origin_y;
+    } else {
+        return ft_fail(err, FT_ERR_FORMAT, "terrain spacing unit %d unknown", (int)t->unit);
+    }
+    return FT_OK;
+}
+
+void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg, double *x_m,
+                             double *y_m)
+{
+    double lat_ref = lat_ref_deg(t);
+    double mx = m_per_deg_lat() * cos(lat_ref * FT_PI / 180.0);
+    *x_m = t->origin_world_x_m + (lon_deg - t->anchor_lon_deg) * mx;
+    *y_m = t->origin_world_y_m + (lat_deg - t->anchor_lat_deg) * m_per_deg_lat();
+}
+
+double ft_terrain_height_at(const ft_terrain *t, double x_m, double y_m)
+{
+    double gx = (x_m - t->origin_world_x_m) / t->cell_x_m;
+    double gy = (y_m - t->origin_world_y_m) / t->cell_y_m;
+    double maxx = (double)(t->width - 1u);
+    double maxy = (double)(t->height - 1u);
+    if (!(gx > 0.0)) gx = 0.0; /* also catches NaN */
+    if (!(gy > 0.0)) gy = 0.0;
+    if (gx > maxx) gx = maxx;
+    if (gy > maxy) gy = maxy;
+    uint32_t ix = (uint32_t)gx;
+    uint32_t iy = (uint32_t)gy;
+    if (ix > t->width - 2u) ix = t->width - 2u;
+    if (iy > t->height - 2u) iy = t->height - 2u;
+    double fx = gx - (double)ix;
+    double fy = gy - (double)iy;
+    const float *row0 = t->heights_m + (size_t)iy * t->width;
+    const float *row1 = row0 + t->width;
+    double h00 = row0[ix], h10 = row0[ix + 1u];
+    double h01 = row1[ix], h11 = row1[ix + 1u];
+    return (h00 * (1.0 - fx) + h10 * fx) * (1.0 - fy) + (h01 * (1.0 - fx) + h11 * fx) * fy;
+}
+
+int ft_terrain_contains(const ft_terrain *t, double x_m, double y_m)
+{
+    double gx = (x_m - t->origin_world_x_m) / t->cell_x_m;
+    double gy = (y_m - t->origin_world_y_m) / t->cell_y_m;
+    return gx >= 0.0 && gy >= 0.0 && gx <= (double)(t->width - 1u) &&
+           gy <= (double)(t->height - 1u);
+}

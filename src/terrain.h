@@ -1,0 +1,94 @@
+/* terrain.h - a height field in static memory, and its pyramids.
+ *
+ * Grid convention (every module uses it):
+ *   sample (ix, iy), ix in [0, width), iy in [0, height); ix runs east, iy runs
+ *   NORTH: row 0 is the southern edge (readers of north-up files flip rows).
+ *   heights_m[iy * width + ix] is the height in metres (float32).
+ *
+ * World frame: metres, x east, y north, z up. Sample (ix, iy) sits at
+ *   world = (origin_world_x_m + ix * cell_x_m, origin_world_y_m + iy * cell_y_m).
+ * For grids in metres (a projected CRS) origin_world_* is the CRS easting /
+ * northing of sample (0,0), so huge coordinates (1e7 m) stay huge in double
+ * and only camera-relative offsets go to the GPU as float. For grids in
+ * degrees (SRTM) the world frame is a local equirectangular plane anchored at
+ * sample (0,0): origin_world = (0,0), cell_x_m = dlon * m_per_deg * cos(lat_mid).
+ * The true surface is the bilinear interpolant of the samples.
+ *
+ * Pyramids (see pyramid.h) live in the same struct. */
+#ifndef FT_TERRAIN_H
+#define FT_TERRAIN_H
+
+#include <stdint.h>
+
+#include "ft_status.h"
+
+/* Largest grid side the runtime accepts (also bounded by GL_MAX_TEXTURE_SIZE
+ * at GPU init). 16385 = 2^14 + 1. */
+#define FT_GRID_SIDE_MAX 16385u
+#define FT_GRID_SIDE_MIN 2u
+/* Levels: side 16385 -> 15 levels of cells (16384 .. 1). */
+#define FT_PYRAMID_LEVELS_MAX 16u
+#define FT_CRS_TEXT_MAX 64u
+
+/* Mean Earth radius (IUGG), for the local equirectangular plane. */
+#define FT_EARTH_RADIUS_M 6371008.8
+
+typedef enum ft_spacing_unit { FT_UNIT_METRE = 0, FT_UNIT_DEGREE = 1 } ft_spacing_unit;
+
+typedef struct ft_pyramid_level {
+    uint32_t width, height; /* texels at this level */
+    float *avg_m;           /* width*height, NULL for level 0 of avg (= heights) */
+    float *min_m;           /* width*height */
+    float *max_m;           /* width*height */
+} ft_pyramid_level;
+
+/* Footprints (documented rule, both tested against brute force):
+ *  - avg: level 0 is the heights themselves (width x height samples).
+ *    Level l+1 texel (i,j) = mean of level-l texels (2i..2i+1, 2j..2j+1),
+ *    indices clamped to the level's size. Size: ceil(w/2) x ceil(h/2).
+ *  - min/max are CELL bounds: level 0 has (width-1) x (height-1) texels, texel
+ *    (i,j) = min/max of the 4 samples of cell (i,j), which bounds the bilinear
+ *    patch exactly. Level l+1 = min/max of level-l texels (2i..2i+1, 2j..2j+1),
+ *    clamped. So texel (i,j) of level L bounds the surface over grid x in
+ *    [i*2^L, min((i+1)*2^L, width-1)] (same in y): a max-mip for ray casting
+ *    and a conservative bound for LOD. The last min/max level is 1x1. */
+typedef struct ft_pyramid {
+    uint32_t avg_levels;    /* levels in avg incl. level 0; last is 1x1 */
+    uint32_t minmax_levels; /* levels in min/max; last is 1x1 */
+    ft_pyramid_level avg[FT_PYRAMID_LEVELS_MAX];    /* avg[0].avg_m == heights */
+    ft_pyramid_level minmax[FT_PYRAMID_LEVELS_MAX]; /* .min_m/.max_m used */
+} ft_pyramid;
+
+typedef struct ft_terrain {
+    uint32_t width, height;      /* samples */
+    ft_spacing_unit unit;        /* unit of spacing_* and origin_* */
+    double spacing_x, spacing_y; /* distance between samples (m or deg) */
+    double origin_x, origin_y;   /* sample (0,0): easting/northing m or lon/lat deg */
+    double anchor_lat_deg;       /* geodetic position of sample (0,0), for */
+    double anchor_lon_deg;       /* --pose LAT,LON (equirectangular about it) */
+    char crs[FT_CRS_TEXT_MAX];   /* "EPSG:4326", "local", ... */
+    uint32_t void_count;         /* voids found in the source and filled */
+    float min_height_m, max_height_m;
+
+    /* derived by ft_terrain_derive_frame() */
+    double cell_x_m, cell_y_m;
+    double origin_world_x_m, origin_world_y_m;
+
+    float *heights_m; /* width*height, in FT_POOL_HEIGHTS */
+    ft_pyramid pyr;   /* levels in FT_POOL_PYRAMIDS */
+} ft_terrain;
+
+/* Fills cell_*_m and origin_world_* from unit/spacing/origin/anchor. */
+ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err);
+
+/* Geodetic (deg) to world metres with the equirectangular rule above. */
+void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg, double *x_m,
+                             double *y_m);
+
+/* Bilinear height at world (x, y); clamps to the grid edge outside. */
+double ft_terrain_height_at(const ft_terrain *t, double x_m, double y_m);
+
+/* 1 if world (x, y) lies inside the grid's extent. */
+int ft_terrain_contains(const ft_terrain *t, double x_m, double y_m);
+
+#endif

@@ -1,0 +1,339 @@
+/* main.c - the fixterrain command line: one executable, one subcommand per
+ * job. Errors go to stderr with the reason; information goes to stdout.
+ * Exit status: 0 ok, 1 runtime error, 2 usage error. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "platform_api.h"
+#include "scene.h"
+#if FT_WITH_GDAL_TOOLS
+#include "../tools/import_gdal.h"
+#endif
+
+#define FT_EXIT_OK 0
+#define FT_EXIT_ERROR 1
+#define FT_EXIT_USAGE 2
+#define FT_FRAMES_MAX 10000
+#define FT_STATS_TEXT_MAX 8192u
+
+/* Static, not stack: the app holds the terrain/pyramid descriptors. */
+static ft_app g_app;
+static char g_scene_text[FT_SCENE_TEXT_MAX];
+static char g_stats_text[FT_STATS_TEXT_MAX];
+
+static void print_render_help(void)
+{
+    printf("usage: fixterrain render [options]\n"
+           "Renders one frame offscreen to a PNG. With no options: the embedded default\n"
+           "scene (synthetic terrain, method brute, EGL GLES 3) to fixterrain.png.\n\n"
+           "  --scene FILE        scene file (INI; see config/*.ini); default: embedded\n"
+           "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
+           "  --method NAME       terrain method: brute\n"
+           "  --backend NAME      egl-gles3 | egl-gles2 | osmesa\n"
+           "  --size WxH          image size in pixels (16..8192)\n"
+           "  --pose LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG\n"
+           "  --out FILE.png      output image (default fixterrain.png)\n"
+           "  --stats FILE.json   frame, memory and (metric.enabled) error statistics\n"
+           "  --frames N          render N frames (timing: median of all but the first)\n"
+           "  --quiet             do not print the memory table\n");
+}
+
+static void print_help(void)
+{
+    printf("usage: fixterrain COMMAND [options]   (fixterrain COMMAND --help for details)\n\n"
+           "commands:\n"
+           "  render    render one frame of a scene offscreen to PNG\n"
+           "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file%s\n"
+           "  help      this text\n\n"
+           "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
+#if FT_WITH_GDAL_TOOLS
+           "",
+#else
+           " (not in this build)",
+#endif
+           "0.1.0");
+}
+
+static int parse_size(const char *text, uint32_t *w, uint32_t *h)
+{
+    char *end = NULL;
+    unsigned long a = strtoul(text, &end, 10);
+    if (end == text || *end != 'x') {
+        return 0;
+    }
+    const char *p = end + 1;
+    unsigned long b = strtoul(p, &end, 10);
+    if (end == p || *end != '\0' || a < 16 || b < 16 || a > 8192 || b > 8192) {
+        return 0;
+    }
+    *w = (uint32_t)a;
+    *h = (uint32_t)b;
+    return 1;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static size_t json_pools(const ft_arena *a, char *buf, size_t cap)
+{
+    size_t n = 0;
+    for (int i = 0; i < FT_POOL_COUNT && n < cap; ++i) {
+        const ft_pool *p = &a->pools[i];
+        size_t used = p->high_water_bytes > p->need_bytes ? p->high_water_bytes : p->need_bytes;
+        int w = snprintf(buf + n, cap - n, "%s\n    {\"pool\": \"%s\", \"used_bytes\": %zu, "
+                         "\"budget_bytes\": %zu}", i ? "," : "", ft_pool_key((ft_pool_id)i),
+                         used, p->budget_bytes);
+        n += (w > 0) ? (size_t)w : 0;
+    }
+    return n;
+}
+
+static ft_status write_stats(const char *path, const ft_app *app, const ft_camera *cam,
+                             const ft_frame_stats *last, double median_ms, unsigned frames,
+                             const char *error_json, ft_error *err)
+{
+    char pools[2048];
+    const ft_terrain *t = &app->terrain;
+    (void)json_pools(&app->arena, pools, sizeof pools);
+    int n = snprintf(
+        g_stats_text, sizeof g_stats_text,
+        "{\n  \"scene\": \"%s\",\n  \"method\": \"%s\",\n  \"backend\": \"%s\",\n"
+        "  \"gl_version\": \"%s\",\n  \"gl_renderer\": \"%s\",\n"
+        "  \"width_px\": %u,\n  \"height_px\": %u,\n"
+        "  \"terrain\": {\"width\": %u, \"height\": %u, \"cell_x_m\": %.6f, \"cell_y_m\": %.6f,"
+        " \"min_height_m\": %.3f, \"max_height_m\": %.3f, \"voids_filled\": %u, \"crs\": \"%s\"},\n"
+        "  \"eye_m\": [%.3f, %.3f, %.3f],\n"
+        "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
+        "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"cpu_ms\": %.3f,"
+        " \"gpu_ms\": %.3f, \"median_gpu_ms\": %.3f},\n"
+        "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
+        "  \"error\": %s,\n  \"pools\": [%s\n  ]\n}\n",
+        app->scene.name, ft_method_name(app->scene.method), ft_backend_name(app->scene.backend),
+        app->gpu.version, app->gpu.renderer, app->scene.width_px, app->scene.height_px, t->width,
+        t->height, t->cell_x_m, t->cell_y_m, (double)t->min_height_m, (double)t->max_height_m,
+        t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
+        (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
+        last->draw_calls, last->cpu_ms, last->gpu_ms, median_ms,
+        (unsigned long long)app->renderer.gpu_bytes,
+        (unsigned long long)app->scene.gpu_texture_bytes, error_json, pools);
+    if (n < 0 || (size_t)n >= sizeof g_stats_text) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "stats JSON longer than %u bytes",
+                       FT_STATS_TEXT_MAX);
+    }
+    ft_file f;
+    ft_status s = ft_plat_file_open_write(&f, path, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    s = f.writer.write(f.writer.ctx, g_stats_text, (size_t)n);
+    if (s != FT_OK) {
+        ft_plat_file_close(&f);
+        return ft_fail(err, s, "%s: write failed", path);
+    }
+    return ft_plat_file_finish_write(&f, err);
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    ft_scene scene;
+    ft_error err;
+    const char *scene_path = NULL, *out_path = "fixterrain.png", *stats_path = NULL;
+    const char *dem = NULL, *method = NULL, *backend = NULL, *size = NULL, *pose = NULL;
+    unsigned frames = 1;
+    int quiet = 0;
+    memset(&err, 0, sizeof err);
+
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_render_help();
+            return FT_EXIT_OK;
+        }
+        if (strcmp(a, "--quiet") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "fixterrain render: %s needs a value (or unknown option)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        if (strcmp(a, "--scene") == 0) scene_path = v;
+        else if (strcmp(a, "--dem") == 0) dem = v;
+        else if (strcmp(a, "--method") == 0) method = v;
+        else if (strcmp(a, "--backend") == 0) backend = v;
+        else if (strcmp(a, "--size") == 0) size = v;
+        else if (strcmp(a, "--pose") == 0) pose = v;
+        else if (strcmp(a, "--out") == 0) out_path = v;
+        else if (strcmp(a, "--stats") == 0) stats_path = v;
+        else if (strcmp(a, "--frames") == 0) {
+            char *end = NULL;
+            unsigned long f = strtoul(v, &end, 10);
+            if (end == v || *end != '\0' || f < 1 || f > FT_FRAMES_MAX) {
+                fprintf(stderr, "fixterrain render: --frames wants 1..%d\n", FT_FRAMES_MAX);
+                return FT_EXIT_USAGE;
+            }
+            frames = (unsigned)f;
+        } else {
+            fprintf(stderr, "fixterrain render: unknown option %s (see --help)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        ++i;
+    }
+
+    ft_scene_defaults(&scene);
+    if (scene_path != NULL) {
+        size_t len = 0;
+        if (ft_plat_file_read_text(scene_path, g_scene_text, sizeof g_scene_text, &len, &err) !=
+                FT_OK ||
+            ft_scene_parse(&scene, g_scene_text, scene_path, &err) != FT_OK) {
+            fprintf(stderr, "fixterrain: scene: %s\n", err.text);
+            return FT_EXIT_ERROR;
+        }
+    } else if (ft_scene_parse(&scene, ft_default_scene_text, "embedded default scene", &err) !=
+               FT_OK) {
+        fprintf(stderr, "fixterrain: embedded scene: %s\n", err.text);
+        return FT_EXIT_ERROR;
+    }
+    if (dem != NULL) {
+        if (strlen(dem) >= sizeof scene.dem_path) {
+            fprintf(stderr, "fixterrain render: --dem path too long\n");
+            return FT_EXIT_USAGE;
+        }
+        (void)snprintf(scene.dem_path, sizeof scene.dem_path, "%s", dem);
+    }
+    if (method != NULL && !ft_method_from_name(method, &scene.method)) {
+        fprintf(stderr, "fixterrain render: unknown method '%s'\n", method);
+        return FT_EXIT_USAGE;
+    }
+    if (backend != NULL && !ft_backend_from_name(backend, &scene.backend)) {
+        fprintf(stderr, "fixterrain render: unknown backend '%s' (egl-gles3, egl-gles2, osmesa)\n",
+                backend);
+        return FT_EXIT_USAGE;
+    }
+    if (size != NULL && !parse_size(size, &scene.width_px, &scene.height_px)) {
+        fprintf(stderr, "fixterrain render: --size wants WxH, each 16..8192\n");
+        return FT_EXIT_USAGE;
+    }
+    if (pose != NULL && ft_pose_parse(pose, &scene.pose, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain render: %s\n", err.text);
+        return FT_EXIT_USAGE;
+    }
+
+    if (ft_app_init(&g_app, &scene, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain: init failed: %s: %s\n", ft_status_str(err.status), err.text);
+        return FT_EXIT_ERROR;
+    }
+    if (!quiet) {
+        printf("fixterrain: %s on %s (%s, %s)\n", ft_method_name(scene.method),
+               ft_backend_name(scene.backend), g_app.gpu.version, g_app.gpu.renderer);
+        printf("terrain %ux%u, cell %.3f x %.3f m, heights %.1f..%.1f m, %u voids filled\n",
+               g_app.terrain.width, g_app.terrain.height, g_app.terrain.cell_x_m,
+               g_app.terrain.cell_y_m, (double)g_app.terrain.min_height_m,
+               (double)g_app.terrain.max_height_m, g_app.terrain.void_count);
+        printf("static memory (one arena of %zu bytes, locked after init):\n%s",
+               g_app.arena_bytes, g_app.pool_table);
+        printf("GPU memory: %llu of %llu bytes budgeted (gpu.texture_bytes)\n",
+               (unsigned long long)g_app.renderer.gpu_bytes,
+               (unsigned long long)scene.gpu_texture_bytes);
+    }
+
+    static double times_ms[FT_FRAMES_MAX];
+    ft_camera cam;
+    ft_frame_stats st;
+    memset(&st, 0, sizeof st);
+    int rc = FT_EXIT_OK;
+    for (unsigned f = 0; f < frames; ++f) {
+        if (ft_app_render(&g_app, &scene.pose, &cam, &st, &err) != FT_OK) {
+            fprintf(stderr, "fixterrain: frame %u: %s\n", f, err.text);
+            rc = FT_EXIT_ERROR;
+            goto done;
+        }
+        times_ms[f] = st.gpu_ms;
+    }
+    /* Frame 0 includes shader compilation in the driver: leave it out. */
+    double median = times_ms[0];
+    if (frames > 1) {
+        qsort(times_ms + 1, frames - 1, sizeof times_ms[0], cmp_double);
+        median = times_ms[1 + (frames - 1) / 2];
+    }
+    char error_json[512] = "null";
+#if FT_WITH_REFERENCE
+    if (scene.metric_enabled) {
+        ft_error_stats es;
+        if (ft_app_measure(&g_app, &cam, &es, &err) != FT_OK) {
+            fprintf(stderr, "fixterrain: error metric: %s\n", err.text);
+            rc = FT_EXIT_ERROR;
+            goto done;
+        }
+        (void)snprintf(error_json, sizeof error_json,
+                       "{\"max_px\": %.4f, \"p999_px\": %.4f, \"mean_px\": %.4f, "
+                       "\"terrain_px\": %u, \"only_method_px\": %u, \"only_ref_px\": %u}",
+                       es.max_px, es.p999_px, es.mean_px, es.terrain_px, es.only_method_px,
+                       es.only_ref_px);
+        if (!quiet) {
+            printf("screen-space error vs reference: max %.3f px, p99.9 %.3f px, mean %.4f px; "
+                   "coverage mismatch %u + %u px\n",
+                   es.max_px, es.p999_px, es.mean_px, es.only_method_px, es.only_ref_px);
+        }
+    }
+#endif
+#if FT_WITH_PNG
+    if (ft_plat_png_write(out_path, g_app.renderer.rgba, scene.width_px, scene.height_px,
+                          &g_app.arena, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain: %s\n", err.text);
+        rc = FT_EXIT_ERROR;
+        goto done;
+    }
+#else
+    fprintf(stderr, "fixterrain: built without PNG output (FIXTERRAIN_WITH_PNG=OFF); %s not written\n",
+            out_path);
+#endif
+    if (stats_path != NULL && write_stats(stats_path, &g_app, &cam, &st, median, frames,
+                                          error_json, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain: stats: %s\n", err.text);
+        rc = FT_EXIT_ERROR;
+        goto done;
+    }
+    if (!quiet) {
+        printf("frame: %llu triangles in %u draws, %.2f ms (first frame; median of later "
+               "frames %.2f ms)\nwrote %s\n",
+               (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median, out_path);
+    }
+done:
+    ft_app_shutdown(&g_app);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        return cmd_render(1, argv); /* no arguments: the embedded default scene */
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "render") == 0) {
+        return cmd_render(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "import") == 0) {
+#if FT_WITH_GDAL_TOOLS
+        return ft_cmd_import(argc - 1, argv + 1);
+#else
+        fprintf(stderr, "fixterrain: 'import' was left out of this build "
+                        "(FIXTERRAIN_WITH_GDAL_TOOLS=OFF)\n");
+        return FT_EXIT_ERROR;
+#endif
+    }
+    if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+        print_help();
+        return FT_EXIT_OK;
+    }
+    fprintf(stderr, "fixterrain: unknown command '%s'\n", cmd);
+    print_help();
+    return FT_EXIT_USAGE;
+}

@@ -1,0 +1,132 @@
+/* gl_api.h - the GL subset the renderer uses, as one table of entry points.
+ *
+ * GL is never linked: platform/ loads every entry point at init through the
+ * backend's GetProcAddress (libOSMesa exports gl* too, so linking libGLESv2
+ * next to it would silently route calls to the wrong library). The lists
+ * below ARE the documented GL subset: GLES 2.0 core, plus the GLES 3.0 entry
+ * points used only when the context is GLES 3 (or OSMesa's desktop core). */
+#ifndef FT_GL_API_H
+#define FT_GL_API_H
+
+#define GL_GLES_PROTOTYPES 0
+#include <GLES3/gl3.h>
+#include <GLES2/gl2ext.h>
+
+#include "ft_status.h"
+
+/* X(type, Name): called as gl->Name(...), loaded from "gl" #Name. */
+#define FT_GL_ES2_FUNCS(X)                                         \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                       \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                         \
+    X(PFNGLBINDATTRIBLOCATIONPROC, BindAttribLocation)             \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                             \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                   \
+    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                 \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                           \
+    X(PFNGLBUFFERDATAPROC, BufferData)                             \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)     \
+    X(PFNGLCLEARPROC, Clear)                                       \
+    X(PFNGLCLEARCOLORPROC, ClearColor)                             \
+    X(PFNGLCLEARDEPTHFPROC, ClearDepthf)                           \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                       \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                       \
+    X(PFNGLCREATESHADERPROC, CreateShader)                         \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                       \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)             \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                       \
+    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)           \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                         \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                     \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                               \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                               \
+    X(PFNGLDISABLEPROC, Disable)                                   \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                             \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                         \
+    X(PFNGLENABLEPROC, Enable)                                     \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)   \
+    X(PFNGLFINISHPROC, Finish)                                     \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)   \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)         \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                             \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                   \
+    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                 \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                           \
+    X(PFNGLGETERRORPROC, GetError)                                 \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                           \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)               \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                         \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                 \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                           \
+    X(PFNGLGETSTRINGPROC, GetString)                               \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)             \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                           \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                           \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                             \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)           \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                         \
+    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                             \
+    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                       \
+    X(PFNGLUNIFORM1FPROC, Uniform1f)                               \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                               \
+    X(PFNGLUNIFORM1FVPROC, Uniform1fv)                             \
+    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                             \
+    X(PFNGLUNIFORM2FPROC, Uniform2f)                               \
+    X(PFNGLUNIFORM3FPROC, Uniform3f)                               \
+    X(PFNGLUNIFORM4FPROC, Uniform4f)                               \
+    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                 \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                             \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)           \
+    X(PFNGLVIEWPORTPROC, Viewport)
+
+#define FT_GL_ES3_FUNCS(X)                                   \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)             \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)       \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)             \
+    X(PFNGLGETSTRINGIPROC, GetStringi)
+
+typedef enum ft_gl_api {
+    FT_GL_API_ES2 = 2, /* GLSL ES 1.00 shaders, GLES 2.0 calls only */
+    FT_GL_API_ES3 = 3  /* GLSL ES 3.00 shaders, GLES 3.0 calls */
+} ft_gl_api;
+
+/* How heights reach the vertex shader. */
+typedef enum ft_height_format {
+    FT_HEIGHT_FORMAT_AUTO = 0,
+    FT_HEIGHT_FORMAT_FLOAT,  /* R32F (ES3) or LUMINANCE/FLOAT (ES2 + OES_texture_float) */
+    FT_HEIGHT_FORMAT_PACKED  /* RGBA8, 24-bit fixed point over [min, max] */
+} ft_height_format;
+
+typedef struct ft_gl_caps {
+    int max_texture_size;
+    int max_vertex_texture_units;
+    int has_float_textures;      /* sampleable float textures in the vertex stage */
+    int has_float_color_buffer;  /* RGBA32F render targets (position pass) */
+    int has_vao;                 /* BindVertexArray is usable (ES3/core) */
+    int has_depth24;
+    int desktop_core;            /* OSMesa core profile: a VAO must be bound */
+} ft_gl_caps;
+
+typedef void (*ft_gl_proc)(void);
+typedef ft_gl_proc (*ft_gl_get_proc_fn)(const char *name);
+
+typedef struct ft_gl {
+#define FT_GL_MEMBER(type, name) type name;
+    FT_GL_ES2_FUNCS(FT_GL_MEMBER)
+    FT_GL_ES3_FUNCS(FT_GL_MEMBER)
+#undef FT_GL_MEMBER
+    ft_gl_api api;
+    ft_gl_caps caps;
+} ft_gl;
+
+/* Loads the table for `api` (ES3 entry points only when api is ES3) and
+ * queries the caps. Fails naming the first missing entry point. The context
+ * must be current. desktop_core: set for OSMesa's core profile. */
+ft_status ft_gl_load(ft_gl *gl, ft_gl_api api, int desktop_core, ft_gl_get_proc_fn get_proc,
+                     ft_error *err);
+
+int ft_gl_has_extension(const ft_gl *gl, const char *name);
+
+/* Drains glGetError; returns FT_ERR_GPU naming `where` and the first code. */
+ft_status ft_gl_check(const ft_gl *gl, const char *where, ft_error *err);
+
+#endif

@@ -1,0 +1,56 @@
+/* method.h - the terrain methods behind one small interface. A method owns
+ * its GPU buffers (made at init) and draws with the renderer's terrain
+ * program; per frame it only selects and draws. */
+#ifndef FT_METHOD_H
+#define FT_METHOD_H
+
+#include <stdint.h>
+
+#include "camera.h"
+#include "gl_api.h"
+#include "mem_budget.h"
+#include "scene.h"
+#include "terrain.h"
+
+struct ft_terrain_program;
+
+typedef struct ft_method_draw_stats {
+    uint64_t triangles;
+    uint32_t draw_calls;
+} ft_method_draw_stats;
+
+typedef struct ft_brute {
+    GLuint vbo, ibo;
+    uint32_t patch_cells;   /* template side in cells */
+    uint32_t index_count;
+    uint32_t window_side;   /* most samples per side drawn (brute.max_vertices) */
+    uint64_t gpu_bytes;
+} ft_brute;
+
+typedef struct ft_method {
+    ft_method_kind kind;
+    union {
+        ft_brute brute;
+    } u;
+} ft_method;
+
+/* CPU pool needs (FT_POOL_METHOD) of the scene's method. */
+void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                         ft_arena *a, ft_error *err);
+/* Binds the method's vertex state; the program is already in use. */
+void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                    const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+uint64_t ft_method_gpu_bytes(const ft_method *m);
+void ft_method_shutdown(ft_method *m, const ft_gl *gl);
+
+#if FT_WITH_METHOD_BRUTE
+void ft_brute_plan(const ft_scene *s, ft_arena *a);
+ft_status ft_brute_init(ft_brute *b, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                        ft_arena *a, ft_error *err);
+void ft_brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program *p,
+                   const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+void ft_brute_shutdown(ft_brute *b, const ft_gl *gl);
+#endif
+
+#endif

@@ -1,0 +1,471 @@
+#include "renderer.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "shade.h"
+#include "shaders.h"
+
+#define FT_PI 3.14159265358979323846
+#define FT_SHADER_LOG_MAX 1024
+
+/* ---- planning ----------------------------------------------------------- */
+
+static int may_need_packed(const ft_scene *s)
+{
+    return s->height_format == FT_HEIGHT_FORMAT_PACKED ||
+           (s->height_format == FT_HEIGHT_FORMAT_AUTO && s->backend == FT_BACKEND_EGL_GLES2);
+}
+
+void ft_renderer_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    size_t px = (size_t)s->width_px * s->height_px;
+    ft_arena_plan(a, FT_POOL_FRAME_RGBA, px * 4u);
+    if (s->metric_enabled) {
+        ft_arena_plan(a, FT_POOL_FRAME_POS, px * 4u * sizeof(float));
+    }
+    if (may_need_packed(s)) {
+        ft_arena_plan(a, FT_POOL_GPU_STAGING, (size_t)t->width * t->height * 4u);
+    }
+    ft_method_plan(s, t, a);
+}
+
+/* ---- programs ------------------------------------------------------------- */
+
+static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, GLuint *out,
+                         ft_error *err)
+{
+    const char *prelude =
+        ft_shader_find(gl->api == FT_GL_API_ES3 ? "prelude_es3.glsl" : "prelude_es2.glsl");
+    const char *body = ft_shader_find(body_name);
+    if (prelude == NULL || body == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "embedded shader %s missing", body_name);
+    }
+    GLuint sh = gl->CreateShader(stage);
+    const GLchar *parts[2] = {prelude, body};
+    gl->ShaderSource(sh, 2, parts, NULL);
+    gl->CompileShader(sh);
+    GLint ok = 0;
+    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[FT_SHADER_LOG_MAX];
+        GLsizei n = 0;
+        gl->GetShaderInfoLog(sh, (GLsizei)sizeof log, &n, log);
+        log[(n > 0 && n < FT_SHADER_LOG_MAX) ? n : 0] = '\0';
+        gl->DeleteShader(sh);
+        return ft_fail(err, FT_ERR_GPU, "shader %s (GLSL ES %s) failed to compile: %.200s",
+                       body_name, gl->api == FT_GL_API_ES3 ? "3.00" : "1.00", log);
+    }
+    *out = sh;
+    return FT_OK;
+}
+
+static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrain_program *p,
+                               ft_error *err)
+{
+    GLuint vs = 0, fs = 0;
+    ft_status s = compile(gl, GL_VERTEX_SHADER, "terrain.vert.glsl", &vs, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    s = compile(gl, GL_FRAGMENT_SHADER, frag_name, &fs, err);
+    if (s != FT_OK) {
+        gl->DeleteShader(vs);
+        return s;
+    }
+    GLuint prog = gl->CreateProgram();
+    gl->AttachShader(prog, vs);
+    gl->AttachShader(prog, fs);
+    gl->BindAttribLocation(prog, 0, "a_uv");
+    gl->LinkProgram(prog);
+    gl->DeleteShader(vs); /* flagged; freed with the program */
+    gl->DeleteShader(fs);
+    GLint ok = 0;
+    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[FT_SHADER_LOG_MAX];
+        GLsizei n = 0;
+        gl->GetProgramInfoLog(prog, (GLsizei)sizeof log, &n, log);
+        log[(n > 0 && n < FT_SHADER_LOG_MAX) ? n : 0] = '\0';
+        gl->DeleteProgram(prog);
+        return ft_fail(err, FT_ERR_GPU, "program terrain.vert + %s failed to link: %.200s",
+                       frag_name, log);
+    }
+    p->program = prog;
+#define FT_UNIFORM(name) p->name = gl->GetUniformLocation(prog, #name)
+    FT_UNIFORM(u_heights);
+    FT_UNIFORM(u_grid_size);
+    FT_UNIFORM(u_patch_origin);
+    FT_UNIFORM(u_patch_stride);
+    FT_UNIFORM(u_cell_m);
+    FT_UNIFORM(u_origin_rel_eye_m);
+    FT_UNIFORM(u_view_proj);
+    FT_UNIFORM(u_pack);
+    FT_UNIFORM(u_clamp_box);
+    FT_UNIFORM(u_ramp_height_m);
+    FT_UNIFORM(u_ramp_rgb);
+    FT_UNIFORM(u_sun_dir);
+    FT_UNIFORM(u_light);
+#undef FT_UNIFORM
+    return ft_gl_check(gl, frag_name, err);
+}
+
+/* Uniforms that never change for a scene: set once at init. */
+static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, const ft_terrain *t,
+                                const ft_gpu_terrain *gt)
+{
+    gl->UseProgram(p->program);
+    gl->Uniform1i(p->u_heights, 0);
+    gl->Uniform2f(p->u_grid_size, (float)t->width, (float)t->height);
+    gl->Uniform2f(p->u_cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform4f(p->u_clamp_box, 0.0f, 0.0f, (float)(t->width - 1u), (float)(t->height - 1u));
+    gl->Uniform1f(p->u_patch_stride, 1.0f);
+    gl->Uniform2f(p->u_pack, gt->pack_min_m,
+                  gt->format == FT_HEIGHT_FORMAT_PACKED ? gt->pack_range_m : 0.0f);
+    if (p->u_ramp_height_m >= 0) {
+        gl->Uniform1fv(p->u_ramp_height_m, FT_RAMP_STOPS, ft_ramp_height_m);
+        gl->Uniform3fv(p->u_ramp_rgb, FT_RAMP_STOPS, &ft_ramp_rgb[0][0]);
+        float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
+                        FT_SUN_DIR_Z * FT_SUN_DIR_Z);
+        gl->Uniform3f(p->u_sun_dir, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
+        gl->Uniform2f(p->u_light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+    }
+}
+
+/* ---- terrain textures ------------------------------------------------------- */
+
+/* 24-bit fixed point over [min, min + range] in RGB, alpha 255. The shader
+ * decodes it exactly (integers below 2^24 are exact in highp float). */
+static void pack_heights(const float *h, size_t n, float min_m, float range_m, uint8_t *out)
+{
+    for (size_t i = 0; i < n; ++i) {
+        double f = ((double)h[i] - min_m) / range_m;
+        f = (f > 0.0) ? ((f < 1.0) ? f : 1.0) : 0.0;
+        uint32_t q = (uint32_t)(f * 16777215.0 + 0.5);
+        out[i * 4u + 0u] = (uint8_t)(q >> 16);
+        out[i * 4u + 1u] = (uint8_t)(q >> 8);
+        out[i * 4u + 2u] = (uint8_t)q;
+        out[i * 4u + 3u] = 255u;
+    }
+}
+
+static ft_status upload_heights(ft_renderer *r, const ft_scene *s, ft_arena *a, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    const ft_terrain *t = r->terrain;
+    ft_gpu_terrain *gt = &r->gt;
+    ft_height_format f = s->height_format;
+    if (f == FT_HEIGHT_FORMAT_AUTO) {
+        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
+    }
+    if (f == FT_HEIGHT_FORMAT_FLOAT && !gl->caps.has_float_textures) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "gpu.height_format = float, but this context has no float textures "
+                       "(use auto or packed)");
+    }
+    gt->format = f;
+    gt->pack_min_m = t->min_height_m;
+    gt->pack_range_m = t->max_height_m - t->min_height_m;
+    if (!(gt->pack_range_m > 0.0f)) {
+        gt->pack_range_m = 1.0f; /* flat terrain: any range decodes exactly */
+    }
+    gl->GenTextures(1, &gt->heights_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_2D, gt->heights_tex);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    /* NEAREST: texels are fetched exactly (float linear filtering is optional). */
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const GLsizei w = (GLsizei)t->width, h = (GLsizei)t->height;
+    if (f == FT_HEIGHT_FORMAT_FLOAT) {
+        if (gl->api == FT_GL_API_ES3) {
+            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, t->heights_m);
+        } else {
+            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, w, h, 0, GL_LUMINANCE, GL_FLOAT,
+                           t->heights_m);
+        }
+    } else {
+        uint8_t *staging = NULL;
+        size_t n = (size_t)t->width * t->height;
+        size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
+        ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING, n * 4u, (void **)&staging, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        pack_heights(t->heights_m, n, gt->pack_min_m, gt->pack_range_m, staging);
+        gl->TexImage2D(GL_TEXTURE_2D, 0, gl->api == FT_GL_API_ES3 ? GL_RGBA8 : GL_RGBA, w, h, 0,
+                       GL_RGBA, GL_UNSIGNED_BYTE, staging);
+        ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
+    }
+    gt->bytes = (uint64_t)w * (uint64_t)h * 4u;
+    return ft_gl_check(gl, "height texture upload", err);
+}
+
+/* ---- targets ------------------------------------------------------------------ */
+
+static ft_status make_targets(ft_renderer *r, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    const GLsizei w = (GLsizei)r->width_px, h = (GLsizei)r->height_px;
+    const int es3 = (gl->api == FT_GL_API_ES3);
+
+    gl->GenRenderbuffers(1, &r->rb_depth);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_depth);
+    gl->RenderbufferStorage(GL_RENDERBUFFER,
+                            gl->caps.has_depth24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT16,
+                            w, h);
+    /* Colour as a texture: ES2 core has no RGBA8 renderbuffer, but RGBA
+     * UNSIGNED_BYTE textures are colour-renderable everywhere. */
+    gl->GenTextures(1, &r->rb_color);
+    gl->BindTexture(GL_TEXTURE_2D, r->rb_color);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, es3 ? GL_RGBA8 : GL_RGBA, w, h, 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, NULL);
+    gl->GenFramebuffers(1, &r->fbo_color);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->rb_color, 0);
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                r->rb_depth);
+    GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        return ft_fail(err, FT_ERR_GPU, "colour framebuffer %ux%u incomplete: 0x%04x",
+                       r->width_px, r->height_px, (unsigned)st);
+    }
+    r->gpu_bytes += (uint64_t)w * (uint64_t)h * (4u + 4u);
+
+    r->has_pos_target = 0;
+    if (r->scene->metric_enabled && gl->caps.has_float_color_buffer) {
+        gl->GenRenderbuffers(1, &r->rb_pos);
+        gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_pos);
+        gl->RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, w, h);
+        gl->GenFramebuffers(1, &r->fbo_pos);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_pos);
+        gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                    r->rb_pos);
+        gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                    r->rb_depth);
+        st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (st != GL_FRAMEBUFFER_COMPLETE) {
+            return ft_fail(err, FT_ERR_GPU, "RGBA32F position framebuffer incomplete: 0x%04x",
+                           (unsigned)st);
+        }
+        r->has_pos_target = 1;
+        r->gpu_bytes += (uint64_t)w * (uint64_t)h * 16u;
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+    return ft_gl_check(gl, "render targets", err);
+}
+
+/* ---- init ------------------------------------------------------------------------ */
+
+ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *s,
+                           const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    ft_status st;
+    memset(r, 0, sizeof *r);
+    r->gpu = gpu;
+    r->gl = &gpu->gl;
+    r->terrain = t;
+    r->scene = s;
+    r->width_px = s->width_px;
+    r->height_px = s->height_px;
+    const ft_gl *gl = r->gl;
+
+    if (gl->caps.max_vertex_texture_units < 1) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "this device has no vertex texture units "
+                       "(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS = 0); fixterrain fetches heights "
+                       "in the vertex shader and cannot run here");
+    }
+    if (t->width > (uint32_t)gl->caps.max_texture_size ||
+        t->height > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "terrain %ux%u exceeds GL_MAX_TEXTURE_SIZE %d of this device", t->width,
+                       t->height, gl->caps.max_texture_size);
+    }
+    if (gl->caps.has_vao) {
+        gl->GenVertexArrays(1, &r->vao);
+        gl->BindVertexArray(r->vao);
+    }
+    st = upload_heights(r, s, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    r->gpu_bytes += r->gt.bytes;
+    st = build_program(gl, "terrain.frag.glsl", &r->prog_color, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    set_static_uniforms(gl, &r->prog_color, t, &r->gt);
+    st = make_targets(r, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    if (r->has_pos_target) {
+        st = build_program(gl, "terrain_pos.frag.glsl", &r->prog_pos, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        set_static_uniforms(gl, &r->prog_pos, t, &r->gt);
+    }
+    st = ft_method_init(&r->method, gl, s, t, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    r->gpu_bytes += ft_method_gpu_bytes(&r->method);
+    if (r->gpu_bytes > s->gpu_texture_bytes) {
+        return ft_fail(err, FT_ERR_BUDGET,
+                       "GPU memory: textures, targets and buffers need %llu bytes but the scene "
+                       "budgets %llu (raise gpu.texture_bytes)",
+                       (unsigned long long)r->gpu_bytes, (unsigned long long)s->gpu_texture_bytes);
+    }
+    size_t px = (size_t)r->width_px * r->height_px;
+    st = ft_arena_take(a, FT_POOL_FRAME_RGBA, px * 4u, (void **)&r->rgba, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    if (r->has_pos_target) {
+        st = ft_arena_take(a, FT_POOL_FRAME_POS, px * 4u * sizeof(float), (void **)&r->pos, err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
+    return ft_gl_check(gl, "renderer init", err);
+}
+
+/* ---- camera ------------------------------------------------------------------------ */
+
+ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fovy_deg,
+                             uint32_t width_px, uint32_t height_px, ft_camera *cam, ft_error *err)
+{
+    double eye[3];
+    ft_terrain_geo_to_world(t, pose->lat_deg, pose->lon_deg, &eye[0], &eye[1]);
+    eye[2] = pose->alt_m;
+    double box_min[2] = {t->origin_world_x_m, t->origin_world_y_m};
+    double box_max[2] = {t->origin_world_x_m + t->cell_x_m * (double)(t->width - 1u),
+                         t->origin_world_y_m + t->cell_y_m * (double)(t->height - 1u)};
+    double near_m, far_m;
+    ft_camera_pick_depth_range(eye, t->min_height_m, t->max_height_m, box_min, box_max, &near_m,
+                               &far_m);
+    const double d2r = FT_PI / 180.0;
+    return ft_camera_init(cam, eye, pose->heading_deg * d2r, pose->pitch_deg * d2r,
+                          pose->roll_deg * d2r, fovy_deg * d2r, width_px, height_px, near_m,
+                          far_m, err);
+}
+
+ft_status ft_renderer_camera(const ft_renderer *r, const ft_pose *pose, ft_camera *cam,
+                             ft_error *err)
+{
+    return ft_camera_for_pose(r->terrain, pose, r->scene->fovy_deg, r->width_px, r->height_px,
+                              cam, err);
+}
+
+/* ---- frames ------------------------------------------------------------------------- */
+
+static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_camera *cam,
+                      ft_method_draw_stats *ms)
+{
+    const ft_gl *gl = r->gl;
+    const ft_terrain *t = r->terrain;
+    gl->Viewport(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
+    gl->DepthMask(GL_TRUE);
+    gl->ClearDepthf(1.0f);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl->UseProgram(p->program);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_2D, r->gt.heights_tex);
+    gl->UniformMatrix4fv(p->u_view_proj, 1, GL_FALSE, cam->view_proj);
+    /* Relative to eye: the subtraction happens here, in double. */
+    gl->Uniform3f(p->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
+                  (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+    ft_method_draw(&r->method, gl, p, t, cam, ms);
+}
+
+ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
+                           ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    ft_method_draw_stats ms = {0, 0};
+    if (cam->width_px != r->width_px || cam->height_px != r->height_px) {
+        return ft_fail(err, FT_ERR_ARG, "camera viewport %ux%u != target %ux%u", cam->width_px,
+                       cam->height_px, r->width_px, r->height_px);
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+    gl->ClearColor(FT_SKY_R, FT_SKY_G, FT_SKY_B, 1.0f);
+    draw_pass(r, &r->prog_color, cam, &ms);
+    st->triangles = ms.triangles;
+    st->draw_calls = ms.draw_calls;
+    r->frames += 1u;
+    return ft_gl_check(gl, "frame draw", err);
+}
+
+/* GL rows run bottom-up; ours run top-down. Swap rows in place (no buffer). */
+static void flip_rows(uint8_t *data, size_t row_bytes, uint32_t rows)
+{
+    for (uint32_t y = 0; y < rows / 2u; ++y) {
+        uint8_t *a = data + (size_t)y * row_bytes;
+        uint8_t *b = data + (size_t)(rows - 1u - y) * row_bytes;
+        for (size_t i = 0; i < row_bytes; ++i) {
+            uint8_t tmp = a[i];
+            a[i] = b[i];
+            b[i] = tmp;
+        }
+    }
+}
+
+ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px, GL_RGBA, GL_UNSIGNED_BYTE,
+                   r->rgba);
+    flip_rows(r->rgba, (size_t)r->width_px * 4u, r->height_px);
+    return ft_gl_check(gl, "colour readback", err);
+}
+
+ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    ft_method_draw_stats ms = {0, 0};
+    if (!r->has_pos_target) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       r->scene->metric_enabled
+                           ? "this context cannot render to float targets (GLES 2): no error "
+                             "metric here"
+                           : "metric.enabled = 0 in the scene: no position target");
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_pos);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    draw_pass(r, &r->prog_pos, cam, &ms);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px, GL_RGBA, GL_FLOAT, r->pos);
+    flip_rows((uint8_t *)r->pos, (size_t)r->width_px * 16u, r->height_px);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+    return ft_gl_check(gl, "position pass", err);
+}
+
+void ft_renderer_shutdown(ft_renderer *r)
+{
+    const ft_gl *gl = r->gl;
+    if (gl == NULL) {
+        return;
+    }
+    ft_method_shutdown(&r->method, gl);
+    if (r->prog_color.program) gl->DeleteProgram(r->prog_color.program);
+    if (r->prog_pos.program) gl->DeleteProgram(r->prog_pos.program);
+    if (r->fbo_color) gl->DeleteFramebuffers(1, &r->fbo_color);
+    if (r->fbo_pos) gl->DeleteFramebuffers(1, &r->fbo_pos);
+    if (r->rb_pos) gl->DeleteRenderbuffers(1, &r->rb_pos);
+    if (r->rb_depth) gl->DeleteRenderbuffers(1, &r->rb_depth);
+    if (r->rb_color) gl->DeleteTextures(1, &r->rb_color);
+    if (r->gt.heights_tex) gl->DeleteTextures(1, &r->gt.heights_tex);
+    if (r->vao && gl->DeleteVertexArrays) gl->DeleteVertexArrays(1, &r->vao);
+    r->gl = NULL;
+}

@@ -1,0 +1,87 @@
+/* renderer.h - GPU side of a scene: terrain textures, offscreen targets,
+ * programs, and one frame of the selected method.
+ *
+ * Everything GPU-side is created in ft_renderer_init (inside the GPU budget
+ * gpu.texture_bytes); a frame only sets uniforms and draws. The default
+ * framebuffer is never used (it is incomplete on EGL surfaceless): colour
+ * frames go to an RGBA8 target, position frames (for the error metric) to
+ * an RGBA32F target where the context can render float. */
+#ifndef FT_RENDERER_H
+#define FT_RENDERER_H
+
+#include <stdint.h>
+
+#include "camera.h"
+#include "gpu.h"
+#include "mem_budget.h"
+#include "method.h"
+#include "scene.h"
+#include "terrain.h"
+
+#define FT_TERRAIN_TEXTURES_MAX (1u + 3u * FT_PYRAMID_LEVELS_MAX)
+
+typedef struct ft_terrain_program {
+    GLuint program;
+    GLint u_heights, u_grid_size, u_patch_origin, u_patch_stride, u_cell_m;
+    GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
+    GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
+} ft_terrain_program;
+
+typedef struct ft_gpu_terrain {
+    ft_height_format format; /* resolved: FLOAT or PACKED */
+    float pack_min_m, pack_range_m;
+    GLuint heights_tex;
+    uint64_t bytes;
+} ft_gpu_terrain;
+
+typedef struct ft_frame_stats {
+    uint64_t triangles;
+    uint32_t draw_calls;
+    double cpu_ms;   /* frame submission on the CPU */
+    double gpu_ms;   /* submission + glFinish (measurement mode) */
+} ft_frame_stats;
+
+typedef struct ft_renderer {
+    ft_gpu_context *gpu;
+    const ft_gl *gl;
+    const ft_terrain *terrain;
+    const ft_scene *scene;
+    uint32_t width_px, height_px;
+    GLuint vao; /* one VAO when the context has them (core profile needs one) */
+    GLuint fbo_color, rb_color, rb_depth;
+    GLuint fbo_pos, rb_pos;
+    int has_pos_target;
+    ft_gpu_terrain gt;
+    ft_terrain_program prog_color, prog_pos;
+    ft_method method;
+    uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */
+    float *pos;     /* FT_POOL_FRAME_POS, width*height*4 (NULL if no float target) */
+    uint64_t gpu_bytes;
+    uint64_t frames;
+} ft_renderer;
+
+/* Adds this scene's CPU pool needs (readback, staging, method) to the plan. */
+void ft_renderer_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+
+ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *s,
+                           const ft_terrain *t, ft_arena *a, ft_error *err);
+
+/* Camera for a pose over this terrain (depth range picked from the terrain). */
+ft_status ft_renderer_camera(const ft_renderer *r, const ft_pose *pose, ft_camera *cam,
+                             ft_error *err);
+ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fovy_deg,
+                             uint32_t width_px, uint32_t height_px, ft_camera *cam,
+                             ft_error *err);
+
+/* Draws one colour frame into the RGBA8 target. */
+ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
+                           ft_error *err);
+/* Reads the colour target into r->rgba (row 0 = top). */
+ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err);
+/* Draws the position pass and reads it into r->pos (row 0 = top).
+ * FT_ERR_UNSUPPORTED when the context cannot render float (GLES 2). */
+ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_error *err);
+
+void ft_renderer_shutdown(ft_renderer *r);
+
+#endif

@@ -1,0 +1,344 @@
+#include "scene.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const k_method_name[FT_METHOD_COUNT] = {
+#define FT_METHOD_NAME(id, name, what) name,
+    FT_METHOD_LIST(FT_METHOD_NAME)
+#undef FT_METHOD_NAME
+};
+
+const char *ft_method_name(ft_method_kind m)
+{
+    return ((unsigned)m < FT_METHOD_COUNT) ? k_method_name[m] : "?";
+}
+
+int ft_method_from_name(const char *name, ft_method_kind *out)
+{
+    for (int i = 0; i < FT_METHOD_COUNT; ++i) {
+        if (strcmp(name, k_method_name[i]) == 0) {
+            *out = (ft_method_kind)i;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+void ft_scene_defaults(ft_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    (void)snprintf(s->name, sizeof s->name, "%s", "default");
+    s->method = FT_METHOD_BRUTE;
+    s->backend = FT_BACKEND_EGL_GLES3;
+    s->width_px = 800;
+    s->height_px = 600;
+    s->fovy_deg = 60.0;
+    s->synth.side = 1025;
+    s->synth.spacing_m = 30.0;
+    s->synth.relief_m = 2400.0;
+    s->synth.seed = 1;
+    s->synth.octaves = 9;
+    s->synth.anchor_lat_deg = 46.5;
+    s->synth.anchor_lon_deg = 8.0;
+    s->pose.lat_deg = 46.52698;
+    s->pose.lon_deg = 8.200674;
+    s->pose.alt_m = 4200.0;
+    s->pose.heading_deg = 10.0;
+    s->pose.pitch_deg = -18.0;
+    s->pose.roll_deg = 0.0;
+    s->height_format = FT_HEIGHT_FORMAT_AUTO;
+    s->gpu_texture_bytes = 64ull << 20;
+    s->brute_patch_cells = 64;
+    s->brute_max_vertices = 4200000;
+    s->metric_enabled = 0;
+    /* Budgets of config/default.ini (tests/test_scene.c checks they agree). */
+    s->budget_bytes[FT_POOL_HEIGHTS] = 6ull << 20;
+    s->budget_bytes[FT_POOL_PYRAMIDS] = 18ull << 20;
+    s->budget_bytes[FT_POOL_DEM_IO] = 2ull << 20;
+    s->budget_bytes[FT_POOL_FRAME_RGBA] = 5ull << 20;
+    s->budget_bytes[FT_POOL_GPU_STAGING] = 6ull << 20;
+    s->budget_bytes[FT_POOL_METHOD] = 512ull << 10;
+    s->budget_bytes[FT_POOL_PNG] = 512ull << 10;
+}
+
+typedef struct parse_ctx {
+    ft_scene *scene;
+    ft_error *err;
+    ft_status status;
+    const char *source;
+    char first_error[200];
+} parse_ctx;
+
+/* Records the first failure only; libinih goes on parsing and reports the
+ * line number of the first failing line, which ft_scene_parse prepends. */
+static int fail_key(parse_ctx *c, const char *section, const char *key, const char *value,
+                    const char *why)
+{
+    if (c->status == FT_OK) {
+        c->status = FT_ERR_CONFIG;
+        (void)snprintf(c->first_error, sizeof c->first_error, "%s.%s = '%.60s': %s", section,
+                       key, value, why);
+    }
+    return 0;
+}
+
+static int parse_f64(const char *v, double lo, double hi, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double d = strtod(v, &end);
+    if (end == v || *end != '\0' || errno != 0 || !isfinite(d) || d < lo || d > hi) {
+        return 0;
+    }
+    *out = d;
+    return 1;
+}
+
+static int parse_u64(const char *v, uint64_t lo, uint64_t hi, uint64_t *out)
+{
+    char *end = NULL;
+    if (v[0] == '-' || v[0] == '\0') {
+        return 0;
+    }
+    errno = 0;
+    unsigned long long u = strtoull(v, &end, 10);
+    if (end == v || errno != 0) {
+        return 0;
+    }
+    /* Optional binary suffix for budgets: 64M, 512K, 2G. */
+    uint64_t mul = 1;
+    if (*end == 'K') mul = 1ull << 10;
+    if (*end == 'M') mul = 1ull << 20;
+    if (*end == 'G') mul = 1ull << 30;
+    if (mul != 1) {
+        ++end;
+    }
+    if (*end != '\0' || (mul != 1 && u > UINT64_MAX / mul)) {
+        return 0;
+    }
+    u *= mul;
+    if (u < lo || u > hi) {
+        return 0;
+    }
+    *out = u;
+    return 1;
+}
+
+static int parse_u32(const char *v, uint32_t lo, uint32_t hi, uint32_t *out)
+{
+    uint64_t u;
+    if (!parse_u64(v, lo, hi, &u)) {
+        return 0;
+    }
+    *out = (uint32_t)u;
+    return 1;
+}
+
+#define RANGE(expr, why) ((expr) ? 1 : fail_key(c, section, key, value, why))
+
+static int on_key(void *user, const char *section, const char *key, const char *value)
+{
+    parse_ctx *c = (parse_ctx *)user;
+    ft_scene *s = c->scene;
+    if (strcmp(section, "scene") == 0) {
+        if (strcmp(key, "name") == 0) {
+            if (strlen(value) >= sizeof s->name) {
+                return fail_key(c, section, key, value, "longer than 63 characters");
+            }
+            (void)snprintf(s->name, sizeof s->name, "%s", value);
+            return 1;
+        }
+        if (strcmp(key, "method") == 0) {
+            return RANGE(ft_method_from_name(value, &s->method),
+                         "unknown method (built in: see 'fixterrain render --help')");
+        }
+        if (strcmp(key, "backend") == 0) {
+            return RANGE(ft_backend_from_name(value, &s->backend),
+                         "unknown backend (egl-gles3, egl-gles2, osmesa)");
+        }
+    } else if (strcmp(section, "view") == 0) {
+        if (strcmp(key, "width_px") == 0) {
+            return RANGE(parse_u32(value, 16, 8192, &s->width_px), "expected 16..8192");
+        }
+        if (strcmp(key, "height_px") == 0) {
+            return RANGE(parse_u32(value, 16, 8192, &s->height_px), "expected 16..8192");
+        }
+        if (strcmp(key, "fovy_deg") == 0) {
+            return RANGE(parse_f64(value, 1.0, 170.0, &s->fovy_deg), "expected 1..170");
+        }
+    } else if (strcmp(section, "pose") == 0) {
+        double big = 1e9;
+        if (strcmp(key, "lat_deg") == 0) {
+            return RANGE(parse_f64(value, -89.0, 89.0, &s->pose.lat_deg), "expected -89..89");
+        }
+        if (strcmp(key, "lon_deg") == 0) {
+            return RANGE(parse_f64(value, -360.0, 360.0, &s->pose.lon_deg),
+                         "expected -360..360");
+        }
+        if (strcmp(key, "alt_m") == 0) {
+            return RANGE(parse_f64(value, -12000.0, 1e6, &s->pose.alt_m),
+                         "expected -12000..1e6");
+        }
+        if (strcmp(key, "heading_deg") == 0) {
+            return RANGE(parse_f64(value, -big, big, &s->pose.heading_deg), "not a number");
+        }
+        if (strcmp(key, "pitch_deg") == 0) {
+            return RANGE(parse_f64(value, -90.0, 90.0, &s->pose.pitch_deg), "expected -90..90");
+        }
+        if (strcmp(key, "roll_deg") == 0) {
+            return RANGE(parse_f64(value, -big, big, &s->pose.roll_deg), "not a number");
+        }
+    } else if (strcmp(section, "terrain") == 0) {
+        if (strcmp(key, "dem") == 0) {
+            if (strlen(value) >= sizeof s->dem_path) {
+                return fail_key(c, section, key, value, "path too long");
+            }
+            (void)snprintf(s->dem_path, sizeof s->dem_path, "%s", value);
+            return 1;
+        }
+        if (strcmp(key, "synth_side") == 0) {
+            return RANGE(parse_u32(value, 3, 16385, &s->synth.side), "expected 3..16385");
+        }
+        if (strcmp(key, "synth_spacing_m") == 0) {
+            return RANGE(parse_f64(value, 1e-3, 1e5, &s->synth.spacing_m), "expected 0.001..1e5");
+        }
+        if (strcmp(key, "synth_relief_m") == 0) {
+            return RANGE(parse_f64(value, 0.0, 9000.0, &s->synth.relief_m), "expected 0..9000");
+        }
+        if (strcmp(key, "synth_seed") == 0) {
+            return RANGE(parse_u32(value, 0, UINT32_MAX, &s->synth.seed), "expected a uint32");
+        }
+        if (strcmp(key, "synth_octaves") == 0) {
+            return RANGE(parse_u32(value, 1, 16, &s->synth.octaves), "expected 1..16");
+        }
+        if (strcmp(key, "synth_anchor_lat_deg") == 0) {
+            return RANGE(parse_f64(value, -89.0, 89.0, &s->synth.anchor_lat_deg),
+                         "expected -89..89");
+        }
+        if (strcmp(key, "synth_anchor_lon_deg") == 0) {
+            return RANGE(parse_f64(value, -360.0, 360.0, &s->synth.anchor_lon_deg),
+                         "expected -360..360");
+        }
+    } else if (strcmp(section, "gpu") == 0) {
+        if (strcmp(key, "height_format") == 0) {
+            if (strcmp(value, "auto") == 0) s->height_format = FT_HEIGHT_FORMAT_AUTO;
+            else if (strcmp(value, "float") == 0) s->height_format = FT_HEIGHT_FORMAT_FLOAT;
+            else if (strcmp(value, "packed") == 0) s->height_format = FT_HEIGHT_FORMAT_PACKED;
+            else return fail_key(c, section, key, value, "expected auto, float or packed");
+            return 1;
+        }
+        if (strcmp(key, "texture_bytes") == 0) {
+            return RANGE(parse_u64(value, 0, 1ull << 40, &s->gpu_texture_bytes),
+                         "expected a byte count (suffix K/M/G allowed)");
+        }
+    } else if (strcmp(section, "brute") == 0) {
+        if (strcmp(key, "patch_cells") == 0) {
+            return RANGE(parse_u32(value, 1, 180, &s->brute_patch_cells), "expected 1..180");
+        }
+        if (strcmp(key, "max_vertices") == 0) {
+            return RANGE(parse_u32(value, 4, UINT32_MAX, &s->brute_max_vertices),
+                         "expected >= 4");
+        }
+    } else if (strcmp(section, "metric") == 0) {
+        if (strcmp(key, "enabled") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->metric_enabled = (int)v;
+            return 1;
+        }
+    } else if (strcmp(section, "budget") == 0) {
+        ft_pool_id id;
+        if (ft_pool_from_key(key, &id)) {
+            return RANGE(parse_u64(value, 0, 1ull << 40, &s->budget_bytes[id]),
+                         "expected a byte count (suffix K/M/G allowed)");
+        }
+    }
+    return fail_key(c, section, key, value, "unknown section or key");
+}
+
+ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name, ft_error *err)
+{
+    parse_ctx c;
+    memset(&c, 0, sizeof c);
+    c.scene = s;
+    c.err = err;
+    c.status = FT_OK;
+    c.source = source_name;
+    int rc = ini_parse_string(text, on_key, &c);
+    if (c.status != FT_OK) {
+        return ft_fail(err, c.status, "%s:%d: %s", source_name, rc, c.first_error);
+    }
+    if (rc < 0) {
+        return ft_fail(err, FT_ERR_CONFIG, "%s: scene parser failed (%d)", source_name, rc);
+    }
+    if (rc > 0) {
+        return ft_fail(err, FT_ERR_CONFIG, "%s:%d: malformed line (expected [section] or key = value)",
+                       source_name, rc);
+    }
+    return ft_scene_validate(s, err);
+}
+
+ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
+{
+    if (s->width_px < 16 || s->height_px < 16 || s->width_px > 8192 || s->height_px > 8192) {
+        return ft_fail(err, FT_ERR_CONFIG, "view %ux%u outside 16..8192", s->width_px,
+                       s->height_px);
+    }
+    if (!(s->fovy_deg >= 1.0 && s->fovy_deg <= 170.0)) {
+        return ft_fail(err, FT_ERR_CONFIG, "view.fovy_deg %g outside 1..170", s->fovy_deg);
+    }
+    const ft_pose *p = &s->pose;
+    if (!isfinite(p->lat_deg) || !isfinite(p->lon_deg) || !isfinite(p->alt_m) ||
+        !isfinite(p->heading_deg) || !isfinite(p->pitch_deg) || !isfinite(p->roll_deg) ||
+        fabs(p->lat_deg) > 89.0 || fabs(p->pitch_deg) > 90.0) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "pose is not finite or outside |lat| <= 89, |pitch| <= 90 deg");
+    }
+    if (s->brute_patch_cells < 1 || s->brute_patch_cells > 180) {
+        return ft_fail(err, FT_ERR_CONFIG, "brute.patch_cells %u outside 1..180",
+                       s->brute_patch_cells);
+    }
+    return FT_OK;
+}
+
+ft_status ft_pose_parse(const char *text, ft_pose *out, ft_error *err)
+{
+    double v[6];
+    const char *p = text;
+    for (int i = 0; i < 6; ++i) {
+        char *end = NULL;
+        errno = 0;
+        v[i] = strtod(p, &end);
+        if (end == p || errno != 0 || !isfinite(v[i])) {
+            return ft_fail(err, FT_ERR_ARG,
+                           "--pose '%.80s': field %d is not a finite number "
+                           "(want LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG)",
+                           text, i + 1);
+        }
+        if (i < 5 && *end != ',') {
+            return ft_fail(err, FT_ERR_ARG, "--pose '%.80s': expected 6 comma-separated numbers",
+                           text);
+        }
+        if (i == 5 && *end != '\0') {
+            return ft_fail(err, FT_ERR_ARG, "--pose '%.80s': trailing characters", text);
+        }
+        p = end + 1;
+    }
+    if (fabs(v[0]) > 89.0 || fabs(v[1]) > 360.0 || fabs(v[4]) > 90.0) {
+        return ft_fail(err, FT_ERR_ARG, "--pose: need |lat| <= 89, |lon| <= 360, |pitch| <= 90");
+    }
+    out->lat_deg = v[0];
+    out->lon_deg = v[1];
+    out->alt_m = v[2];
+    out->heading_deg = v[3];
+    out->pitch_deg = v[4];
+    out->roll_deg = v[5];
+    return FT_OK;
+}

@@ -1,0 +1,86 @@
+/* scene.h - a scene file (INI, parsed with libinih) resolved into one const
+ * struct. Zero/absent means "default", resolved once by ft_scene_defaults();
+ * shipped files in config/ still set every key. Unknown sections or keys,
+ * and values out of range, are errors with the line number: a typo in a
+ * budget must never silently fall back to a default.
+ *
+ * Keys (section.key = meaning [range]):
+ *   scene.name            text (<= 63 chars)
+ *   scene.method          brute                      (methods built in)
+ *   scene.backend         egl-gles3 | egl-gles2 | osmesa
+ *   view.width_px, view.height_px   [16, 8192]
+ *   view.fovy_deg         [1, 170]
+ *   pose.lat_deg [-89,89] pose.lon_deg [-360,360] pose.alt_m [-12000, 1e6]
+ *   pose.heading_deg pose.pitch_deg pose.roll_deg     (any finite)
+ *   terrain.dem           path to .ftt or .hgt; empty = embedded synthetic
+ *   terrain.synth_side    [3, 16385]   terrain.synth_spacing_m (0, 1e5]
+ *   terrain.synth_relief_m [0, 9000]   terrain.synth_seed, terrain.synth_octaves [1,16]
+ *   terrain.synth_anchor_lat_deg, terrain.synth_anchor_lon_deg
+ *   gpu.height_format     auto | float | packed
+ *   gpu.texture_bytes     budget for all GPU textures and buffers
+ *   brute.patch_cells     template patch side in cells [1, 180]
+ *   brute.max_vertices    most grid vertices brute draws per frame (window)
+ *   metric.enabled        0 | 1: measure screen-space error against the reference
+ *   budget.<pool>_bytes   one per pool in mem_budget.h (heights_bytes, ...) */
+#ifndef FT_SCENE_H
+#define FT_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "camera.h"
+#include "ft_status.h"
+#include "gl_api.h"
+#include "gpu.h"
+#include "mem_budget.h"
+#include "synth_terrain.h"
+
+#define FT_SCENE_TEXT_MAX 65536u /* scene files larger than this are rejected */
+#define FT_SCENE_NAME_MAX 64u
+#define FT_SCENE_PATH_MAX 512u
+
+#define FT_METHOD_LIST(X) X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")
+
+typedef enum ft_method_kind {
+#define FT_METHOD_ENUM(id, name, what) id,
+    FT_METHOD_LIST(FT_METHOD_ENUM)
+#undef FT_METHOD_ENUM
+    FT_METHOD_COUNT
+} ft_method_kind;
+
+const char *ft_method_name(ft_method_kind m);
+int ft_method_from_name(const char *name, ft_method_kind *out);
+
+typedef struct ft_scene {
+    char name[FT_SCENE_NAME_MAX];
+    ft_method_kind method;
+    ft_backend backend;
+    uint32_t width_px, height_px;
+    double fovy_deg;
+    ft_pose pose;
+    char dem_path[FT_SCENE_PATH_MAX];
+    ft_synth_desc synth;
+    ft_height_format height_format;
+    uint64_t gpu_texture_bytes;
+    uint32_t brute_patch_cells;
+    uint32_t brute_max_vertices;
+    int metric_enabled; /* metric.enabled: position target, reference, error stats */
+    uint64_t budget_bytes[FT_POOL_COUNT];
+} ft_scene;
+
+/* The embedded default scene (config/default.ini, compiled in). */
+extern const char ft_default_scene_text[];
+
+/* Fills every field with its default (what config/default.ini also says). */
+void ft_scene_defaults(ft_scene *s);
+
+/* Parses INI text over the current contents of s (start from defaults). */
+ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name, ft_error *err);
+
+/* Range checks across fields (after parsing and command-line overrides). */
+ft_status ft_scene_validate(const ft_scene *s, ft_error *err);
+
+/* Parses "LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG". */
+ft_status ft_pose_parse(const char *text, ft_pose *out, ft_error *err);
+
+#endif

@@ -150,7 +150,47 @@ static void pack_heights(const float *h, size_t n, float min_m, float range_m, u
     }
 }
 
-static ft_status upload_heights(ft_renderer *r, const ft_scene *s, ft_arena *a, ft_error *err)
+/* One single-channel float array as a NEAREST texture in the resolved
+ * format. Packed texels go through the staging pool (reset afterwards). */
+static ft_status upload_array(ft_renderer *r, ft_arena *a, const float *data, uint32_t w_px,
+                              uint32_t h_px, GLuint *tex, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    const ft_gpu_terrain *gt = &r->gt;
+    const GLsizei w = (GLsizei)w_px, h = (GLsizei)h_px;
+    gl->GenTextures(1, tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_2D, *tex);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    /* NEAREST: texels are fetched exactly (float linear filtering is optional). */
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (gt->format == FT_HEIGHT_FORMAT_FLOAT) {
+        if (gl->api == FT_GL_API_ES3) {
+            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, data);
+        } else {
+            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, w, h, 0, GL_LUMINANCE, GL_FLOAT, data);
+        }
+    } else {
+        uint8_t *staging = NULL;
+        size_t n = (size_t)w_px * h_px;
+        size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
+        ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING, n * 4u, (void **)&staging, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        pack_heights(data, n, gt->pack_min_m, gt->pack_range_m, staging);
+        gl->TexImage2D(GL_TEXTURE_2D, 0, gl->api == FT_GL_API_ES3 ? GL_RGBA8 : GL_RGBA, w, h, 0,
+                       GL_RGBA, GL_UNSIGNED_BYTE, staging);
+        ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
+    }
+    r->gt.bytes += (uint64_t)w_px * (uint64_t)h_px * 4u;
+    return ft_gl_check(gl, "terrain texture upload", err);
+}
+
+static ft_status upload_terrain(ft_renderer *r, const ft_scene *s, ft_arena *a, ft_error *err)
 {
     const ft_gl *gl = r->gl;
     const ft_terrain *t = r->terrain;
@@ -170,38 +210,28 @@ static ft_status upload_heights(ft_renderer *r, const ft_scene *s, ft_arena *a, 
     if (!(gt->pack_range_m > 0.0f)) {
         gt->pack_range_m = 1.0f; /* flat terrain: any range decodes exactly */
     }
-    gl->GenTextures(1, &gt->heights_tex);
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_2D, gt->heights_tex);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    /* NEAREST: texels are fetched exactly (float linear filtering is optional). */
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    const GLsizei w = (GLsizei)t->width, h = (GLsizei)t->height;
-    if (f == FT_HEIGHT_FORMAT_FLOAT) {
-        if (gl->api == FT_GL_API_ES3) {
-            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, t->heights_m);
-        } else {
-            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, w, h, 0, GL_LUMINANCE, GL_FLOAT,
-                           t->heights_m);
-        }
-    } else {
-        uint8_t *staging = NULL;
-        size_t n = (size_t)t->width * t->height;
-        size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
-        ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING, n * 4u, (void **)&staging, err);
-        if (st != FT_OK) {
-            return st;
-        }
-        pack_heights(t->heights_m, n, gt->pack_min_m, gt->pack_range_m, staging);
-        gl->TexImage2D(GL_TEXTURE_2D, 0, gl->api == FT_GL_API_ES3 ? GL_RGBA8 : GL_RGBA, w, h, 0,
-                       GL_RGBA, GL_UNSIGNED_BYTE, staging);
-        ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
+    ft_status st = upload_array(r, a, t->heights_m, t->width, t->height, &gt->heights_tex, err);
+    if (st != FT_OK || !s->pyramid_textures) {
+        return st;
     }
-    gt->bytes = (uint64_t)w * (uint64_t)h * 4u;
-    return ft_gl_check(gl, "height texture upload", err);
+    const ft_pyramid *p = &t->pyr;
+    gt->avg_tex[0] = gt->heights_tex;
+    gt->pyramid_levels_avg = 1;
+    for (uint32_t l = 1; l < p->avg_levels && st == FT_OK; ++l) {
+        st = upload_array(r, a, p->avg[l].avg_m, p->avg[l].width, p->avg[l].height,
+                          &gt->avg_tex[l], err);
+        gt->pyramid_levels_avg = l + 1u;
+    }
+    for (uint32_t l = 0; l < p->minmax_levels && st == FT_OK; ++l) {
+        st = upload_array(r, a, p->minmax[l].min_m, p->minmax[l].width, p->minmax[l].height,
+                          &gt->min_tex[l], err);
+        if (st == FT_OK) {
+            st = upload_array(r, a, p->minmax[l].max_m, p->minmax[l].width, p->minmax[l].height,
+                              &gt->max_tex[l], err);
+        }
+        gt->pyramid_levels_minmax = l + 1u;
+    }
+    return st;
 }
 
 /* ---- targets ------------------------------------------------------------------ */
@@ -291,7 +321,7 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         gl->GenVertexArrays(1, &r->vao);
         gl->BindVertexArray(r->vao);
     }
-    st = upload_heights(r, s, a, err);
+    st = upload_terrain(r, s, a, err);
     if (st != FT_OK) {
         return st;
     }
@@ -466,6 +496,11 @@ void ft_renderer_shutdown(ft_renderer *r)
     if (r->rb_depth) gl->DeleteRenderbuffers(1, &r->rb_depth);
     if (r->rb_color) gl->DeleteTextures(1, &r->rb_color);
     if (r->gt.heights_tex) gl->DeleteTextures(1, &r->gt.heights_tex);
+    for (uint32_t l = 1; l < r->gt.pyramid_levels_avg; ++l) gl->DeleteTextures(1, &r->gt.avg_tex[l]);
+    for (uint32_t l = 0; l < r->gt.pyramid_levels_minmax; ++l) {
+        if (r->gt.min_tex[l]) gl->DeleteTextures(1, &r->gt.min_tex[l]);
+        if (r->gt.max_tex[l]) gl->DeleteTextures(1, &r->gt.max_tex[l]);
+    }
     if (r->vao && gl->DeleteVertexArrays) gl->DeleteVertexArrays(1, &r->vao);
     r->gl = NULL;
 }

@@ -27,10 +27,19 @@ typedef struct ft_terrain_program {
     GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
 } ft_terrain_program;
 
+/* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
+ * one single-channel texture per array, all in the same format: R32F (ES3),
+ * LUMINANCE/FLOAT (ES2 + OES_texture_float) or RGBA8 packed 24-bit fixed
+ * point over [pack_min_m, pack_min_m + pack_range_m]. NEAREST sampling. */
 typedef struct ft_gpu_terrain {
     ft_height_format format; /* resolved: FLOAT or PACKED */
     float pack_min_m, pack_range_m;
     GLuint heights_tex;
+    uint32_t pyramid_levels_avg;    /* textures in avg_tex (level 0 = heights_tex) */
+    uint32_t pyramid_levels_minmax; /* textures in min_tex / max_tex */
+    GLuint avg_tex[FT_PYRAMID_LEVELS_MAX];
+    GLuint min_tex[FT_PYRAMID_LEVELS_MAX];
+    GLuint max_tex[FT_PYRAMID_LEVELS_MAX];
     uint64_t bytes;
 } ft_gpu_terrain;
 

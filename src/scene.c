@@ -232,6 +232,14 @@ static int on_key(void *user, const char *section, const char *key, const char *
             else return fail_key(c, section, key, value, "expected auto, float or packed");
             return 1;
         }
+        if (strcmp(key, "pyramid_textures") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->pyramid_textures = (int)v;
+            return 1;
+        }
         if (strcmp(key, "texture_bytes") == 0) {
             return RANGE(parse_u64(value, 0, 1ull << 40, &s->gpu_texture_bytes),
                          "expected a byte count (suffix K/M/G allowed)");

@@ -18,6 +18,7 @@
  *   terrain.synth_anchor_lat_deg, terrain.synth_anchor_lon_deg
  *   gpu.height_format     auto | float | packed
  *   gpu.texture_bytes     budget for all GPU textures and buffers
+ *   gpu.pyramid_textures  0 | 1: also upload the avg/min/max pyramids as textures
  *   brute.patch_cells     template patch side in cells [1, 180]
  *   brute.max_vertices    most grid vertices brute draws per frame (window)
  *   metric.enabled        0 | 1: measure screen-space error against the reference
@@ -62,6 +63,7 @@ typedef struct ft_scene {
     ft_synth_desc synth;
     ft_height_format height_format;
     uint64_t gpu_texture_bytes;
+    int pyramid_textures; /* gpu.pyramid_textures: upload avg/min/max pyramids too */
     uint32_t brute_patch_cells;
     uint32_t brute_max_vertices;
     int metric_enabled; /* metric.enabled: position target, reference, error stats */

@@ -1,0 +1,3 @@
+# Core tests that need no GPU.
+ft_add_test(test_scene SOURCES test_scene.c)
+ft_add_test(test_mem_budget SOURCES test_mem_budget.c)

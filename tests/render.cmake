@@ -1,0 +1,61 @@
+# Real contexts, real frames: EGL GLES 3, EGL GLES 2 (a true ES 2.0 context via
+# MESA_GLES_VERSION_OVERRIDE: without it Mesa returns ES 3.2 to an ES 2
+# request and would hide ES 3 features in the GLES 2 path), OSMesa, and the
+# packed-height fallback; then the images must agree.
+if(TARGET ft_app)
+  set(_out ${CMAKE_BINARY_DIR}/test-out)
+  add_executable(test_render test_render.c)
+  target_compile_options(test_render PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_render PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_render PRIVATE ft_app)
+  set(_images "")
+  macro(ft_render_case name backend format expect env)
+    add_test(NAME ${name} COMMAND test_render ${backend} ${format} ${_out}/${name}.rgba ${expect})
+    set_tests_properties(${name} PROPERTIES FIXTURES_SETUP render_images TIMEOUT 300
+                         ENVIRONMENT "${env}")
+    list(APPEND _images ${_out}/${name}.rgba)
+  endmacro()
+  if(FIXTERRAIN_WITH_EGL)
+    ft_render_case(render_egl_gles3 egl-gles3 auto "OpenGL ES 3" "")
+    ft_render_case(render_egl_gles2_strict egl-gles2 auto "OpenGL ES 2.0" "MESA_GLES_VERSION_OVERRIDE=2.0")
+    ft_render_case(render_egl_gles2_packed egl-gles2 packed "OpenGL ES 2.0" "MESA_GLES_VERSION_OVERRIDE=2.0")
+    ft_render_case(render_egl_gles3_packed egl-gles3 packed "OpenGL ES 3" "")
+  endif()
+  if(FIXTERRAIN_WITH_OSMESA)
+    ft_render_case(render_osmesa osmesa auto "4." "")
+  endif()
+  list(LENGTH _images _n)
+  if(_n GREATER 1)
+    add_executable(test_render_compare test_render_compare.c)
+    target_compile_options(test_render_compare PRIVATE ${FT_WARNINGS})
+    target_include_directories(test_render_compare PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+    target_link_libraries(test_render_compare PRIVATE m)
+    add_test(NAME render_compare COMMAND test_render_compare 320 240 ${_images})
+    set_tests_properties(render_compare PROPERTIES FIXTURES_REQUIRED render_images)
+  endif()
+
+  # The GLSL ES 1.00 sources must pass a strict validator: Mesa compiles
+  # ES 3 constructs even in an ES 2.0 context and would not catch them.
+  find_program(GLSLANG glslangValidator)
+  if(GLSLANG)
+    add_test(NAME glsl_validate
+             COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/glsl_validate.sh ${GLSLANG}
+                     ${CMAKE_BINARY_DIR}/generated/shaders ${_out})
+  endif()
+endif()
+
+if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
+  add_executable(test_no_heap test_no_heap.c)
+  target_compile_options(test_no_heap PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_no_heap PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_no_heap PRIVATE ft_app)
+  target_link_options(test_no_heap PRIVATE
+    "LINKER:--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free,--wrap=strdup"
+    "LINKER:--wrap=posix_memalign,--wrap=aligned_alloc,--wrap=mmap")
+  if(FIXTERRAIN_WITH_EGL)
+    add_test(NAME no_heap_egl COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap.png egl-gles3)
+  endif()
+  if(FIXTERRAIN_WITH_OSMESA)
+    add_test(NAME no_heap_osmesa COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap_osmesa.png osmesa)
+  endif()
+endif()

@@ -1,0 +1,96 @@
+/* test_scene.c - the scene file: the embedded default resolves to exactly the
+ * documented defaults, every error names the line and key, and ranges hold. */
+#include <string.h>
+
+#include "scene.h"
+#include "test_util.h"
+
+static ft_status parse(const char *text, ft_scene *s, ft_error *err)
+{
+    ft_scene_defaults(s);
+    memset(err, 0, sizeof *err);
+    return ft_scene_parse(s, text, "test.ini", err);
+}
+
+static void expect_error(const char *text, const char *needle)
+{
+    ft_scene s;
+    ft_error err;
+    ft_status st = parse(text, &s, &err);
+    CHECK(st == FT_ERR_CONFIG);
+    if (strstr(err.text, needle) == NULL) {
+        fprintf(stderr, "error text '%s' lacks '%s'\n", err.text, needle);
+        CHECK(0);
+    }
+}
+
+int main(void)
+{
+    ft_scene a, b;
+    ft_error err;
+
+    /* The embedded default scene sets every key to the built-in defaults:
+     * parse it over a zeroed struct and compare with ft_scene_defaults. */
+    memset(&a, 0, sizeof a);
+    a.backend = FT_BACKEND_EGL_GLES3;
+    CHECK(ft_scene_parse(&a, ft_default_scene_text, "embedded", &err) == FT_OK);
+    ft_scene_defaults(&b);
+    CHECK(strcmp(a.name, b.name) == 0);
+    CHECK(a.method == b.method && a.backend == b.backend);
+    CHECK(a.width_px == b.width_px && a.height_px == b.height_px);
+    CHECK_NEAR(a.fovy_deg, b.fovy_deg, 0.0);
+    CHECK_NEAR(a.pose.lat_deg, b.pose.lat_deg, 0.0);
+    CHECK_NEAR(a.pose.lon_deg, b.pose.lon_deg, 0.0);
+    CHECK_NEAR(a.pose.alt_m, b.pose.alt_m, 0.0);
+    CHECK(a.synth.side == b.synth.side && a.synth.seed == b.synth.seed);
+    CHECK(a.gpu_texture_bytes == b.gpu_texture_bytes);
+    CHECK(a.brute_patch_cells == b.brute_patch_cells);
+    CHECK(a.brute_max_vertices == b.brute_max_vertices);
+    CHECK(a.metric_enabled == b.metric_enabled);
+    CHECK(a.pyramid_textures == b.pyramid_textures);
+    CHECK(a.height_format == b.height_format);
+    for (int i = 0; i < FT_POOL_COUNT; ++i) {
+        if (a.budget_bytes[i] != b.budget_bytes[i]) {
+            fprintf(stderr, "budget.%s: ini %llu vs defaults %llu\n", ft_pool_key((ft_pool_id)i),
+                    (unsigned long long)a.budget_bytes[i], (unsigned long long)b.budget_bytes[i]);
+            CHECK(0);
+        }
+    }
+    CHECK(a.dem_path[0] == '\0');
+
+    /* Suffixes and overrides. */
+    CHECK(parse("[budget]\nheights_bytes = 3M\npng_bytes=512K\n[view]\nwidth_px=640\n", &a, &err) ==
+          FT_OK);
+    CHECK(a.budget_bytes[FT_POOL_HEIGHTS] == 3u * 1024u * 1024u);
+    CHECK(a.budget_bytes[FT_POOL_PNG] == 512u * 1024u);
+    CHECK(a.width_px == 640);
+    CHECK(parse("[scene]\nbackend = osmesa\n[gpu]\nheight_format = packed\n", &a, &err) == FT_OK);
+    CHECK(a.backend == FT_BACKEND_OSMESA && a.height_format == FT_HEIGHT_FORMAT_PACKED);
+
+    /* Errors carry the line number, the key and the reason. */
+    expect_error("[view]\nwidth_px = 8193\n", "test.ini:2: view.width_px");
+    expect_error("[view]\nwidth_px = 12abc\n", "expected 16..8192");
+    expect_error("[budget]\nheigths_bytes = 1M\n", "unknown section or key");
+    expect_error("[budget]\nheights_bytes = -1\n", "byte count");
+    expect_error("[budget]\nheights_bytes = 99999999999999999999\n", "byte count");
+    expect_error("[scene]\nmethod = magic\n", "unknown method");
+    expect_error("[scene]\nbackend = vulkan\n", "unknown backend");
+    expect_error("[nosuch]\nkey = 1\n", "nosuch.key");
+    expect_error("[pose]\npitch_deg = 91\n", "expected -90..90");
+    expect_error("[pose]\nalt_m = nan\n", "pose.alt_m");
+    expect_error("[view]\nfovy_deg = inf\n", "view.fovy_deg");
+    expect_error("[metric]\nenabled = 2\n", "expected 0 or 1");
+    expect_error("[view]\n\nwidth_px = 640\nthis line is wrong\n", "test.ini:4");
+
+    /* --pose parsing */
+    ft_pose p;
+    CHECK(ft_pose_parse("46.85,-121.76,4500,90,-10,5", &p, &err) == FT_OK);
+    CHECK_NEAR(p.lon_deg, -121.76, 1e-12);
+    CHECK_NEAR(p.roll_deg, 5.0, 1e-12);
+    CHECK(ft_pose_parse("46.85,-121.76,4500,90,-10", &p, &err) == FT_ERR_ARG);
+    CHECK(ft_pose_parse("46.85,-121.76,4500,90,-10,5,7", &p, &err) == FT_ERR_ARG);
+    CHECK(ft_pose_parse("46.85,x,4500,90,-10,5", &p, &err) == FT_ERR_ARG);
+    CHECK(ft_pose_parse("95,0,4500,90,-10,5", &p, &err) == FT_ERR_ARG);
+    CHECK(ft_pose_parse("46,0,nan,90,-10,5", &p, &err) == FT_ERR_ARG);
+    return ft_test_result("test_scene");
+}

@@ -78,10 +78,13 @@ ft_status ft_plat_egl_open(ft_backend backend, ft_gpu_context *ctx, ft_error *er
                     (unsigned)eglGetError());
         goto fail_initialized;
     }
-    /* Alpha 8 explicitly: without it Mesa offers a 10/10/10/2 config first.
+    /* Pbuffer configs: the surfaceless platform has no window configs, and
+     * EGL_SURFACE_TYPE defaults to EGL_WINDOW_BIT. Alpha 8 explicitly:
+     * without it Mesa offers a 10/10/10/2 config first.
      * We never draw to the config's surface (FBOs only), but keep it plain. */
     const EGLint config_attribs[] = {EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
-                                     EGL_ALPHA_SIZE, 8, EGL_RENDERABLE_TYPE,
+                                     EGL_ALPHA_SIZE, 8, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                                     EGL_RENDERABLE_TYPE,
                                      es3 ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_ES2_BIT, EGL_NONE};
     EGLConfig config;
     EGLint n_configs = 0;

@@ -2,6 +2,7 @@
  * job. Errors go to stderr with the reason; information goes to stdout.
  * Exit status: 0 ok, 1 runtime error, 2 usage error. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -272,11 +273,20 @@ static int cmd_render(int argc, char **argv)
             rc = FT_EXIT_ERROR;
             goto done;
         }
+        /* JSON has no infinity: a non-finite vertex makes max_px null and
+         * is counted in nonfinite_px. */
+        char max_text[32];
+        if (isfinite(es.max_px)) {
+            (void)snprintf(max_text, sizeof max_text, "%.4f", es.max_px);
+        } else {
+            (void)snprintf(max_text, sizeof max_text, "null");
+        }
         (void)snprintf(error_json, sizeof error_json,
-                       "{\"max_px\": %.4f, \"p999_px\": %.4f, \"mean_px\": %.4f, "
-                       "\"terrain_px\": %u, \"only_method_px\": %u, \"only_ref_px\": %u}",
-                       es.max_px, es.p999_px, es.mean_px, es.terrain_px, es.only_method_px,
-                       es.only_ref_px);
+                       "{\"max_px\": %s, \"p999_px\": %.4f, \"mean_px\": %.4f, "
+                       "\"terrain_px\": %u, \"only_method_px\": %u, \"only_ref_px\": %u, "
+                       "\"nonfinite_px\": %u, \"outside_grid_px\": %u}",
+                       max_text, es.p999_px, es.mean_px, es.terrain_px, es.only_method_px,
+                       es.only_ref_px, es.nonfinite_px, es.outside_grid_px);
         if (!quiet) {
             printf("screen-space error vs reference: max %.3f px, p99.9 %.3f px, mean %.4f px; "
                    "coverage mismatch %u + %u px\n",

@@ -42,7 +42,8 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
                          double pitch_rad, double roll_rad, double fovy_rad, uint32_t width_px,
                          uint32_t height_px, double near_m, double far_m, ft_error *err);
 
-/* Unit ray direction (world) through the centre of pixel (px, py). */
+/* Unit ray direction (world) through image point (px, py) in pixel units:
+ * pass (x + 0.5, y + 0.5) for the centre of pixel (x, y). */
 void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3]);
 
 /* Near plane from the eye's clearance above the highest terrain, far plane

@@ -1,0 +1,65 @@
+#!/bin/sh
+# test_cli.sh - the fixterrain command line as a user meets it.
+# usage: test_cli.sh FIXTERRAIN OUTDIR SHARED_DATA_DIR
+set -u
+bin=$1; out=$2/cli; data=$3
+mkdir -p "$out"; rm -f "$out"/*
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+# expect CODE NEEDLE -- CMD...: exit status CODE and NEEDLE in stdout+stderr
+expect() {
+  code=$1; needle=$2; shift 3
+  text=$("$@" 2>&1); rc=$?
+  [ "$rc" -eq "$code" ] || fail "'$*' exited $rc, expected $code: $text"
+  case "$text" in *"$needle"*) ;; *) fail "'$*' output lacks '$needle': $text" ;; esac
+}
+
+expect 0 "usage: fixterrain COMMAND" -- "$bin" help
+expect 0 "usage: fixterrain render" -- "$bin" render --help
+expect 2 "unknown command" -- "$bin" frobnicate
+expect 2 "unknown option" -- "$bin" render --bogus 1
+expect 2 "needs a value" -- "$bin" render --out
+expect 2 "--size wants WxH" -- "$bin" render --size 10x10
+expect 2 "unknown backend" -- "$bin" render --backend vulkan
+expect 2 "unknown method" -- "$bin" render --method magic
+expect 2 "6 comma-separated" -- "$bin" render --pose 46,8,3000
+expect 1 "cannot open" -- "$bin" render --scene "$out/none.ini"
+
+# The default scene: no arguments at all, in an empty directory.
+(cd "$out" && "$bin" > default.log 2>&1) || fail "default render failed: $(cat "$out/default.log")"
+[ -s "$out/fixterrain.png" ] || fail "default render wrote no fixterrain.png"
+head -c 8 "$out/fixterrain.png" | od -An -c | grep -q 'P   N   G' || fail "fixterrain.png is not a PNG"
+grep -q "heights_bytes" "$out/default.log" || fail "no memory table printed at init"
+
+# Budgets: a pool too small fails at init naming the pool and the numbers.
+printf '[budget]\nheights_bytes = 1M\n' > "$out/small.ini"
+expect 1 "pool 'heights_bytes'" -- "$bin" render --scene "$out/small.ini" --out "$out/x.png"
+expect 1 "needs 4202560 bytes but the scene budgets 1048576" -- "$bin" render --scene "$out/small.ini"
+printf '[gpu]\ntexture_bytes = 1M\n' > "$out/gpu.ini"
+expect 1 "gpu.texture_bytes" -- "$bin" render --scene "$out/gpu.ini" --out "$out/x.png"
+printf '[view]\nwidth_px = 2000\nheight_px = 2000\n' > "$out/big.ini"
+expect 1 "frame_rgba_bytes" -- "$bin" render --scene "$out/big.ini" --out "$out/x.png"
+printf '[view]\nwidht_px = 640\n' > "$out/typo.ini"
+expect 1 ":2: view.widht_px" -- "$bin" render --scene "$out/typo.ini"
+printf '[scene]\nmethod = brute\n' > "$out/ok.ini"
+head -c 70000 /dev/zero | tr '\0' ';' >> "$out/ok.ini"
+expect 1 "the limit is 65535 bytes" -- "$bin" render --scene "$out/ok.ini"
+
+# Bad DEM files: clear errors, never a crash.
+printf 'this is not a terrain file at all, but it is long enough to hold a header.%0256d' 0 > "$out/bad.ftt"
+expect 1 "magic" -- "$bin" render --dem "$out/bad.ftt" --out "$out/x.png"
+head -c 1000 /dev/zero > "$out/N46W122.hgt"
+expect 1 "N46W122.hgt" -- "$bin" render --dem "$out/N46W122.hgt" --out "$out/x.png"
+expect 1 "cannot open" -- "$bin" render --dem "$out/missing.hgt" --out "$out/x.png"
+
+# Real data: the .hgt reader through the CLI, with stats.
+if [ -f "$data/N42E001.hgt" ]; then
+  "$bin" render --dem "$data/N42E001.hgt" --pose 42.30,1.50,3800,0,-14,0 --size 320x240 \
+    --out "$out/n42.png" --stats "$out/n42.json" --quiet || fail "N42E001 render failed"
+  cmake -DJSON="$out/n42.json" -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "stats JSON check"
+  expect 0 "7652 voids filled" -- "$bin" render --dem "$data/N42E001.hgt" --size 64x64 --out "$out/y.png"
+fi
+
+echo "test_cli: $fails failure(s)"
+[ "$fails" -eq 0 ]

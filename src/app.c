@@ -51,7 +51,7 @@ static ft_status probe_terrain(ft_app *app, ft_file *file, ft_error *err)
         return ft_hgt_probe(&file->reader, s->dem_path, &app->terrain, err);
     }
     app->dem_kind = FT_DEM_FTT;
-    return ft_tfile_probe(&file->reader, &app->terrain, err);
+    return ft_tfile_probe(&file->reader, &app->terrain, &app->tfile_header, err);
 }
 
 static void plan(ft_app *app)
@@ -113,7 +113,7 @@ static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
         return st;
     }
     case FT_DEM_FTT:
-        return ft_tfile_load_payload(&file->reader, t, err);
+        return ft_tfile_load_payload(&file->reader, t, &app->tfile_header, err);
     default:
         return ft_fail(err, FT_ERR_ARG, "unknown DEM kind");
     }

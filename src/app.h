@@ -17,6 +17,7 @@
 #include "renderer.h"
 #include "scene.h"
 #include "terrain.h"
+#include "terrain_file.h"
 #if FT_WITH_REFERENCE
 #include "metric.h"
 #include "reference.h"
@@ -32,6 +33,7 @@ typedef struct ft_app {
     void *arena_memory;
     size_t arena_bytes;
     ft_dem_kind dem_kind;
+    ft_tfile_header tfile_header; /* between probe and load of a .ftt */
     ft_terrain terrain;
     ft_gpu_context gpu;
     ft_renderer renderer;

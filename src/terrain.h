@@ -37,7 +37,7 @@ typedef enum ft_spacing_unit { FT_UNIT_METRE = 0, FT_UNIT_DEGREE = 1 } ft_spacin
 
 typedef struct ft_pyramid_level {
     uint32_t width, height; /* texels at this level */
-    float *avg_m;           /* width*height, NULL for level 0 of avg (= heights) */
+    float *avg_m;           /* width*height; avg[0].avg_m points at the heights */
     float *min_m;           /* width*height */
     float *max_m;           /* width*height */
 } ft_pyramid_level;

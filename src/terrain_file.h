@@ -39,15 +39,25 @@
 #define FT_TFILE_VERSION 1u
 #define FT_TFILE_HEADER_BYTES 256u
 
+/* What the probe read that the payload load needs and ft_terrain does not
+ * hold. The caller keeps it between the two calls: no hidden state. */
+typedef struct ft_tfile_header {
+    uint32_t payload_crc32;
+    float vertical_scale, vertical_offset;
+    float header_min_m, header_max_m;
+    int valid; /* set by a successful probe, cleared by the load (one load per probe) */
+} ft_tfile_header;
+
 /* Reads and validates the header; fills every ft_terrain field except the
  * data pointers (heights_m, pyr arrays stay NULL) and derives the frame.
  * Also checks r->size_bytes against the declared payload size. */
-ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_error *err);
+ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr, ft_error *err);
 
 /* Continues after ft_tfile_probe on the same reader: reads heights into
  * t->heights_m and pyramids into the arrays set by ft_pyramid_layout, checks
  * the crc and that heights are finite. */
-ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_error *err);
+ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr,
+                                ft_error *err);
 
 /* Writes t (heights and built pyramids) as a terrain file. */
 ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_writer *w,

@@ -5,7 +5,9 @@
  * found along each of the 8 grid directions (N, NE, E, ... ; diagonal steps
  * count sqrt(2)), looking at ORIGINAL valid samples only, so the result does
  * not depend on scan order. Directions that leave the grid without a valid
- * sample are ignored. If the grid has no valid sample at all, every sample
+ * sample are ignored. A void none of whose 8 rays meets a valid sample (while
+ * valid samples exist elsewhere) takes the mean of all valid samples. If the
+ * grid has no valid sample at all, every sample
  * becomes 0 m and the caller is told (all_void = 1).
  * Cost: O(voids * side) worst case, no recursion, no allocation. */
 #ifndef FT_VOID_FILL_H

@@ -1,0 +1,354 @@
+/* test_terrain_file.c - .ftt round trip and rejection of corrupt files.
+ *
+ * Round trip: a synthetic terrain with built pyramids is written to memory,
+ * probed and loaded into fresh storage; every header field, every height and
+ * every pyramid texel must come back bit-identical. Then each corruption
+ * case must fail with the right status AND a message naming the problem. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "io.h"
+#include "pyramid.h"
+#include "terrain_file.h"
+#include "test_util.h"
+
+#define W 37u
+#define H 23u
+
+static uint8_t *g_file;
+static size_t g_file_bytes;
+
+static void put32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+static uint32_t get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static void fix_header_crc(uint8_t *f)
+{
+    put32(f + 124, 0u);
+    put32(f + 124, (uint32_t)crc32(0L, f, 256u));
+}
+
+static void fix_payload_crc(uint8_t *f, size_t bytes)
+{
+    put32(f + 120, (uint32_t)crc32(0L, f + 256, (uInt)(bytes - 256u)));
+    fix_header_crc(f);
+}
+
+static void make_terrain(ft_terrain *t)
+{
+    memset(t, 0, sizeof *t);
+    t->width = W;
+    t->height = H;
+    t->unit = FT_UNIT_METRE;
+    t->spacing_x = 30.0;
+    t->spacing_y = 25.0;
+    t->origin_x = 500000.25;
+    t->origin_y = 5100000.5;
+    t->anchor_lat_deg = 46.5;
+    t->anchor_lon_deg = 8.0;
+    strcpy(t->crs, "EPSG:32632");
+    t->void_count = 3;
+    t->heights_m = (float *)malloc(W * H * sizeof(float));
+    REQUIRE(t->heights_m != NULL);
+    for (uint32_t y = 0; y < H; ++y)
+        for (uint32_t x = 0; x < W; ++x)
+            t->heights_m[y * W + x] = 1000.0f + 300.0f * sinf((float)x * 0.37f) *
+                                                    cosf((float)y * 0.21f) + 0.125f * (float)x;
+    size_t pb = ft_pyramid_bytes(W, H);
+    void *pyr = malloc(pb);
+    REQUIRE(pyr != NULL);
+    ft_error err;
+    REQUIRE(ft_pyramid_layout(t, pyr, pb, &err) == FT_OK);
+    ft_pyramid_build(t);
+    REQUIRE(ft_terrain_derive_frame(t, &err) == FT_OK);
+}
+
+/* Probes and loads `bytes` of `data` (declared size `declared`) into fresh
+ * storage; returns the first failing status and leaves the message in err. */
+static ft_status load_bytes(const uint8_t *data, size_t bytes, uint64_t declared, ft_terrain *out,
+                            ft_error *err, int *failed_in_probe)
+{
+    ft_reader r;
+    ft_mem_reader m;
+    ft_mem_reader_init(&r, &m, data, bytes, "test.ftt");
+    r.size_bytes = declared;
+    memset(out, 0, sizeof *out);
+    memset(err, 0, sizeof *err);
+    *failed_in_probe = 1;
+    ft_tfile_header hdr;
+    ft_status st = ft_tfile_probe(&r, out, &hdr, err);
+    if (st != FT_OK) return st;
+    *failed_in_probe = 0;
+    out->heights_m = (float *)malloc((size_t)out->width * out->height * sizeof(float));
+    size_t pb = ft_pyramid_bytes(out->width, out->height);
+    void *pyr = malloc(pb);
+    REQUIRE(out->heights_m != NULL && pyr != NULL);
+    st = ft_pyramid_layout(out, pyr, pb, err);
+    REQUIRE(st == FT_OK);
+    st = ft_tfile_load_payload(&r, out, &hdr, err);
+    /* one load per probe */
+    if (st == FT_OK) {
+        CHECK(!hdr.valid);
+        CHECK(ft_tfile_load_payload(&r, out, &hdr, NULL) == FT_ERR_ARG);
+    }
+    return st;
+}
+
+static void free_terrain(ft_terrain *t)
+{
+    free(t->heights_m);
+    if (t->pyr.avg_levels > 1u) free(t->pyr.avg[1].avg_m); /* start of the pyramid block */
+    t->heights_m = NULL;
+}
+
+/* Runs one corruption case on a copy of the good file. */
+static void expect_fail(const char *what, const uint8_t *data, size_t bytes, uint64_t declared,
+                        ft_status want, int want_in_probe, const char *want_text)
+{
+    ft_terrain t;
+    ft_error err;
+    int in_probe = 0;
+    ft_status st = load_bytes(data, bytes, declared, &t, &err, &in_probe);
+    int ok = (st == want) && (in_probe == want_in_probe) && strstr(err.text, want_text) != NULL;
+    if (!ok) {
+        fprintf(stderr, "case '%s': got %s (%s) in %s: \"%s\"; wanted %s with \"%s\"\n", what,
+                ft_status_str(st), st == FT_OK ? "-" : "fail", in_probe ? "probe" : "load",
+                err.text, ft_status_str(want), want_text);
+    } else {
+        printf("  %-28s -> %s: %s\n", what, ft_status_str(st), err.text);
+    }
+    CHECK(ok);
+    if (!in_probe) free_terrain(&t);
+}
+
+static uint8_t *copy_file(void)
+{
+    uint8_t *c = (uint8_t *)malloc(g_file_bytes + 16u);
+    REQUIRE(c != NULL);
+    memcpy(c, g_file, g_file_bytes);
+    return c;
+}
+
+int main(void)
+{
+    ft_terrain src;
+    ft_error err;
+    make_terrain(&src);
+
+    /* ---- write ---- */
+    size_t cap = 256u + W * H * 4u + ft_pyramid_bytes(W, H);
+    g_file = (uint8_t *)malloc(cap + 64u);
+    REQUIRE(g_file != NULL);
+    {
+        /* too small a sink: the writer's error comes back, named */
+        ft_writer w;
+        ft_mem_writer mw;
+        ft_mem_writer_init(&w, &mw, g_file, cap - 1u, "small.ftt");
+        CHECK(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_ERR_OVERSIZED);
+        CHECK(strstr(err.text, "small.ftt") != NULL);
+        ft_mem_writer_init(&w, &mw, g_file, cap + 64u, "mem.ftt");
+        REQUIRE(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_OK);
+        CHECK(mw.pos == cap);
+        g_file_bytes = mw.pos;
+    }
+    CHECK(memcmp(g_file, "FXTERR\r\n", 8) == 0);
+    CHECK(get32(g_file + 8) == 1u);
+    CHECK(get32(g_file + 16) == W && get32(g_file + 20) == H);
+
+    /* ---- round trip ---- */
+    {
+        ft_terrain t;
+        int in_probe = 0;
+        ft_status st = load_bytes(g_file, g_file_bytes, g_file_bytes, &t, &err, &in_probe);
+        if (st != FT_OK) fprintf(stderr, "round trip: %s\n", err.text);
+        REQUIRE(st == FT_OK);
+        CHECK(t.width == W && t.height == H && t.unit == FT_UNIT_METRE);
+        CHECK(t.spacing_x == src.spacing_x && t.spacing_y == src.spacing_y);
+        CHECK(t.origin_x == src.origin_x && t.origin_y == src.origin_y);
+        CHECK(t.anchor_lat_deg == src.anchor_lat_deg && t.anchor_lon_deg == src.anchor_lon_deg);
+        CHECK(strcmp(t.crs, "EPSG:32632") == 0);
+        CHECK(t.void_count == 3u);
+        CHECK(t.min_height_m == src.min_height_m && t.max_height_m == src.max_height_m);
+        CHECK(t.cell_x_m == src.cell_x_m && t.origin_world_y_m == src.origin_world_y_m);
+        CHECK(memcmp(t.heights_m, src.heights_m, W * H * sizeof(float)) == 0);
+        CHECK(t.pyr.avg_levels == src.pyr.avg_levels);
+        CHECK(t.pyr.minmax_levels == src.pyr.minmax_levels);
+        for (uint32_t l = 1; l < t.pyr.avg_levels; ++l)
+            CHECK(memcmp(t.pyr.avg[l].avg_m, src.pyr.avg[l].avg_m,
+                         (size_t)t.pyr.avg[l].width * t.pyr.avg[l].height * 4u) == 0);
+        for (uint32_t l = 0; l < t.pyr.minmax_levels; ++l) {
+            size_t n = (size_t)t.pyr.minmax[l].width * t.pyr.minmax[l].height * 4u;
+            CHECK(memcmp(t.pyr.minmax[l].min_m, src.pyr.minmax[l].min_m, n) == 0);
+            CHECK(memcmp(t.pyr.minmax[l].max_m, src.pyr.minmax[l].max_m, n) == 0);
+        }
+        /* A second load on the same reader without a new probe is refused. */
+        {
+            ft_reader r;
+            ft_mem_reader m;
+            ft_mem_reader_init(&r, &m, g_file, g_file_bytes, "again.ftt");
+            ft_tfile_header never_probed;
+            memset(&never_probed, 0, sizeof never_probed);
+            CHECK(ft_tfile_load_payload(&r, &t, &never_probed, &err) == FT_ERR_ARG);
+        }
+        /* Writing the loaded terrain again gives the same bytes. */
+        uint8_t *again = (uint8_t *)malloc(cap);
+        ft_writer w;
+        ft_mem_writer mw;
+        ft_mem_writer_init(&w, &mw, again, cap, "again.ftt");
+        CHECK(ft_tfile_write(&t, -32768.0f, &w, &err) == FT_OK);
+        CHECK(mw.pos == g_file_bytes && memcmp(again, g_file, g_file_bytes) == 0);
+        free(again);
+        free_terrain(&t);
+    }
+
+    /* ---- rejections ---- */
+    uint8_t *f;
+    f = copy_file();
+    f[0] = 'X';
+    expect_fail("bad magic", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1, "bad magic");
+    free(f);
+
+    f = copy_file();
+    put32(f + 8, 2u);
+    expect_fail("wrong version", f, g_file_bytes, g_file_bytes, FT_ERR_VERSION, 1, "version 2");
+    free(f);
+
+    f = copy_file();
+    f[45] ^= 0x10; /* inside spacing_x */
+    expect_fail("header crc bad", f, g_file_bytes, g_file_bytes, FT_ERR_CHECKSUM, 1,
+                "header crc32");
+    free(f);
+
+    f = copy_file();
+    f[256 + 1000] ^= 0x01;
+    expect_fail("payload crc bad", f, g_file_bytes, g_file_bytes, FT_ERR_CHECKSUM, 0,
+                "payload crc32");
+    free(f);
+    f = copy_file();
+    f[g_file_bytes - 1] ^= 0x80; /* last byte: top max texel */
+    expect_fail("payload crc bad (last byte)", f, g_file_bytes, g_file_bytes, FT_ERR_CHECKSUM, 0,
+                "payload crc32");
+    free(f);
+
+    expect_fail("truncated by 1 byte", g_file, g_file_bytes - 1u, g_file_bytes - 1u,
+                FT_ERR_TRUNCATED, 1, "need");
+    /* A stream whose promised size is a lie still stops at the end of data. */
+    expect_fail("stream 1 byte short", g_file, g_file_bytes - 1u, g_file_bytes, FT_ERR_TRUNCATED,
+                0, "truncated");
+    expect_fail("truncated inside header", g_file, 100u, 100u, FT_ERR_TRUNCATED, 1,
+                "inside the header (100 of 256");
+    expect_fail("empty file", g_file, 0u, 0u, FT_ERR_TRUNCATED, 1, "(0 of 256");
+
+    f = copy_file();
+    f[g_file_bytes] = 0;
+    expect_fail("1 extra byte", f, g_file_bytes + 1u, g_file_bytes + 1u, FT_ERR_OVERSIZED, 1,
+                "1 more than");
+    expect_fail("stream 1 byte long", f, g_file_bytes + 1u, g_file_bytes, FT_ERR_OVERSIZED, 0,
+                "past the declared payload");
+    free(f);
+
+    f = copy_file();
+    put32(f + 16, 0u);
+    fix_header_crc(f);
+    expect_fail("width 0", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1, "grid 0x23");
+    free(f);
+
+    f = copy_file();
+    put32(f + 16, FT_GRID_SIDE_MAX + 1u);
+    fix_header_crc(f);
+    expect_fail("width > max", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1, "grid 16386x23");
+    free(f);
+
+    f = copy_file();
+    put32(f + 16, 0xFFFFFFFFu);
+    put32(f + 20, 0xFFFFFFFFu);
+    fix_header_crc(f);
+    expect_fail("huge width*height", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "grid 4294967295x4294967295");
+    free(f);
+
+    f = copy_file();
+    put32(f + 112, 0xFFFFFFFFu);
+    put32(f + 116, 0xFFFFFFFFu);
+    fix_header_crc(f);
+    expect_fail("huge payload_bytes", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "payload_bytes 18446744073709551615");
+    free(f);
+
+    f = copy_file();
+    {
+        uint32_t nan_bits = 0x7fc00000u;
+        put32(f + 256 + 4u * (2u * W + 5u), nan_bits); /* height row 2, col 5 */
+        fix_payload_crc(f, g_file_bytes);
+    }
+    expect_fail("NaN height (crc fixed)", f, g_file_bytes, g_file_bytes, FT_ERR_NUMERIC, 0,
+                "height at row 2 col 5 is not finite");
+    free(f);
+
+    f = copy_file();
+    {
+        uint32_t inf_bits = 0x7f800000u;
+        put32(f + 256 + 4u * (W * H + 3u), inf_bits); /* avg level 1, texel 3 */
+        fix_payload_crc(f, g_file_bytes);
+    }
+    expect_fail("Inf in avg pyramid", f, g_file_bytes, g_file_bytes, FT_ERR_NUMERIC, 0,
+                "avg level 1");
+    free(f);
+
+    f = copy_file();
+    put32(f + 28, get32(f + 28) + 1u);
+    fix_header_crc(f);
+    expect_fail("level count mismatch", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "level counts avg 8");
+    free(f);
+
+    f = copy_file();
+    put32(f + 24, 7u);
+    fix_header_crc(f);
+    expect_fail("bad spacing unit", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "spacing_unit 7");
+    free(f);
+
+    f = copy_file();
+    put32(f + 44, 0x7ff80000u); /* spacing_x high word -> NaN */
+    fix_header_crc(f);
+    expect_fail("NaN spacing", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1, "spacing");
+    free(f);
+
+    f = copy_file();
+    memset(f + 128, 'A', 64);
+    fix_header_crc(f);
+    expect_fail("crs not terminated", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "crs text");
+    free(f);
+
+    f = copy_file();
+    f[200] = 1;
+    fix_header_crc(f);
+    expect_fail("reserved byte set", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "reserved header byte 200");
+    free(f);
+
+    f = copy_file();
+    put32(f + 12, 128u);
+    fix_header_crc(f);
+    expect_fail("header_bytes", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "header_bytes is 128");
+    free(f);
+
+    free(g_file);
+    free_terrain(&src);
+    return ft_test_result("test_terrain_file");
+}

@@ -12,3 +12,10 @@ uint64_t ft_plat_monotonic_ns(void)
     }
     return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
 }
+
+void ft_plat_sleep_ms(uint32_t ms)
+{
+    struct timespec ts = {(time_t)(ms / 1000u), (long)(ms % 1000u) * 1000000L};
+    /* EINTR ends the wait early; callers only use this to hold a frame. */
+    (void)nanosleep(&ts, NULL);
+}

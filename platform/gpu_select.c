@@ -2,24 +2,31 @@
  * this build contains. */
 #include "gpu.h"
 
-ft_status ft_plat_egl_open(ft_backend backend, ft_gpu_context *ctx, ft_error *err);
+ft_status ft_plat_egl_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err);
+ft_status ft_plat_egl_present(ft_gpu_context *ctx, ft_error *err);
 void ft_plat_egl_close(ft_gpu_context *ctx);
 ft_status ft_plat_osmesa_open(ft_backend backend, ft_gpu_context *ctx, ft_error *err);
 void ft_plat_osmesa_close(ft_gpu_context *ctx);
 
-ft_status ft_plat_gpu_open(ft_backend backend, ft_gpu_context *ctx, ft_error *err)
+ft_status ft_plat_gpu_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err)
 {
+    const ft_backend backend = desc->backend;
     ctx->open = 0;
     switch (backend) {
     case FT_BACKEND_EGL_GLES3:
     case FT_BACKEND_EGL_GLES2:
 #if FT_WITH_EGL
-        return ft_plat_egl_open(backend, ctx, err);
+        return ft_plat_egl_open(desc, ctx, err);
 #else
         break;
 #endif
     case FT_BACKEND_OSMESA:
 #if FT_WITH_OSMESA
+        if (desc->display != FT_DISPLAY_NONE) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "OSMesa renders offscreen only: display '%s' needs an EGL backend",
+                           ft_display_name(desc->display));
+        }
         return ft_plat_osmesa_open(backend, ctx, err);
 #else
         break;
@@ -30,6 +37,18 @@ ft_status ft_plat_gpu_open(ft_backend backend, ft_gpu_context *ctx, ft_error *er
     return ft_fail(err, FT_ERR_UNSUPPORTED,
                    "backend '%s' was left out of this build (see FIXTERRAIN_WITH_* options)",
                    ft_backend_name(backend));
+}
+
+ft_status ft_plat_gpu_present(ft_gpu_context *ctx, ft_error *err)
+{
+    if (ctx->display == FT_DISPLAY_NONE) {
+        return FT_OK;
+    }
+#if FT_WITH_EGL
+    return ft_plat_egl_present(ctx, err);
+#else
+    return ft_fail(err, FT_ERR_UNSUPPORTED, "no display support in this build");
+#endif
 }
 
 void ft_plat_gpu_close(ft_gpu_context *ctx)

@@ -34,6 +34,8 @@ static void print_render_help(void)
            "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
            "  --method NAME       terrain method: brute\n"
            "  --backend NAME      egl-gles3 | egl-gles2 | osmesa\n"
+           "  --display NAME      none (offscreen) | x11 (a window; EGL backends)\n"
+           "  --hold-ms N         with a display: keep the last frame shown N ms\n"
            "  --size WxH          image size in pixels (16..8192)\n"
            "  --pose LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG\n"
            "  --out FILE.png      output image (default fixterrain.png)\n"
@@ -146,6 +148,8 @@ static int cmd_render(int argc, char **argv)
     ft_error err;
     const char *scene_path = NULL, *out_path = "fixterrain.png", *stats_path = NULL;
     const char *dem = NULL, *method = NULL, *backend = NULL, *size = NULL, *pose = NULL;
+    const char *display = NULL;
+    unsigned long hold_ms = 0;
     unsigned frames = 1;
     int quiet = 0;
     memset(&err, 0, sizeof err);
@@ -169,6 +173,15 @@ static int cmd_render(int argc, char **argv)
         else if (strcmp(a, "--dem") == 0) dem = v;
         else if (strcmp(a, "--method") == 0) method = v;
         else if (strcmp(a, "--backend") == 0) backend = v;
+        else if (strcmp(a, "--display") == 0) display = v;
+        else if (strcmp(a, "--hold-ms") == 0) {
+            char *end = NULL;
+            hold_ms = strtoul(v, &end, 10);
+            if (end == v || *end != '\0' || hold_ms > 600000ul) {
+                fprintf(stderr, "fixterrain render: --hold-ms wants 0..600000\n");
+                return FT_EXIT_USAGE;
+            }
+        }
         else if (strcmp(a, "--size") == 0) size = v;
         else if (strcmp(a, "--pose") == 0) pose = v;
         else if (strcmp(a, "--out") == 0) out_path = v;
@@ -216,6 +229,10 @@ static int cmd_render(int argc, char **argv)
     if (backend != NULL && !ft_backend_from_name(backend, &scene.backend)) {
         fprintf(stderr, "fixterrain render: unknown backend '%s' (egl-gles3, egl-gles2, osmesa)\n",
                 backend);
+        return FT_EXIT_USAGE;
+    }
+    if (display != NULL && !ft_display_from_name(display, &scene.display)) {
+        fprintf(stderr, "fixterrain render: unknown display '%s' (none, x11)\n", display);
         return FT_EXIT_USAGE;
     }
     if (size != NULL && !parse_size(size, &scene.width_px, &scene.height_px)) {
@@ -315,6 +332,11 @@ static int cmd_render(int argc, char **argv)
         printf("frame: %llu triangles in %u draws, %.2f ms (first frame; median of later "
                "frames %.2f ms)\nwrote %s\n",
                (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median, out_path);
+    }
+    if (hold_ms > 0 && scene.display != FT_DISPLAY_NONE) {
+        printf("showing the frame for %lu ms\n", hold_ms);
+        (void)fflush(stdout);
+        ft_plat_sleep_ms((uint32_t)hold_ms);
     }
 done:
     ft_app_shutdown(&g_app);

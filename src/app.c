@@ -159,7 +159,9 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
     if (st != FT_OK) {
         goto fail_memory;
     }
-    st = ft_plat_gpu_open(app->scene.backend, &app->gpu, err);
+    ft_gpu_desc gd = {app->scene.backend, app->scene.display, app->scene.width_px,
+                      app->scene.height_px};
+    st = ft_plat_gpu_open(&gd, &app->gpu, err);
     if (st != FT_OK) {
         goto fail_memory;
     }
@@ -215,6 +217,12 @@ ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_fra
     }
     s = ft_renderer_read_rgba(&app->renderer, err); /* waits for the GPU */
     uint64_t t2 = ft_plat_monotonic_ns();
+    if (s == FT_OK && app->scene.display != FT_DISPLAY_NONE) {
+        s = ft_renderer_present(&app->renderer, err);
+        if (s == FT_OK) {
+            s = ft_plat_gpu_present(&app->gpu, err);
+        }
+    }
     st->cpu_ms = (double)(t1 - t0) * 1e-6;
     st->gpu_ms = (double)(t2 - t0) * 1e-6;
     return s;

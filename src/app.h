@@ -51,7 +51,8 @@ size_t ft_png_scratch_bytes(uint32_t width_px);
 
 ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err);
 
-/* One colour frame at `pose`, read back into app->renderer.rgba. */
+/* One colour frame at `pose`, read back into app->renderer.rgba, and shown
+ * on the display when the scene has one. */
 ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_frame_stats *st,
                         ft_error *err);
 

@@ -23,3 +23,25 @@ int ft_backend_from_name(const char *name, ft_backend *out)
     }
     return 0;
 }
+
+static const char *const k_display_name[FT_DISPLAY_COUNT] = {
+#define FT_DISPLAY_NAME(id, name, what) name,
+    FT_DISPLAY_LIST(FT_DISPLAY_NAME)
+#undef FT_DISPLAY_NAME
+};
+
+const char *ft_display_name(ft_display d)
+{
+    return ((unsigned)d < FT_DISPLAY_COUNT) ? k_display_name[d] : "?";
+}
+
+int ft_display_from_name(const char *name, ft_display *out)
+{
+    for (int i = 0; i < FT_DISPLAY_COUNT; ++i) {
+        if (strcmp(name, k_display_name[i]) == 0) {
+            *out = (ft_display)i;
+            return 1;
+        }
+    }
+    return 0;
+}

@@ -42,6 +42,7 @@ void ft_plat_mem_release(void *p, size_t bytes);
 
 /* ---- clock ------------------------------------------------------------------ */
 uint64_t ft_plat_monotonic_ns(void);
+void ft_plat_sleep_ms(uint32_t ms);
 
 /* ---- PNG output -------------------------------------------------------------- */
 /* rgba: width*height*4 bytes, row 0 = top. libpng and zlib allocate only from

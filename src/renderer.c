@@ -61,11 +61,12 @@ static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, G
     return FT_OK;
 }
 
-static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrain_program *p,
-                               ft_error *err)
+/* Compiles and links vert + frag with attribute 0 bound to attr0. */
+static ft_status link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                              const char *attr0, GLuint *out, ft_error *err)
 {
     GLuint vs = 0, fs = 0;
-    ft_status s = compile(gl, GL_VERTEX_SHADER, "terrain.vert.glsl", &vs, err);
+    ft_status s = compile(gl, GL_VERTEX_SHADER, vert_name, &vs, err);
     if (s != FT_OK) {
         return s;
     }
@@ -77,7 +78,7 @@ static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrai
     GLuint prog = gl->CreateProgram();
     gl->AttachShader(prog, vs);
     gl->AttachShader(prog, fs);
-    gl->BindAttribLocation(prog, 0, "a_uv");
+    gl->BindAttribLocation(prog, 0, attr0);
     gl->LinkProgram(prog);
     gl->DeleteShader(vs); /* flagged; freed with the program */
     gl->DeleteShader(fs);
@@ -89,8 +90,20 @@ static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrai
         gl->GetProgramInfoLog(prog, (GLsizei)sizeof log, &n, log);
         log[(n > 0 && n < FT_SHADER_LOG_MAX) ? n : 0] = '\0';
         gl->DeleteProgram(prog);
-        return ft_fail(err, FT_ERR_GPU, "program terrain.vert + %s failed to link: %.200s",
+        return ft_fail(err, FT_ERR_GPU, "program %s + %s failed to link: %.200s", vert_name,
                        frag_name, log);
+    }
+    *out = prog;
+    return FT_OK;
+}
+
+static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrain_program *p,
+                               ft_error *err)
+{
+    GLuint prog = 0;
+    ft_status s = link_program(gl, "terrain.vert.glsl", frag_name, "a_uv", &prog, err);
+    if (s != FT_OK) {
+        return s;
     }
     p->program = prog;
 #define FT_UNIFORM(name) p->name = gl->GetUniformLocation(prog, #name)
@@ -342,6 +355,20 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         }
         set_static_uniforms(gl, &r->prog_pos, t, &r->gt);
     }
+    if (gpu->display != FT_DISPLAY_NONE) {
+        static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
+        st = link_program(gl, "present.vert.glsl", "present.frag.glsl", "a_corner",
+                          &r->present_program, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        gl->UseProgram(r->present_program);
+        gl->Uniform1i(gl->GetUniformLocation(r->present_program, "u_frame"), 0);
+        gl->GenBuffers(1, &r->present_vbo);
+        gl->BindBuffer(GL_ARRAY_BUFFER, r->present_vbo);
+        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
+        r->gpu_bytes += sizeof corners;
+    }
     st = ft_method_init(&r->method, gl, s, t, a, err);
     if (st != FT_OK) {
         return st;
@@ -481,6 +508,25 @@ ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_er
     return ft_gl_check(gl, "position pass", err);
 }
 
+ft_status ft_renderer_present(ft_renderer *r, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    if (r->present_program == 0u) {
+        return ft_fail(err, FT_ERR_CONFIG, "present: the scene has no display (scene.display)");
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl->Viewport(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->UseProgram(r->present_program);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_2D, r->rb_color);
+    gl->BindBuffer(GL_ARRAY_BUFFER, r->present_vbo);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    return ft_gl_check(gl, "present", err);
+}
+
 void ft_renderer_shutdown(ft_renderer *r)
 {
     const ft_gl *gl = r->gl;
@@ -489,6 +535,8 @@ void ft_renderer_shutdown(ft_renderer *r)
     }
     ft_method_shutdown(&r->method, gl);
     if (r->prog_color.program) gl->DeleteProgram(r->prog_color.program);
+    if (r->present_program) gl->DeleteProgram(r->present_program);
+    if (r->present_vbo) gl->DeleteBuffers(1, &r->present_vbo);
     if (r->prog_pos.program) gl->DeleteProgram(r->prog_pos.program);
     if (r->fbo_color) gl->DeleteFramebuffers(1, &r->fbo_color);
     if (r->fbo_pos) gl->DeleteFramebuffers(1, &r->fbo_pos);

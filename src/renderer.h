@@ -63,6 +63,7 @@ typedef struct ft_renderer {
     ft_gpu_terrain gt;
     ft_terrain_program prog_color, prog_pos;
     ft_method method;
+    GLuint present_program, present_vbo; /* display != none only */
     uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */
     float *pos;     /* FT_POOL_FRAME_POS, width*height*4 (NULL if no float target) */
     uint64_t gpu_bytes;
@@ -90,6 +91,10 @@ ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err);
 /* Draws the position pass and reads it into r->pos (row 0 = top).
  * FT_ERR_UNSUPPORTED when the context cannot render float (GLES 2). */
 ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_error *err);
+
+/* Draws the colour target onto framebuffer 0 (the window surface); the
+ * platform then presents it (ft_plat_gpu_present). Display scenes only. */
+ft_status ft_renderer_present(ft_renderer *r, ft_error *err);
 
 void ft_renderer_shutdown(ft_renderer *r);
 

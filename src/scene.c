@@ -35,6 +35,7 @@ void ft_scene_defaults(ft_scene *s)
     (void)snprintf(s->name, sizeof s->name, "%s", "default");
     s->method = FT_METHOD_BRUTE;
     s->backend = FT_BACKEND_EGL_GLES3;
+    s->display = FT_DISPLAY_NONE;
     s->width_px = 800;
     s->height_px = 600;
     s->fovy_deg = 60.0;
@@ -156,6 +157,9 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "method") == 0) {
             return RANGE(ft_method_from_name(value, &s->method),
                          "unknown method (built in: see 'fixterrain render --help')");
+        }
+        if (strcmp(key, "display") == 0) {
+            return RANGE(ft_display_from_name(value, &s->display), "unknown display (none, x11)");
         }
         if (strcmp(key, "backend") == 0) {
             return RANGE(ft_backend_from_name(value, &s->backend),

@@ -8,6 +8,7 @@
  *   scene.name            text (<= 63 chars)
  *   scene.method          brute                      (methods built in)
  *   scene.backend         egl-gles3 | egl-gles2 | osmesa
+ *   scene.display         none | x11   (where frames are shown; none = offscreen)
  *   view.width_px, view.height_px   [16, 8192]
  *   view.fovy_deg         [1, 170]
  *   pose.lat_deg [-89,89] pose.lon_deg [-360,360] pose.alt_m [-12000, 1e6]
@@ -56,6 +57,7 @@ typedef struct ft_scene {
     char name[FT_SCENE_NAME_MAX];
     ft_method_kind method;
     ft_backend backend;
+    ft_display display;
     uint32_t width_px, height_px;
     double fovy_deg;
     ft_pose pose;

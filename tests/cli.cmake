@@ -10,3 +10,12 @@ if(TARGET fixterrain)
                       ${CMAKE_BINARY_DIR}/lean ${CMAKE_C_COMPILER})
   set_tests_properties(lean_build PROPERTIES TIMEOUT 900)
 endif()
+
+# The whole tree (every option on, tests included) must also build warning-free
+# with clang; the main build uses whatever CC is (gcc on Debian).
+find_program(FT_CLANG clang)
+if(FT_CLANG AND NOT CMAKE_C_COMPILER_ID STREQUAL "Clang")
+  add_test(NAME clang_build
+           COMMAND sh -c "cmake -S '${CMAKE_SOURCE_DIR}' -B '${CMAKE_BINARY_DIR}/clang' -DCMAKE_C_COMPILER='${FT_CLANG}' -DFIXTERRAIN_WITH_GDAL_TOOLS=${FIXTERRAIN_WITH_GDAL_TOOLS} > '${CMAKE_BINARY_DIR}/clang-configure.log' && cmake --build '${CMAKE_BINARY_DIR}/clang' -j2")
+  set_tests_properties(clang_build PROPERTIES TIMEOUT 900)
+endif()

@@ -90,3 +90,18 @@ if(TARGET ft_app)
     add_test(NAME gpu_pyramids_osmesa COMMAND test_gpu_pyramids osmesa float)
   endif()
 endif()
+
+# The window-surface path, on a real X server (Xvfb) when xvfb-run exists.
+find_program(FT_XVFB_RUN xvfb-run)
+if(TARGET ft_app AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_X11 AND FT_XVFB_RUN)
+  add_executable(test_window test_window.c)
+  target_compile_options(test_window PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_window PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_window PRIVATE ft_app PkgConfig::X11)
+  add_test(NAME window_x11_gles3
+           COMMAND ${FT_XVFB_RUN} -a -s "-screen 0 640x480x24" $<TARGET_FILE:test_window> egl-gles3)
+  add_test(NAME window_x11_gles2
+           COMMAND ${FT_XVFB_RUN} -a -s "-screen 0 640x480x24" $<TARGET_FILE:test_window> egl-gles2)
+  set_tests_properties(window_x11_gles2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+  set_tests_properties(window_x11_gles3 window_x11_gles2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120)
+endif()

@@ -36,7 +36,7 @@ int main(void)
     CHECK(ft_scene_parse(&a, ft_default_scene_text, "embedded", &err) == FT_OK);
     ft_scene_defaults(&b);
     CHECK(strcmp(a.name, b.name) == 0);
-    CHECK(a.method == b.method && a.backend == b.backend);
+    CHECK(a.method == b.method && a.backend == b.backend && a.display == b.display);
     CHECK(a.width_px == b.width_px && a.height_px == b.height_px);
     CHECK_NEAR(a.fovy_deg, b.fovy_deg, 0.0);
     CHECK_NEAR(a.pose.lat_deg, b.pose.lat_deg, 0.0);

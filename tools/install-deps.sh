@@ -6,8 +6,8 @@
 set -eu
 runtime="build-essential cmake pkg-config
   libegl-dev libegl-mesa0 libgles-dev libgl1-mesa-dri
-  libosmesa6-dev libpng-dev zlib1g-dev libinih-dev"
-tools="libgdal-dev glslang-tools"
+  libosmesa6-dev libpng-dev zlib1g-dev libinih-dev libx11-dev"
+tools="libgdal-dev glslang-tools clang xvfb xauth"
 case "${1:-}" in
   runtime) pkgs=$runtime ;;
   all) pkgs="$runtime $tools" ;;

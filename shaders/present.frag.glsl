@@ -1,0 +1,16 @@
+/* present.frag.glsl - copies the frame texel for texel (NEAREST, same size). */
+precision mediump float;
+#if FT_ES3
+out vec4 o_color;
+#define FT_FRAG_COLOR o_color
+#define FT_TEXTURE texture
+#else
+#define FT_FRAG_COLOR gl_FragColor
+#define FT_TEXTURE texture2D
+#endif
+uniform sampler2D u_frame;
+FT_IN_FS vec2 v_uv;
+void main()
+{
+    FT_FRAG_COLOR = FT_TEXTURE(u_frame, v_uv);
+}

@@ -215,6 +215,22 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "fixterrain: embedded scene: %s\n", err.text);
         return FT_EXIT_ERROR;
     }
+    /* A relative terrain.dem in a scene file is relative to that file, so a
+     * scene works from any working directory. */
+    if (dem == NULL && scene_path != NULL && scene.dem_path[0] != '\0' &&
+        scene.dem_path[0] != '/') {
+        const char *slash = strrchr(scene_path, '/');
+        if (slash != NULL) {
+            char joined[sizeof scene.dem_path];
+            int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - scene_path),
+                             scene_path, scene.dem_path);
+            if (n < 0 || (size_t)n >= sizeof joined) {
+                fprintf(stderr, "fixterrain: scene: terrain.dem path too long after joining\n");
+                return FT_EXIT_ERROR;
+            }
+            memcpy(scene.dem_path, joined, (size_t)n + 1u);
+        }
+    }
     if (dem != NULL) {
         if (strlen(dem) >= sizeof scene.dem_path) {
             fprintf(stderr, "fixterrain render: --dem path too long\n");
@@ -330,8 +346,11 @@ static int cmd_render(int argc, char **argv)
     }
     if (!quiet) {
         printf("frame: %llu triangles in %u draws, %.2f ms (first frame; median of later "
-               "frames %.2f ms)\nwrote %s\n",
-               (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median, out_path);
+               "frames %.2f ms)\n",
+               (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median);
+        if (FT_WITH_PNG) {
+            printf("wrote %s\n", out_path);
+        }
     }
     if (hold_ms > 0 && scene.display != FT_DISPLAY_NONE) {
         printf("showing the frame for %lu ms\n", hold_ms);

@@ -13,7 +13,7 @@
  *   view.fovy_deg         [1, 170]
  *   pose.lat_deg [-89,89] pose.lon_deg [-360,360] pose.alt_m [-12000, 1e6]
  *   pose.heading_deg pose.pitch_deg pose.roll_deg     (any finite)
- *   terrain.dem           path to .ftt or .hgt; empty = embedded synthetic
+ *   terrain.dem           path to .ftt or .hgt, relative to the scene file; empty = synthetic
  *   terrain.synth_side    [3, 16385]   terrain.synth_spacing_m (0, 1e5]
  *   terrain.synth_relief_m [0, 9000]   terrain.synth_seed, terrain.synth_octaves [1,16]
  *   terrain.synth_anchor_lat_deg, terrain.synth_anchor_lon_deg

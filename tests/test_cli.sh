@@ -59,6 +59,10 @@ if [ -f "$data/N42E001.hgt" ]; then
     --out "$out/n42.png" --stats "$out/n42.json" --quiet || fail "N42E001 render failed"
   cmake -DJSON="$out/n42.json" -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "stats JSON check"
   expect 0 "7652 voids filled" -- "$bin" render --dem "$data/N42E001.hgt" --size 64x64 --out "$out/y.png"
+  # terrain.dem in a scene file is relative to the scene file, not the cwd
+  scene_dir=$(cd "$(dirname "$0")/../config" && pwd)
+  (cd "$out" && "$bin" render --scene "$scene_dir/pyrenees.ini" --size 64x64 --out z.png \
+     > rel.log 2>&1) || fail "config/pyrenees.ini from another directory: $(cat "$out/rel.log")"
 fi
 
 echo "test_cli: $fails failure(s)"

@@ -21,8 +21,10 @@
 #include "app.h"
 #include "test_util.h"
 
-static int g_counting;
-static unsigned long g_calls;
+/* volatile: GCC knows malloc does not read our globals and would otherwise
+ * merge the stores around the probe call below. */
+static volatile int g_counting;
+static volatile unsigned long g_calls;
 static const char *g_first;
 
 void *__real_malloc(size_t n);

@@ -53,6 +53,14 @@ head -c 1000 /dev/zero > "$out/N46W122.hgt"
 expect 1 "N46W122.hgt" -- "$bin" render --dem "$out/N46W122.hgt" --out "$out/x.png"
 expect 1 "cannot open" -- "$bin" render --dem "$out/missing.hgt" --out "$out/x.png"
 
+# Real data: GDAL import, then render the .ftt (only when built with the tool).
+if [ -f "$data/rainier_N46W122_srtm3.tif" ] && "$bin" import --help > /dev/null 2>&1; then
+  expect 0 "9033 voids filled" -- "$bin" import "$data/rainier_N46W122_srtm3.tif" "$out/rainier.ftt"
+  expect 0 "9033 voids filled" -- "$bin" render --dem "$out/rainier.ftt" \
+    --pose 46.70,-121.76,3600,0,-14,0 --size 160x120 --out "$out/rainier.png"
+  expect 2 "usage: fixterrain import" -- "$bin" import onlyone
+fi
+
 # Real data: the .hgt reader through the CLI, with stats.
 if [ -f "$data/N42E001.hgt" ]; then
   "$bin" render --dem "$data/N42E001.hgt" --pose 42.30,1.50,3800,0,-14,0 --size 320x240 \

@@ -1,5 +1,13 @@
 #include "method.h"
 
+const char *ft_method_vertex_shader(ft_method_kind m)
+{
+    switch (m) {
+    default:
+        return "terrain.vert.glsl";
+    }
+}
+
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     (void)t;

@@ -14,6 +14,11 @@
 
 struct ft_terrain_program;
 
+/* Vertex attribute slots shared by every terrain program. */
+#define FT_ATTRIB_UV 0u
+#define FT_ATTRIB_TILE0 1u
+#define FT_ATTRIB_TILE1 2u
+
 typedef struct ft_method_draw_stats {
     uint64_t triangles;
     uint32_t draw_calls;
@@ -33,6 +38,9 @@ typedef struct ft_method {
         ft_brute brute;
     } u;
 } ft_method;
+
+/* The vertex shader (embedded name) the method draws with. */
+const char *ft_method_vertex_shader(ft_method_kind m);
 
 /* CPU pool needs (FT_POOL_METHOD) of the scene's method. */
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);

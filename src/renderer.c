@@ -78,7 +78,11 @@ static ft_status link_program(const ft_gl *gl, const char *vert_name, const char
     GLuint prog = gl->CreateProgram();
     gl->AttachShader(prog, vs);
     gl->AttachShader(prog, fs);
+    /* Fixed attribute slots for every program: 0 the template vertex, 1-2
+     * per-tile instance data (bintree on GLES 3). Unused names are ignored. */
     gl->BindAttribLocation(prog, 0, attr0);
+    gl->BindAttribLocation(prog, FT_ATTRIB_TILE0, "i_tile0");
+    gl->BindAttribLocation(prog, FT_ATTRIB_TILE1, "i_tile1");
     gl->LinkProgram(prog);
     gl->DeleteShader(vs); /* flagged; freed with the program */
     gl->DeleteShader(fs);
@@ -97,11 +101,11 @@ static ft_status link_program(const ft_gl *gl, const char *vert_name, const char
     return FT_OK;
 }
 
-static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrain_program *p,
-                               ft_error *err)
+static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                               ft_terrain_program *p, ft_error *err)
 {
     GLuint prog = 0;
-    ft_status s = link_program(gl, "terrain.vert.glsl", frag_name, "a_uv", &prog, err);
+    ft_status s = link_program(gl, vert_name, frag_name, "a_uv", &prog, err);
     if (s != FT_OK) {
         return s;
     }
@@ -120,6 +124,8 @@ static ft_status build_program(const ft_gl *gl, const char *frag_name, ft_terrai
     FT_UNIFORM(u_ramp_rgb);
     FT_UNIFORM(u_sun_dir);
     FT_UNIFORM(u_light);
+    FT_UNIFORM(u_tile0);
+    FT_UNIFORM(u_tile1);
 #undef FT_UNIFORM
     return ft_gl_check(gl, frag_name, err);
 }
@@ -339,7 +345,8 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return st;
     }
     r->gpu_bytes += r->gt.bytes;
-    st = build_program(gl, "terrain.frag.glsl", &r->prog_color, err);
+    const char *vert = ft_method_vertex_shader(s->method);
+    st = build_program(gl, vert, "terrain.frag.glsl", &r->prog_color, err);
     if (st != FT_OK) {
         return st;
     }
@@ -349,7 +356,7 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return st;
     }
     if (r->has_pos_target) {
-        st = build_program(gl, "terrain_pos.frag.glsl", &r->prog_pos, err);
+        st = build_program(gl, vert, "terrain_pos.frag.glsl", &r->prog_pos, err);
         if (st != FT_OK) {
             return st;
         }

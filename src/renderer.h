@@ -25,6 +25,7 @@ typedef struct ft_terrain_program {
     GLint u_heights, u_grid_size, u_patch_origin, u_patch_stride, u_cell_m;
     GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
     GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
+    GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
 } ft_terrain_program;
 
 /* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,

@@ -24,6 +24,7 @@
     X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                 \
     X(PFNGLBINDTEXTUREPROC, BindTexture)                           \
     X(PFNGLBUFFERDATAPROC, BufferData)                             \
+    X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                       \
     X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)     \
     X(PFNGLCLEARPROC, Clear)                                       \
     X(PFNGLCLEARCOLORPROC, ClearColor)                             \
@@ -80,6 +81,8 @@
 
 #define FT_GL_ES3_FUNCS(X)                                   \
     X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)             \
+    X(PFNGLDRAWELEMENTSINSTANCEDPROC, DrawElementsInstanced) \
+    X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)     \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)       \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)             \
     X(PFNGLGETSTRINGIPROC, GetStringi)

@@ -22,13 +22,8 @@ static uint16_t vertex_index(int32_t i, int32_t j, int32_t s)
     return (uint16_t)(j * (s + 1) - (j * (j - 1)) / 2 + i);
 }
 
-ft_status ft_bt_template_build(uint32_t k, float *uv, uint16_t *idx, int16_t *scratch,
-                               ft_error *err)
+void ft_bt_template_corners(uint32_t k, int16_t *scratch)
 {
-    if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
-        return ft_fail(err, FT_ERR_CONFIG, "bintree template k = %u outside %u..%u", k,
-                       FT_BT_TEMPLATE_K_MIN, FT_BT_TEMPLATE_K_MAX);
-    }
     const int32_t s = (int32_t)1 << k; /* leg length in template units */
     /* Triangles as 3 integer points (apex, left, right) in units of 2^-k. */
     int16_t *tri = scratch;
@@ -50,6 +45,19 @@ ft_status ft_bt_template_build(uint32_t k, float *uv, uint16_t *idx, int16_t *sc
         }
         count *= 2u;
     }
+}
+
+ft_status ft_bt_template_build(uint32_t k, float *uv, uint16_t *idx, int16_t *scratch,
+                               ft_error *err)
+{
+    if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "bintree template k = %u outside %u..%u", k,
+                       FT_BT_TEMPLATE_K_MIN, FT_BT_TEMPLATE_K_MAX);
+    }
+    const int32_t s = (int32_t)1 << k;
+    const int16_t *tri = scratch;
+    const uint32_t count = ft_bt_template_triangles(k);
+    ft_bt_template_corners(k, scratch);
     for (int32_t j = 0; j <= s; ++j) {
         for (int32_t i = 0; i + j <= s; ++i) {
             uint16_t v = vertex_index(i, j, s);

@@ -23,6 +23,10 @@ uint32_t ft_bt_template_triangles(uint32_t k);
 /* int16 scratch entries the build needs (6 per triangle). */
 uint32_t ft_bt_template_scratch(uint32_t k);
 
+/* Writes the 4^k template triangles into scratch as integer corners
+ * (apex, left, right; 6 int16 each) in units of 2^-k, in the order of idx. */
+void ft_bt_template_corners(uint32_t k, int16_t *scratch);
+
 /* Writes uv (2 floats per vertex: a, b) and idx (3 per triangle). The
  * caller's arrays hold exactly the counts above. O(4^k), no recursion. */
 ft_status ft_bt_template_build(uint32_t k, float *uv, uint16_t *idx, int16_t *scratch,

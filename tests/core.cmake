@@ -2,3 +2,4 @@
 ft_add_test(test_scene SOURCES test_scene.c)
 ft_add_test(test_mem_budget SOURCES test_mem_budget.c)
 ft_add_test(test_bintree_template SOURCES test_bintree_template.c)
+ft_add_test(test_bintree SOURCES test_bintree.c)

@@ -1,0 +1,597 @@
+/* bintree.c - error tables and per-frame selection (see bintree.h). */
+#include "bintree.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "bintree_template.h"
+
+/* ---- sizes ---------------------------------------------------------------- */
+
+uint32_t ft_bt_domain_n(uint32_t w, uint32_t h)
+{
+    uint32_t cells = ((w > h) ? w : h) - 1u;
+    uint32_t n = 0;
+    while (n < 31u && (1u << n) < cells) {
+        ++n;
+    }
+    return n;
+}
+
+static uint32_t lattice_side(uint32_t n, uint32_t k)
+{
+    return (k <= n) ? ((1u << (n - k)) + 1u) : 2u;
+}
+
+void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t tiles_max)
+{
+    uint32_t n = ft_bt_domain_n(w, h);
+    size_t m = lattice_side(n, k);
+    ft_arena_plan(a, FT_POOL_METHOD, m * m * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, m * m * FT_BT_BOX_FLOATS * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile));
+    if (k >= FT_BT_TEMPLATE_K_MIN && k <= FT_BT_TEMPLATE_K_MAX) {
+        ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
+    }
+}
+
+/* ---- table building (init only) -------------------------------------------- */
+
+typedef struct tri_acc {
+    double err_m;
+    float z0, z1;
+    int32_t x0, x1, y0, y1; /* clamped bbox of non-degenerate parts */
+    int any;                /* some sample inside */
+} tri_acc;
+
+typedef struct build_ctx {
+    ft_bintree *bt;
+    const int16_t *tmpl; /* template triangles, 6 ints each, units of 2^-k */
+    uint32_t tmpl_count;
+} build_ctx;
+
+static int32_t clamp_i(int32_t v, int32_t hi)
+{
+    return (v < 0) ? 0 : ((v > hi) ? hi : v);
+}
+
+static float height_at(const ft_bintree *bt, int32_t x, int32_t y)
+{
+    return bt->heights_m[(size_t)y * bt->width + (size_t)x];
+}
+
+static int64_t edge_fn(const int32_t a[2], const int32_t b[2], int32_t px, int32_t py)
+{
+    return (int64_t)(b[0] - a[0]) * (int64_t)(py - a[1]) -
+           (int64_t)(b[1] - a[1]) * (int64_t)(px - a[0]);
+}
+
+/* Max |sample - plane| over the samples inside one clamped template triangle;
+ * also the sample height range and bbox. */
+static void scan_triangle(ft_bintree *bt, int32_t v[3][2], tri_acc *acc)
+{
+    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    for (int i = 0; i < 3; ++i) {
+        v[i][0] = clamp_i(v[i][0], wx);
+        v[i][1] = clamp_i(v[i][1], hy);
+    }
+    int64_t area2 = edge_fn(v[0], v[1], v[2][0], v[2][1]);
+    if (area2 == 0) {
+        return; /* collapsed onto the grid edge: draws nothing */
+    }
+    if (area2 < 0) {
+        bt->flipped_triangles += 1u;
+        return;
+    }
+    int32_t x0 = v[0][0], x1 = v[0][0], y0 = v[0][1], y1 = v[0][1];
+    for (int i = 1; i < 3; ++i) {
+        x0 = (v[i][0] < x0) ? v[i][0] : x0;
+        x1 = (v[i][0] > x1) ? v[i][0] : x1;
+        y0 = (v[i][1] < y0) ? v[i][1] : y0;
+        y1 = (v[i][1] > y1) ? v[i][1] : y1;
+    }
+    const double h0 = height_at(bt, v[0][0], v[0][1]);
+    const double h1 = height_at(bt, v[1][0], v[1][1]);
+    const double h2 = height_at(bt, v[2][0], v[2][1]);
+    const double inv = 1.0 / (double)area2;
+    for (int32_t y = y0; y <= y1; ++y) {
+        for (int32_t x = x0; x <= x1; ++x) {
+            int64_t w0 = edge_fn(v[1], v[2], x, y);
+            int64_t w1 = edge_fn(v[2], v[0], x, y);
+            int64_t w2 = edge_fn(v[0], v[1], x, y);
+            if (w0 < 0 || w1 < 0 || w2 < 0) {
+                continue;
+            }
+            double plane = ((double)w0 * h0 + (double)w1 * h1 + (double)w2 * h2) * inv;
+            float hs = height_at(bt, x, y);
+            double d = fabs((double)hs - plane);
+            acc->err_m = (d > acc->err_m) ? d : acc->err_m;
+            if (!acc->any) {
+                acc->z0 = acc->z1 = hs;
+                acc->x0 = x0; acc->x1 = x1; acc->y0 = y0; acc->y1 = y1;
+                acc->any = 1;
+            }
+            acc->z0 = (hs < acc->z0) ? hs : acc->z0;
+            acc->z1 = (hs > acc->z1) ? hs : acc->z1;
+        }
+    }
+    if (acc->any) {
+        acc->x0 = (x0 < acc->x0) ? x0 : acc->x0;
+        acc->x1 = (x1 > acc->x1) ? x1 : acc->x1;
+        acc->y0 = (y0 < acc->y0) ? y0 : acc->y0;
+        acc->y1 = (y1 > acc->y1) ? y1 : acc->y1;
+    }
+}
+
+/* Exact template error and bounds of tile (apex, left, right). */
+static void measure_tile(build_ctx *bc, const int32_t apex[2], const int32_t left[2],
+                         const int32_t right[2], tri_acc *acc)
+{
+    const uint32_t k = bc->bt->k;
+    const int32_t ux[2] = {left[0] - apex[0], left[1] - apex[1]};
+    const int32_t uy[2] = {right[0] - apex[0], right[1] - apex[1]};
+    for (uint32_t t = 0; t < bc->tmpl_count; ++t) {
+        const int16_t *p = bc->tmpl + 6u * t;
+        int32_t v[3][2];
+        for (int i = 0; i < 3; ++i) {
+            int32_t a = p[2 * i], b = p[2 * i + 1];
+            /* exact: legs are multiples of 2^k for tile levels <= L */
+            v[i][0] = apex[0] + ((a * ux[0] + b * uy[0]) >> k);
+            v[i][1] = apex[1] + ((a * ux[1] + b * uy[1]) >> k);
+        }
+        scan_triangle(bc->bt, v, acc);
+    }
+}
+
+static size_t lat_index(const ft_bintree *bt, int32_t x, int32_t y)
+{
+    return (size_t)((uint32_t)y >> bt->k) * bt->lattice_side + ((uint32_t)x >> bt->k);
+}
+
+static void box_set_empty(float *b)
+{
+    b[0] = b[2] = b[4] = FLT_MAX;
+    b[1] = b[3] = b[5] = -FLT_MAX;
+}
+
+static void box_add(float *b, const float *o)
+{
+    b[0] = (o[0] < b[0]) ? o[0] : b[0];
+    b[1] = (o[1] > b[1]) ? o[1] : b[1];
+    b[2] = (o[2] < b[2]) ? o[2] : b[2];
+    b[3] = (o[3] > b[3]) ? o[3] : b[3];
+    b[4] = (o[4] < b[4]) ? o[4] : b[4];
+    b[5] = (o[5] > b[5]) ? o[5] : b[5];
+}
+
+/* The (at most two) triangles of the diamond with split vertex c at level
+ * `level`. Returns how many; tris[i] = apex, left, right. */
+static uint32_t diamond_triangles(const ft_bintree *bt, uint32_t level, int32_t cx, int32_t cy,
+                                  int32_t tris[2][3][2])
+{
+    const int32_t n_cells = (int32_t)bt->side_cells;
+    uint32_t count = 0;
+#define FT_SET_TRI(ax, ay, lx, ly, rx, ry)                                          \
+    do {                                                                           \
+        tris[count][0][0] = (ax); tris[count][0][1] = (ay);                        \
+        tris[count][1][0] = (lx); tris[count][1][1] = (ly);                        \
+        tris[count][2][0] = (rx); tris[count][2][1] = (ry);                        \
+        ++count;                                                                   \
+    } while (0)
+    if ((level & 1u) == 0u) {
+        const int32_t h = (int32_t)(bt->side_cells >> (level / 2u)) / 2; /* half side */
+        const int32_t x0 = cx - h, x1 = cx + h, y0 = cy - h, y1 = cy + h;
+        const int32_t qx = x0 / (2 * h), qy = y0 / (2 * h);
+        if (((qx + qy) & 1) == 0) { /* "/" diagonal (x0,y0)-(x1,y1) */
+            FT_SET_TRI(x1, y0, x1, y1, x0, y0);
+            FT_SET_TRI(x0, y1, x0, y0, x1, y1);
+        } else { /* "\" diagonal (x0,y1)-(x1,y0) */
+            FT_SET_TRI(x0, y0, x1, y0, x0, y1);
+            FT_SET_TRI(x1, y1, x0, y1, x1, y0);
+        }
+    } else {
+        const int32_t s = (int32_t)(bt->side_cells >> (level / 2u));
+        const int32_t h = s / 2;
+        if ((cx % s) != 0) { /* midpoint of a horizontal edge */
+            if (cy < n_cells) FT_SET_TRI(cx, cy + h, cx - h, cy, cx + h, cy);
+            if (cy > 0) FT_SET_TRI(cx, cy - h, cx + h, cy, cx - h, cy);
+        } else { /* midpoint of a vertical edge */
+            if (cx < n_cells) FT_SET_TRI(cx + h, cy, cx, cy + h, cx, cy - h);
+            if (cx > 0) FT_SET_TRI(cx - h, cy, cx, cy - h, cx, cy + h);
+        }
+    }
+#undef FT_SET_TRI
+    return count;
+}
+
+/* Calls fn for every diamond split vertex of `level` (row by row). */
+typedef void (*diamond_fn)(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy);
+
+static void for_each_diamond(build_ctx *bc, uint32_t level, diamond_fn fn)
+{
+    const ft_bintree *bt = bc->bt;
+    const int32_t s = (int32_t)(bt->side_cells >> (level / 2u)); /* square side */
+    const int32_t cnt = (int32_t)bt->side_cells / s;
+    if ((level & 1u) == 0u) {
+        for (int32_t qy = 0; qy < cnt; ++qy) {
+            for (int32_t qx = 0; qx < cnt; ++qx) {
+                fn(bc, level, qx * s + s / 2, qy * s + s / 2);
+            }
+        }
+    } else {
+        for (int32_t qy = 0; qy <= cnt; ++qy) {
+            for (int32_t qx = 0; qx < cnt; ++qx) {
+                fn(bc, level, qx * s + s / 2, qy * s); /* horizontal edges */
+            }
+        }
+        for (int32_t qy = 0; qy < cnt; ++qy) {
+            for (int32_t qx = 0; qx <= cnt; ++qx) {
+                fn(bc, level, qx * s, qy * s + s / 2); /* vertical edges */
+            }
+        }
+    }
+}
+
+static void own_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
+{
+    ft_bintree *bt = bc->bt;
+    int32_t tris[2][3][2];
+    uint32_t count = diamond_triangles(bt, level, cx, cy, tris);
+    tri_acc acc;
+    memset(&acc, 0, sizeof acc);
+    for (uint32_t i = 0; i < count; ++i) {
+        measure_tile(bc, tris[i][0], tris[i][1], tris[i][2], &acc);
+    }
+    size_t li = lat_index(bt, cx, cy);
+    float *b = bt->box + li * FT_BT_BOX_FLOATS;
+    bt->err_m[li] = (float)acc.err_m;
+    if (acc.err_m > (double)bt->err_m[li]) {
+        /* round up: the stored bound must not be below the exact error */
+        bt->err_m[li] = nextafterf(bt->err_m[li], FLT_MAX);
+    }
+    if (acc.any) {
+        b[0] = (float)acc.x0; b[1] = (float)acc.x1;
+        b[2] = (float)acc.y0; b[3] = (float)acc.y1;
+        b[4] = acc.z0; b[5] = acc.z1;
+    } else {
+        box_set_empty(b);
+    }
+}
+
+static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
+{
+    ft_bintree *bt = bc->bt;
+    int32_t tris[2][3][2];
+    uint32_t count = diamond_triangles(bt, level, cx, cy, tris);
+    size_t li = lat_index(bt, cx, cy);
+    for (uint32_t i = 0; i < count; ++i) {
+        for (int leg = 1; leg <= 2; ++leg) { /* children split at the legs' midpoints */
+            int32_t mx = (tris[i][0][0] + tris[i][leg][0]) / 2;
+            int32_t my = (tris[i][0][1] + tris[i][leg][1]) / 2;
+            size_t ci = lat_index(bt, mx, my);
+            bt->err_m[li] = (bt->err_m[ci] > bt->err_m[li]) ? bt->err_m[ci] : bt->err_m[li];
+            box_add(bt->box + li * FT_BT_BOX_FLOATS, bt->box + ci * FT_BT_BOX_FLOATS);
+        }
+    }
+}
+
+ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t tiles_max,
+                          ft_arena *a, ft_error *err)
+{
+    memset(bt, 0, sizeof *bt);
+    if (t->heights_m == NULL || t->width < FT_GRID_SIDE_MIN || t->height < FT_GRID_SIDE_MIN) {
+        return ft_fail(err, FT_ERR_ARG, "bintree: terrain has no heights");
+    }
+    if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "bintree.template_k = %u outside %u..%u", k,
+                       FT_BT_TEMPLATE_K_MIN, FT_BT_TEMPLATE_K_MAX);
+    }
+    if (tiles_max < FT_BT_TILES_MIN || tiles_max > FT_BT_TILES_MAX_LIMIT) {
+        return ft_fail(err, FT_ERR_CONFIG, "bintree.tiles_max = %u outside %u..%u", tiles_max,
+                       FT_BT_TILES_MIN, FT_BT_TILES_MAX_LIMIT);
+    }
+    bt->n = ft_bt_domain_n(t->width, t->height);
+    if (bt->n > FT_BT_N_MAX) {
+        return ft_fail(err, FT_ERR_ARG, "bintree: grid %ux%u larger than 2^%u + 1", t->width,
+                       t->height, FT_BT_N_MAX);
+    }
+    if (k > bt->n) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "bintree.template_k = %u is too large for a %ux%u grid (at most %u: "
+                       "one tile template would cover more than the padded %u-cell domain)",
+                       k, t->width, t->height, bt->n, 1u << bt->n);
+    }
+    bt->k = k;
+    bt->side_cells = 1u << bt->n;
+    bt->step = 1u << k;
+    bt->lattice_side = lattice_side(bt->n, k);
+    bt->leaf_level = 2u * (bt->n - k);
+    bt->width = t->width;
+    bt->height = t->height;
+    bt->heights_m = t->heights_m;
+    bt->domain_z[0] = t->min_height_m;
+    bt->domain_z[1] = t->max_height_m;
+    bt->tiles_max = tiles_max;
+
+    const size_t m2 = (size_t)bt->lattice_side * bt->lattice_side;
+    int16_t *tmpl = NULL;
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, m2 * sizeof(float), (void **)&bt->err_m, err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, m2 * FT_BT_BOX_FLOATS * sizeof(float),
+                           (void **)&bt->box, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile),
+                           (void **)&bt->tiles, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t),
+                           (void **)&tmpl, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    ft_bt_template_corners(k, tmpl);
+    for (size_t i = 0; i < m2; ++i) {
+        box_set_empty(bt->box + i * FT_BT_BOX_FLOATS);
+    }
+    build_ctx bc = {bt, tmpl, ft_bt_template_triangles(k)};
+    for (uint32_t level = 0; level < bt->leaf_level; ++level) {
+        for_each_diamond(&bc, level, own_error);
+    }
+    for (uint32_t level = bt->leaf_level; level-- > 0u;) {
+        if (level + 1u < bt->leaf_level) {
+            for_each_diamond(&bc, level, saturate);
+        }
+    }
+    if (bt->flipped_triangles != 0u) {
+        return ft_fail(err, FT_ERR_ARG,
+                       "bintree: %u template triangles flip under the padding clamp (grid %ux%u)",
+                       bt->flipped_triangles, t->width, t->height);
+    }
+    if (bt->leaf_level > 0u) {
+        bt->max_err_m = bt->err_m[lat_index(bt, (int32_t)bt->side_cells / 2,
+                                            (int32_t)bt->side_cells / 2)];
+    }
+    return FT_OK;
+}
+
+/* ---- view ------------------------------------------------------------------------ */
+
+void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull, int morph,
+                            ft_bt_view *v)
+{
+    memset(v, 0, sizeof *v);
+    v->eye_m[0] = cam->eye_m[0] - t->origin_world_x_m;
+    v->eye_m[1] = cam->eye_m[1] - t->origin_world_y_m;
+    v->eye_m[2] = cam->eye_m[2];
+    v->cell_m[0] = t->cell_x_m;
+    v->cell_m[1] = t->cell_y_m;
+    v->k_px = cam->px_per_rad_k;
+    v->cull = cull;
+    v->morph = morph;
+    const double tv = tan(0.5 * cam->fovy_rad);
+    const double th = tv * (double)cam->width_px / (double)cam->height_px;
+    for (int i = 0; i < 3; ++i) {
+        v->forward[i] = cam->forward[i];
+        v->plane_n[0][i] = cam->forward[i] * tv - cam->up[i];    /* top */
+        v->plane_n[1][i] = cam->forward[i] * tv + cam->up[i];    /* bottom */
+        v->plane_n[2][i] = cam->forward[i] * th - cam->right[i]; /* right */
+        v->plane_n[3][i] = cam->forward[i] * th + cam->right[i]; /* left */
+    }
+}
+
+/* ---- selection (per frame) ------------------------------------------------------------ */
+
+typedef struct bt_node {
+    int32_t apex[2], left[2], right[2];
+    uint32_t level;
+} bt_node;
+
+/* World-metre box (relative to sample (0,0)) of grid box b. */
+static void box_to_m(const ft_bt_view *v, const float *b, double lo[3], double hi[3])
+{
+    lo[0] = (double)b[0] * v->cell_m[0];
+    hi[0] = (double)b[1] * v->cell_m[0];
+    lo[1] = (double)b[2] * v->cell_m[1];
+    hi[1] = (double)b[3] * v->cell_m[1];
+    lo[2] = b[4];
+    hi[2] = b[5];
+}
+
+static double box_distance_m(const ft_bt_view *v, const float *b)
+{
+    double lo[3], hi[3], d2 = 0.0;
+    box_to_m(v, b, lo, hi);
+    for (int i = 0; i < 3; ++i) {
+        double e = v->eye_m[i];
+        double d = (e < lo[i]) ? lo[i] - e : ((e > hi[i]) ? e - hi[i] : 0.0);
+        d2 += d * d;
+    }
+    return sqrt(d2);
+}
+
+/* 1 if the box is wholly outside one frustum side plane or behind the eye. */
+static int box_outside(const ft_bt_view *v, const double lo[3], const double hi[3])
+{
+    for (int p = 0; p < 5; ++p) {
+        const double *nrm = (p < 4) ? v->plane_n[p] : v->forward;
+        double best = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            double c = (nrm[i] >= 0.0) ? hi[i] : lo[i];
+            best += nrm[i] * (c - v->eye_m[i]);
+        }
+        if (best < 0.0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static int32_t min3(int32_t a, int32_t b, int32_t c)
+{
+    int32_t m = (a < b) ? a : b;
+    return (m < c) ? m : c;
+}
+
+static int32_t max3(int32_t a, int32_t b, int32_t c)
+{
+    int32_t m = (a > b) ? a : b;
+    return (m > c) ? m : c;
+}
+
+/* One selection at threshold thr_px (= f * tau). Returns 0 when the tiles
+ * would exceed tiles_max (bt->tiles then holds a partial list). */
+static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt_select_stats *st)
+{
+    bt_node stack[FT_BT_STACK_MAX];
+    uint32_t sp = 0;
+    const int32_t n = (int32_t)bt->side_cells;
+    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    st->tiles = 0;
+    st->nodes_visited = 0;
+    st->culled = 0;
+    st->level_min = UINT32_MAX;
+    st->level_max = 0;
+    /* roots: T1 then T0 on the stack */
+    stack[sp++] = (bt_node){{0, n}, {0, 0}, {n, n}, 0u};
+    stack[sp++] = (bt_node){{n, 0}, {n, n}, {0, 0}, 0u};
+    /* Bounded: every pop either emits, drops or replaces a node by its two
+     * children one level down; depth <= leaf_level so sp <= leaf_level + 2,
+     * and the number of pops is bounded by the tree size. */
+    while (sp > 0u) {
+        bt_node t = stack[--sp];
+        st->nodes_visited += 1u;
+        int32_t gx0 = min3(t.apex[0], t.left[0], t.right[0]);
+        int32_t gy0 = min3(t.apex[1], t.left[1], t.right[1]);
+        if (gx0 >= wx || gy0 >= hy) {
+            continue; /* wholly in the padding: zero area after the clamp */
+        }
+        int32_t c[2] = {(t.left[0] + t.right[0]) / 2, (t.left[1] + t.right[1]) / 2};
+        const float *dbox = NULL;
+        if (t.level < bt->leaf_level) {
+            dbox = bt->box + lat_index(bt, c[0], c[1]) * FT_BT_BOX_FLOATS;
+        } else if (bt->leaf_level > 0u) {
+            dbox = bt->box + lat_index(bt, t.apex[0], t.apex[1]) * FT_BT_BOX_FLOATS;
+        }
+        if (v->cull) {
+            float tb[6];
+            tb[0] = (float)gx0;
+            tb[1] = (float)clamp_i(max3(t.apex[0], t.left[0], t.right[0]), wx);
+            tb[2] = (float)gy0;
+            tb[3] = (float)clamp_i(max3(t.apex[1], t.left[1], t.right[1]), hy);
+            tb[4] = (dbox != NULL) ? dbox[4] : bt->domain_z[0];
+            tb[5] = (dbox != NULL) ? dbox[5] : bt->domain_z[1];
+            double lo[3], hi[3];
+            box_to_m(v, tb, lo, hi);
+            if (box_outside(v, lo, hi)) {
+                st->culled += 1u;
+                continue;
+            }
+        }
+        if (t.level < bt->leaf_level) {
+            float e = bt->err_m[lat_index(bt, c[0], c[1])];
+            if (e > 0.0f && v->k_px * (double)e > thr_px * box_distance_m(v, dbox)) {
+                stack[sp++] = (bt_node){{c[0], c[1]},
+                                        {t.right[0], t.right[1]},
+                                        {t.apex[0], t.apex[1]},
+                                        t.level + 1u};
+                stack[sp++] = (bt_node){{c[0], c[1]},
+                                        {t.apex[0], t.apex[1]},
+                                        {t.left[0], t.left[1]},
+                                        t.level + 1u};
+                continue;
+            }
+        }
+        if (st->tiles >= bt->tiles_max) {
+            return 0;
+        }
+        ft_bt_tile *out = &bt->tiles[st->tiles++];
+        memcpy(out->apex, t.apex, sizeof out->apex);
+        memcpy(out->left, t.left, sizeof out->left);
+        memcpy(out->right, t.right, sizeof out->right);
+        out->level = t.level;
+        st->level_min = (t.level < st->level_min) ? t.level : st->level_min;
+        st->level_max = (t.level > st->level_max) ? t.level : st->level_max;
+    }
+    return 1;
+}
+
+void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
+                       ft_bt_select_stats *st)
+{
+    const double f = v->morph ? FT_BT_SPLIT_FRACTION : 1.0;
+    double tau = (tau_px > 0.0) ? tau_px : 0.0;
+    memset(st, 0, sizeof *st);
+    st->tau_target_px = tau;
+    for (uint32_t i = 0; i < FT_BT_COARSEN_STEPS_MAX; ++i) {
+        st->attempts = i + 1u;
+        if (select_once(bt, v, f * tau, st)) {
+            st->budget_hit = (i > 0u);
+            st->tau_achieved_px = tau;
+            return;
+        }
+        tau = (tau > 0.0) ? tau * FT_BT_COARSEN_FACTOR : 1e-3;
+    }
+    /* Last resort (tiles_max >= 2): the two roots, bound = their projected error. */
+    st->attempts += 1u;
+    (void)select_once(bt, v, INFINITY, st);
+    st->budget_hit = 1;
+    if (bt->leaf_level > 0u) {
+        const int32_t h = (int32_t)bt->side_cells / 2;
+        size_t li = lat_index(bt, h, h);
+        double d = box_distance_m(v, bt->box + li * FT_BT_BOX_FLOATS);
+        st->tau_achieved_px = (d > 0.0) ? v->k_px * bt->err_m[li] / d : INFINITY;
+    } else {
+        st->tau_achieved_px = 0.0; /* roots are the full-resolution grid */
+    }
+}
+
+/* ---- geomorph rule (mirrors shaders/bintree.vert.glsl) --------------------------------- */
+
+int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
+                       int32_t c[2])
+{
+    const int32_t n = (int32_t)bt->side_cells;
+    if ((x | y) == 0) {
+        return 0;
+    }
+    int32_t s = (x | y) & -(x | y); /* lowest set bit */
+    int odd_x = ((x / s) & 1) != 0, odd_y = ((y / s) & 1) != 0;
+    int32_t sd = 2 * s * (int32_t)bt->step; /* square side of the insertion diamond */
+    if (sd > n) {
+        return 0; /* present in the coarsest tiles: never morphs */
+    }
+    if (odd_x && odd_y) {
+        int32_t qx = (x - s) / (2 * s), qy = (y - s) / (2 * s);
+        int slash = ((qx + qy) & 1) == 0;
+        e0[0] = x - s; e0[1] = slash ? y - s : y + s;
+        e1[0] = x + s; e1[1] = slash ? y + s : y - s;
+        c[0] = (x / sd) * sd + sd / 2;
+        c[1] = (y / sd) * sd + sd / 2;
+    } else {
+        if (odd_x) {
+            e0[0] = x - s; e0[1] = y; e1[0] = x + s; e1[1] = y;
+        } else {
+            e0[0] = x; e0[1] = y - s; e1[0] = x; e1[1] = y + s;
+        }
+        int32_t bx = (x / sd) * sd, by = (y / sd) * sd;
+        int32_t rx = x - bx, ry = y - by;
+        if (ry <= rx && ry <= sd - rx) {
+            c[0] = bx + sd / 2; c[1] = by;
+        } else if (ry >= rx && ry >= sd - rx) {
+            c[0] = bx + sd / 2; c[1] = by + sd;
+        } else if (rx <= ry && rx <= sd - ry) {
+            c[0] = bx; c[1] = by + sd / 2;
+        } else {
+            c[0] = bx + sd; c[1] = by + sd / 2;
+        }
+    }
+    /* Vertices the padding clamp moves do not morph (no coarse edge to slide on). */
+    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    if (x > wx || y > hy || e0[0] > wx || e0[1] > hy || e1[0] > wx || e1[1] > hy) {
+        return 0;
+    }
+    return 1;
+}

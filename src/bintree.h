@@ -1,0 +1,135 @@
+/* bintree.h - the crack-free bintree of triangular tiles: error tables built
+ * at init, per-frame selection with an explicit stack.
+ *
+ * Domain: the grid padded (conceptually) to (2^n + 1)^2 samples, N = 2^n
+ * cells a side, sample (0,0) at the corner. Padding rule: a grid of W x H
+ * samples uses the smallest N = 2^n >= max(W, H) - 1; every grid coordinate
+ * is clamped to [0, W-1] x [0, H-1] before a height is read, in the error
+ * tables and in the vertex shader alike. Triangles wholly in the padding
+ * collapse onto the grid edge (zero area, never drawn, never selected);
+ * triangles across the edge are measured with the clamped geometry they are
+ * drawn with. No padded heights are stored.
+ *
+ * Tree: the square split along its (0,0)-(N,N) diagonal into two root
+ * triangles (level 0); a triangle (apex, left, right) with hypotenuse
+ * left-right splits at m = (left+right)/2 into (m, apex, left) and
+ * (m, right, apex). Every tile is drawn with the 2k-level template
+ * (bintree_template.h), so tile levels run 0..L with L = 2(n - k): a level-L
+ * tile's template is the full-resolution grid.
+ *
+ * Diamonds: the two triangles sharing a hypotenuse split together. A diamond
+ * is named by its split vertex c (the hypotenuse midpoint); for tile levels
+ * < L every c lies on the lattice of step 2^k, so the tables are
+ * (N/2^k + 1)^2 entries:
+ *   err_m[c]  saturated object-space error: max of the exact template error
+ *             of the diamond's triangles and err_m of its child diamonds
+ *             (the midpoints of its triangles' legs).
+ *   box[c]    nested bounds: bbox (grid x, y; heights z) of the diamond's
+ *             samples, united with its child diamonds' boxes.
+ * Exact template error of a triangle: max over the grid samples inside it of
+ * |sample height - template surface| (the template surface is linear on each
+ * template triangle).
+ *
+ * Selection: diamond c is active iff err_m[c] > 0 and
+ *   K * err_m[c] > f * tau * dist(eye, box[c])
+ * (K = px_per_rad_k, f = FT_BT_SPLIT_FRACTION with geomorphing, 1 without).
+ * Because err_m and box are nested, a child diamond is active only if its
+ * parents are, so splitting every triangle of an active diamond gives a
+ * conforming bintree by construction (no forced splits). Frustum culling
+ * drops whole subtrees (their edges are outside the view).
+ *
+ * Budget: at most tiles_max tiles. If tau needs more, tau is multiplied by
+ * FT_BT_COARSEN_FACTOR and the selection redone (at most
+ * FT_BT_COARSEN_STEPS_MAX times, then the two roots); the tau used is
+ * reported as the achieved bound. */
+#ifndef FT_BINTREE_H
+#define FT_BINTREE_H
+
+#include <stdint.h>
+
+#include "camera.h"
+#include "ft_status.h"
+#include "mem_budget.h"
+#include "terrain.h"
+
+#define FT_BT_N_MAX 14u /* N = 2^14: FT_GRID_SIDE_MAX = 16385 */
+#define FT_BT_LEVELS_MAX (2u * FT_BT_N_MAX)
+#define FT_BT_STACK_MAX (FT_BT_LEVELS_MAX + 4u)
+#define FT_BT_TILES_MIN 2u
+#define FT_BT_TILES_MAX_LIMIT 1048576u
+/* With geomorphing a diamond splits at half the target and its new vertices
+ * morph in over the second half, so the drawn surface stays within tau. */
+#define FT_BT_SPLIT_FRACTION 0.5
+#define FT_BT_COARSEN_FACTOR 1.5
+#define FT_BT_COARSEN_STEPS_MAX 40u
+#define FT_BT_BOX_FLOATS 6u /* x0, x1, y0, y1 (grid), z0, z1 (m) */
+
+typedef struct ft_bt_tile {
+    int32_t apex[2], left[2], right[2]; /* grid coordinates */
+    uint32_t level;
+} ft_bt_tile;
+
+typedef struct ft_bt_select_stats {
+    uint32_t tiles;
+    uint32_t nodes_visited;
+    uint32_t culled;
+    uint32_t attempts;       /* selections run (1 unless the budget was hit) */
+    int budget_hit;          /* tau was raised to fit tiles_max */
+    double tau_target_px;
+    double tau_achieved_px;  /* the bound the drawn tiles meet */
+    uint32_t level_min, level_max;
+} ft_bt_select_stats;
+
+typedef struct ft_bintree {
+    uint32_t n, k;
+    uint32_t side_cells;   /* N = 2^n */
+    uint32_t step;         /* 2^k: lattice step of split vertices */
+    uint32_t lattice_side; /* N / 2^k + 1 */
+    uint32_t leaf_level;   /* L = 2(n - k) */
+    uint32_t width, height;
+    float domain_z[2];     /* min / max height of the grid */
+    const float *heights_m;
+    float *err_m; /* lattice_side^2 */
+    float *box;   /* lattice_side^2 * FT_BT_BOX_FLOATS */
+    uint32_t tiles_max;
+    ft_bt_tile *tiles; /* tiles_max */
+    uint32_t flipped_triangles; /* template triangles the padding clamp flipped (must be 0) */
+    double max_err_m;           /* err_m of the root diamond */
+} ft_bintree;
+
+/* The view the selection works with (see ft_bt_view_from_camera). */
+typedef struct ft_bt_view {
+    double eye_m[3];       /* relative to grid sample (0,0) at height 0 */
+    double cell_m[2];
+    double forward[3];
+    double plane_n[4][3];  /* frustum side planes: inside iff dot(n, p - eye) >= 0 */
+    double k_px;
+    int cull;
+    int morph;
+} ft_bt_view;
+
+/* Smallest n with 2^n >= max(w, h) - 1. */
+uint32_t ft_bt_domain_n(uint32_t w, uint32_t h);
+
+/* Adds the tables and tile list to FT_POOL_METHOD. */
+void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t tiles_max);
+
+/* Builds the error and bound tables (O(L * N^2)). Fails on k > n, tiles_max
+ * outside FT_BT_TILES_MIN..FT_BT_TILES_MAX_LIMIT, or arena exhaustion. */
+ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t tiles_max,
+                          ft_arena *a, ft_error *err);
+
+void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull, int morph,
+                            ft_bt_view *v);
+
+/* Selects tiles into bt->tiles (bounded: explicit stack, no recursion). */
+void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
+                       ft_bt_select_stats *st);
+
+/* Morph endpoints and insertion diamond of grid vertex (x, y), the same rule
+ * the vertex shader uses: the vertex is the midpoint of e0-e1; it appears when
+ * diamond c (lattice) splits. Returns 0 when the vertex never morphs. */
+int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
+                       int32_t c[2]);
+
+#endif

@@ -1,0 +1,439 @@
+/* test_bintree.c - the bintree's tables and selection, checked against
+ * independent brute-force computations (no GPU).
+ *
+ *  - conformity after every selection (culling off): every interior tile
+ *    edge is shared by exactly two tiles with the same endpoints, with the
+ *    level rule (hypotenuse against leg: levels differ by one, the finer tile
+ *    has the hypotenuse; same kind: same level), and the clamped tile areas
+ *    sum to the grid's area (no gap, no overlap);
+ *  - culling only removes tiles: the culled selection is a subset;
+ *  - error tables: for every selected tile, the template error recomputed by
+ *    point location (descending the tile's own LEB refinement) is <= the
+ *    stored saturated error, 0 for leaf tiles, and the samples lie in the
+ *    stored box;
+ *  - the bound: K * err / dist(eye, tile) <= tau for every drawn tile;
+ *  - the tile budget: never exceeded, tau raised and reported;
+ *  - geomorph rule: a morphing vertex is the midpoint of its coarse edge and
+ *    its insertion diamond is an ancestor of every tile that draws it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bintree.h"
+#include "bintree_template.h"
+#include "test_util.h"
+
+static uint32_t g_rng = 777u;
+static double urand(void)
+{
+    g_rng = g_rng * 1664525u + 1013904223u;
+    return (double)(g_rng >> 8) / 16777216.0;
+}
+
+static void make_terrain(ft_terrain *t, uint32_t w, uint32_t h, double spacing_m)
+{
+    memset(t, 0, sizeof *t);
+    t->width = w;
+    t->height = h;
+    t->cell_x_m = t->cell_y_m = spacing_m;
+    t->heights_m = malloc((size_t)w * h * sizeof(float));
+    REQUIRE(t->heights_m != NULL);
+    float lo = 1e30f, hi = -1e30f;
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            double v = 400.0 * sin(0.05 * x) * cos(0.07 * y) + 150.0 * sin(0.3 * x + 0.2 * y) +
+                       20.0 * urand();
+            if (x == w / 3 && y == h / 2) v += 900.0; /* a needle */
+            float f = (float)v;
+            t->heights_m[(size_t)y * w + x] = f;
+            lo = f < lo ? f : lo;
+            hi = f > hi ? f : hi;
+        }
+    }
+    t->min_height_m = lo;
+    t->max_height_m = hi;
+}
+
+static int64_t edge_fn(const int32_t a[2], const int32_t b[2], const int32_t p[2])
+{
+    return (int64_t)(b[0] - a[0]) * (p[1] - a[1]) - (int64_t)(b[1] - a[1]) * (p[0] - a[0]);
+}
+
+static int inside(const int32_t a[2], const int32_t b[2], const int32_t c[2], const int32_t p[2])
+{
+    return edge_fn(a, b, p) >= 0 && edge_fn(b, c, p) >= 0 && edge_fn(c, a, p) >= 0;
+}
+
+static double hgt(const ft_terrain *t, int32_t x, int32_t y)
+{
+    return t->heights_m[(size_t)y * t->width + (size_t)x];
+}
+
+/* Template surface of tile (a, l, r) at sample p: descend 2k LEB levels to
+ * the template triangle holding p and interpolate (no padding here). */
+static double template_height(const ft_terrain *t, uint32_t k, const ft_bt_tile *tile,
+                              const int32_t p[2])
+{
+    int32_t a[2] = {tile->apex[0], tile->apex[1]}, l[2] = {tile->left[0], tile->left[1]},
+            r[2] = {tile->right[0], tile->right[1]};
+    for (uint32_t i = 0; i < 2u * k; ++i) {
+        int32_t m[2] = {(l[0] + r[0]) / 2, (l[1] + r[1]) / 2};
+        if (inside(m, a, l, p)) { /* child 0 = (m, apex, left) */
+            memcpy(r, l, sizeof r);
+            memcpy(l, a, sizeof l);
+            memcpy(a, m, sizeof a);
+        } else { /* child 1 = (m, right, apex) */
+            memcpy(l, r, sizeof l);
+            memcpy(r, a, sizeof r);
+            memcpy(a, m, sizeof a);
+        }
+    }
+    double area2 = (double)edge_fn(a, l, r);
+    double w0 = (double)edge_fn(l, r, p), w1 = (double)edge_fn(r, a, p),
+           w2 = (double)edge_fn(a, l, p);
+    return (w0 * hgt(t, a[0], a[1]) + w1 * hgt(t, l[0], l[1]) + w2 * hgt(t, r[0], r[1])) / area2;
+}
+
+typedef struct edge_rec {
+    int32_t x0, y0, x1, y1;
+    uint32_t level;
+    int hyp;
+} edge_rec;
+
+static int cmp_edge(const void *pa, const void *pb)
+{
+    const edge_rec *a = pa, *b = pb;
+    if (a->x0 != b->x0) return a->x0 < b->x0 ? -1 : 1;
+    if (a->y0 != b->y0) return a->y0 < b->y0 ? -1 : 1;
+    if (a->x1 != b->x1) return a->x1 < b->x1 ? -1 : 1;
+    if (a->y1 != b->y1) return a->y1 < b->y1 ? -1 : 1;
+    return 0;
+}
+
+static void add_edge(edge_rec *e, const int32_t p[2], const int32_t q[2], uint32_t level, int hyp)
+{
+    int swap = (p[0] > q[0]) || (p[0] == q[0] && p[1] > q[1]);
+    e->x0 = swap ? q[0] : p[0];
+    e->y0 = swap ? q[1] : p[1];
+    e->x1 = swap ? p[0] : q[0];
+    e->y1 = swap ? p[1] : q[1];
+    e->level = level;
+    e->hyp = hyp;
+}
+
+static int on_domain_boundary(const edge_rec *e, int32_t n)
+{
+    return (e->x0 == e->x1 && (e->x0 == 0 || e->x0 == n)) ||
+           (e->y0 == e->y1 && (e->y0 == 0 || e->y0 == n));
+}
+
+/* Full conformity check of a culling-free selection. Returns failures. */
+static int check_conforming(const ft_bintree *bt, uint32_t count, edge_rec *edges)
+{
+    int bad = 0;
+    const int32_t n = (int32_t)bt->side_cells;
+    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    double area2 = 0.0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const ft_bt_tile *t = &bt->tiles[i];
+        add_edge(&edges[3u * i + 0u], t->left, t->right, t->level, 1);
+        add_edge(&edges[3u * i + 1u], t->apex, t->left, t->level, 0);
+        add_edge(&edges[3u * i + 2u], t->right, t->apex, t->level, 0);
+        int32_t c[3][2];
+        const int32_t *v[3] = {t->apex, t->left, t->right};
+        for (int j = 0; j < 3; ++j) {
+            c[j][0] = v[j][0] > wx ? wx : v[j][0];
+            c[j][1] = v[j][1] > hy ? hy : v[j][1];
+        }
+        area2 += (double)edge_fn(c[0], c[1], c[2]);
+    }
+    if (fabs(area2 - 2.0 * wx * hy) > 0.5) {
+        fprintf(stderr, "clamped area2 %.0f != %.0f\n", area2, 2.0 * wx * hy);
+        ++bad;
+    }
+    qsort(edges, 3u * count, sizeof *edges, cmp_edge);
+    for (uint32_t i = 0; i < 3u * count;) {
+        uint32_t j = i + 1u;
+        while (j < 3u * count && cmp_edge(&edges[i], &edges[j]) == 0) ++j;
+        uint32_t m = j - i;
+        if (m == 1u) {
+            /* unmatched: only allowed on the domain boundary or in the padding */
+            int padding = edges[i].x0 >= wx || edges[i].y0 >= hy || edges[i].x1 >= wx ||
+                          edges[i].y1 >= hy;
+            if (!on_domain_boundary(&edges[i], n) && !padding) {
+                if (bad < 5) {
+                    fprintf(stderr, "unmatched edge (%d,%d)-(%d,%d) level %u\n", edges[i].x0,
+                            edges[i].y0, edges[i].x1, edges[i].y1, edges[i].level);
+                }
+                ++bad;
+            }
+        } else if (m == 2u) {
+            const edge_rec *a = &edges[i], *b = &edges[i + 1u];
+            int ok;
+            if (a->hyp == b->hyp) {
+                ok = a->level == b->level;
+            } else {
+                const edge_rec *hyp = a->hyp ? a : b, *leg = a->hyp ? b : a;
+                ok = hyp->level == leg->level + 1u;
+            }
+            if (!ok) {
+                ++bad;
+            }
+        } else {
+            ++bad;
+        }
+        i = j;
+    }
+    return bad;
+}
+
+static void random_view(const ft_terrain *t, uint32_t n_cells, ft_camera *cam)
+{
+    double ext = (double)n_cells * t->cell_x_m;
+    double eye[3] = {ext * (urand() * 1.4 - 0.2), ext * (urand() * 1.4 - 0.2),
+                     t->max_height_m + (urand() < 0.3 ? 5.0 : 3000.0 * urand())};
+    ft_error err;
+    REQUIRE(ft_camera_init(cam, eye, urand() * 6.283, -1.4 * urand(), 0.0, 1.0, 640, 480, 1.0,
+                           1e6, &err) == FT_OK);
+}
+
+static int tile_key_cmp(const void *pa, const void *pb)
+{
+    return memcmp(pa, pb, sizeof(ft_bt_tile));
+}
+
+/* Ancestors' split vertices of a tile (descending from the root holding its
+ * centroid). Returns how many (= tile level). */
+static uint32_t ancestors(const ft_bintree *bt, const ft_bt_tile *tile, int32_t out[][2])
+{
+    const int32_t n = (int32_t)bt->side_cells;
+    int32_t p2[2] = {tile->apex[0] + tile->left[0] + tile->right[0],
+                     tile->apex[1] + tile->left[1] + tile->right[1]}; /* 3x centroid */
+    int32_t a[2] = {3 * n, 0}, l[2] = {3 * n, 3 * n}, r[2] = {0, 0};
+    if (!inside(a, l, r, p2)) {
+        a[0] = 0; a[1] = 3 * n; l[0] = 0; l[1] = 0; r[0] = 3 * n; r[1] = 3 * n;
+    }
+    for (uint32_t i = 0; i < tile->level; ++i) {
+        int32_t m[2] = {(l[0] + r[0]) / 2, (l[1] + r[1]) / 2};
+        out[i][0] = m[0] / 3;
+        out[i][1] = m[1] / 3;
+        if (inside(m, a, l, p2)) {
+            memcpy(r, l, sizeof r); memcpy(l, a, sizeof l); memcpy(a, m, sizeof a);
+        } else {
+            memcpy(l, r, sizeof l); memcpy(r, a, sizeof r); memcpy(a, m, sizeof a);
+        }
+    }
+    return tile->level;
+}
+
+static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t views, int exact_checks)
+{
+    ft_terrain t;
+    make_terrain(&t, w, h, 30.0);
+    ft_arena a;
+    memset(&a, 0, sizeof a);
+    const uint32_t tiles_max = 200000u;
+    ft_bintree_plan(&a, w, h, k, tiles_max);
+    a.pools[FT_POOL_METHOD].budget_bytes = a.pools[FT_POOL_METHOD].need_bytes;
+    size_t total = ft_arena_total_budget(&a);
+    void *mem = aligned_alloc(FT_ARENA_ALIGN, total);
+    ft_error err;
+    REQUIRE(mem != NULL && ft_arena_bind(&a, mem, total, &err) == FT_OK);
+    ft_bintree bt;
+    ft_status st = ft_bintree_init(&bt, &t, k, tiles_max, &a, &err);
+    if (st != FT_OK) {
+        fprintf(stderr, "init %ux%u k=%u: %s\n", w, h, k, err.text);
+    }
+    REQUIRE(st == FT_OK);
+    CHECK(bt.flipped_triangles == 0u);
+    printf("grid %ux%u k=%u: N=%u leaf level %u lattice %u max err %.2f m\n", w, h, k,
+           bt.side_cells, bt.leaf_level, bt.lattice_side, bt.max_err_m);
+    edge_rec *edges = malloc(3u * tiles_max * sizeof *edges);
+    ft_bt_tile *nocull = malloc(tiles_max * sizeof *nocull);
+    REQUIRE(edges && nocull);
+    static const double taus[] = {0.0, 0.5, 1.0, 2.0, 4.0, 16.0};
+    uint32_t total_tiles = 0, morph_vertices = 0, checked_vertices = 0;
+    int bad_conf = 0, bad_subset = 0, bad_err = 0, bad_bound = 0, bad_morph = 0;
+    for (uint32_t vi = 0; vi < views; ++vi) {
+        ft_camera cam;
+        random_view(&t, bt.side_cells, &cam);
+        double tau = taus[vi % (sizeof taus / sizeof taus[0])];
+        int morph = (int)(vi & 1u);
+        ft_bt_view v;
+        ft_bt_view_from_camera(&cam, &t, 0, morph, &v);
+        ft_bt_select_stats ss;
+        ft_bintree_select(&bt, &v, tau, &ss);
+        CHECK(ss.tiles <= tiles_max);
+        CHECK(!ss.budget_hit);
+        CHECK(ss.tau_achieved_px == tau);
+        bad_conf += check_conforming(&bt, ss.tiles, edges);
+        total_tiles += ss.tiles;
+        uint32_t n_nocull = ss.tiles;
+        memcpy(nocull, bt.tiles, n_nocull * sizeof *nocull);
+        qsort(nocull, n_nocull, sizeof *nocull, tile_key_cmp);
+        const double thr = tau * (morph ? FT_BT_SPLIT_FRACTION : 1.0);
+        for (uint32_t i = 0; i < n_nocull && exact_checks; ++i) {
+            const ft_bt_tile *tile = &nocull[i];
+            int32_t x0 = tile->apex[0], x1 = x0, y0 = tile->apex[1], y1 = y0;
+            const int32_t *vv[3] = {tile->left, tile->right, tile->apex};
+            for (int j = 0; j < 2; ++j) {
+                x0 = vv[j][0] < x0 ? vv[j][0] : x0; x1 = vv[j][0] > x1 ? vv[j][0] : x1;
+                y0 = vv[j][1] < y0 ? vv[j][1] : y0; y1 = vv[j][1] > y1 ? vv[j][1] : y1;
+            }
+            double dev = 0.0, z0 = 1e30, z1 = -1e30;
+            for (int32_t y = y0; y <= y1; ++y) {
+                for (int32_t x = x0; x <= x1; ++x) {
+                    int32_t p[2] = {x, y};
+                    if (!inside(tile->apex, tile->left, tile->right, p)) continue;
+                    double hs = hgt(&t, x, y);
+                    double d = fabs(hs - template_height(&t, k, tile, p));
+                    dev = d > dev ? d : dev;
+                    z0 = hs < z0 ? hs : z0;
+                    z1 = hs > z1 ? hs : z1;
+                }
+            }
+            if (tile->level == bt.leaf_level) {
+                if (dev > 1e-3) ++bad_err;
+                continue;
+            }
+            int32_t c[2] = {(tile->left[0] + tile->right[0]) / 2,
+                            (tile->left[1] + tile->right[1]) / 2};
+            size_t li = (size_t)(c[1] >> k) * bt.lattice_side + (size_t)(c[0] >> k);
+            const float *b = bt.box + li * FT_BT_BOX_FLOATS;
+            if (dev > (double)bt.err_m[li] + 1e-3 || z0 < b[4] || z1 > b[5] || x0 < b[0] ||
+                x1 > b[1] || y0 < b[2] || y1 > b[3]) {
+                if (bad_err < 3) {
+                    fprintf(stderr, "tile level %u dev %.4f stored %.4f\n", tile->level, dev,
+                            bt.err_m[li]);
+                }
+                ++bad_err;
+            }
+            /* bound against the tile's own (tighter) box */
+            double lo[3] = {x0 * t.cell_x_m, y0 * t.cell_y_m, z0};
+            double hi[3] = {x1 * t.cell_x_m, y1 * t.cell_y_m, z1};
+            double d2 = 0.0;
+            for (int q = 0; q < 3; ++q) {
+                double e = v.eye_m[q];
+                double d = e < lo[q] ? lo[q] - e : (e > hi[q] ? e - hi[q] : 0.0);
+                d2 += d * d;
+            }
+            if (dev > 1e-3 && v.k_px * dev > thr * sqrt(d2) * (1.0 + 1e-6) + 1e-3) ++bad_bound;
+        }
+        /* geomorph rule on every template vertex of every tile */
+        for (uint32_t i = 0; i < n_nocull && exact_checks; i += 7u) {
+            const ft_bt_tile *tile = &nocull[i];
+            int32_t anc[FT_BT_LEVELS_MAX][2];
+            uint32_t na = ancestors(&bt, tile, anc);
+            int32_t s = 1 << k;
+            for (int32_t ib = 0; ib <= s; ++ib) {
+                for (int32_t ia = 0; ia + ib <= s; ++ia) {
+                    int32_t gx = tile->apex[0] + (ia * (tile->left[0] - tile->apex[0]) +
+                                                  ib * (tile->right[0] - tile->apex[0])) / s;
+                    int32_t gy = tile->apex[1] + (ia * (tile->left[1] - tile->apex[1]) +
+                                                  ib * (tile->right[1] - tile->apex[1])) / s;
+                    int32_t e0[2], e1[2], c[2];
+                    ++checked_vertices;
+                    if (!ft_bt_vertex_morph(&bt, gx, gy, e0, e1, c)) continue;
+                    ++morph_vertices;
+                    int found = 0;
+                    for (uint32_t q = 0; q < na; ++q) found |= (anc[q][0] == c[0] && anc[q][1] == c[1]);
+                    if (!found || e0[0] + e1[0] != 2 * gx || e0[1] + e1[1] != 2 * gy) {
+                        if (bad_morph < 3) {
+                            fprintf(stderr, "vertex (%d,%d) tile level %u: diamond (%d,%d) %s\n",
+                                    gx, gy, tile->level, c[0], c[1],
+                                    found ? "ok, bad ends" : "not an ancestor");
+                        }
+                        ++bad_morph;
+                    }
+                }
+            }
+        }
+        /* culling only removes tiles */
+        ft_bt_view_from_camera(&cam, &t, 1, morph, &v);
+        ft_bintree_select(&bt, &v, tau, &ss);
+        for (uint32_t i = 0; i < ss.tiles; ++i) {
+            if (bsearch(&bt.tiles[i], nocull, n_nocull, sizeof *nocull, tile_key_cmp) == NULL) {
+                ++bad_subset;
+            }
+        }
+        CHECK(ss.tiles <= n_nocull);
+    }
+    printf("  %u views: %u tiles, %u/%u template vertices morph; conformity %d, subset %d, "
+           "error %d, bound %d, morph %d failures\n",
+           views, total_tiles, morph_vertices, checked_vertices, bad_conf, bad_subset, bad_err,
+           bad_bound, bad_morph);
+    CHECK(bad_conf == 0);
+    CHECK(bad_subset == 0);
+    CHECK(bad_err == 0);
+    CHECK(bad_bound == 0);
+    CHECK(bad_morph == 0);
+    if (exact_checks && bt.leaf_level > 0u) {
+        CHECK(morph_vertices > 0u);
+    }
+
+    /* The tile budget: a tiny budget is never exceeded, tau is raised and reported. */
+    bt.tiles_max = 40u;
+    {
+        ft_camera cam;
+        double eye[3] = {bt.side_cells * 15.0, bt.side_cells * 5.0, t.max_height_m + 50.0};
+        REQUIRE(ft_camera_init(&cam, eye, 0.3, -0.3, 0.0, 1.0, 640, 480, 1.0, 1e6, &err) == FT_OK);
+        ft_bt_view v;
+        ft_bt_view_from_camera(&cam, &t, 0, 1, &v);
+        ft_bt_select_stats ss;
+        ft_bintree_select(&bt, &v, 0.5, &ss);
+        printf("  budget 40 tiles at tau 0.5: %u tiles, %u attempts, achieved tau %.2f px\n",
+               ss.tiles, ss.attempts, ss.tau_achieved_px);
+        CHECK(ss.tiles <= 40u);
+        if (bt.leaf_level >= 6u) {
+            CHECK(ss.budget_hit);
+            CHECK(ss.tau_achieved_px > 0.5);
+        }
+        CHECK(check_conforming(&bt, ss.tiles, edges) == 0);
+        bt.tiles_max = 2u;
+        ft_bintree_select(&bt, &v, 0.5, &ss);
+        CHECK(ss.tiles <= 2u);
+        CHECK(ss.budget_hit || bt.leaf_level == 0u);
+        CHECK(!isnan(ss.tau_achieved_px));
+    }
+    free(edges);
+    free(nocull);
+    free(mem);
+    free(t.heights_m);
+}
+
+int main(void)
+{
+    run_case(65, 65, 1, 60, 1);
+    run_case(129, 129, 2, 60, 1);
+    run_case(257, 257, 3, 40, 1);
+    run_case(3, 3, 1, 10, 1);
+    /* padded grids: conformity, coverage and budget (the point-location check
+     * above assumes no clamp) */
+    run_case(100, 70, 2, 40, 0);
+    run_case(1201, 1201, 3, 12, 0);
+
+    /* k larger than the grid allows: a clear error */
+    {
+        ft_terrain t;
+        make_terrain(&t, 9, 9, 30.0);
+        ft_arena a;
+        memset(&a, 0, sizeof a);
+        ft_bintree_plan(&a, 9, 9, 4, 16);
+        a.pools[FT_POOL_METHOD].budget_bytes = a.pools[FT_POOL_METHOD].need_bytes;
+        size_t total = ft_arena_total_budget(&a);
+        void *mem = aligned_alloc(FT_ARENA_ALIGN, total);
+        ft_error err;
+        REQUIRE(mem && ft_arena_bind(&a, mem, total, &err) == FT_OK);
+        ft_bintree bt;
+        CHECK(ft_bintree_init(&bt, &t, 4, 16, &a, &err) == FT_ERR_CONFIG);
+        CHECK(strstr(err.text, "too large") != NULL);
+        CHECK(ft_bintree_init(&bt, &t, 2, 1, &a, &err) == FT_ERR_CONFIG);
+        ft_terrain t2;
+        make_terrain(&t2, 2, 2, 30.0); /* one cell: no template fits */
+        CHECK(ft_bintree_init(&bt, &t2, 1, 16, &a, &err) == FT_ERR_CONFIG);
+        free(t2.heights_m);
+        free(mem);
+        free(t.heights_m);
+    }
+    return g_ft_test_failures ? 1 : 0;
+}

@@ -32,7 +32,7 @@ static void print_render_help(void)
            "scene (synthetic terrain, method brute, EGL GLES 3) to fixterrain.png.\n\n"
            "  --scene FILE        scene file (INI; see config/*.ini); default: embedded\n"
            "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
-           "  --method NAME       terrain method: brute\n"
+           "  --method NAME       terrain method: brute | bintree (as built)\n"
            "  --backend NAME      egl-gles3 | egl-gles2 | osmesa\n"
            "  --display NAME      none (offscreen) | x11 (a window; EGL backends)\n"
            "  --hold-ms N         with a display: keep the last frame shown N ms\n"
@@ -113,8 +113,9 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         " \"min_height_m\": %.3f, \"max_height_m\": %.3f, \"voids_filled\": %u, \"crs\": \"%s\"},\n"
         "  \"eye_m\": [%.3f, %.3f, %.3f],\n"
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
-        "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"cpu_ms\": %.3f,"
-        " \"gpu_ms\": %.3f, \"median_gpu_ms\": %.3f},\n"
+        "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
+        " \"tau_achieved_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
+        " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"median_gpu_ms\": %.3f},\n"
         "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
         "  \"error\": %s,\n  \"pools\": [%s\n  ]\n}\n",
         app->scene.name, ft_method_name(app->scene.method), ft_backend_name(app->scene.backend),
@@ -122,7 +123,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->height, t->cell_x_m, t->cell_y_m, (double)t->min_height_m, (double)t->max_height_m,
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
-        last->draw_calls, last->cpu_ms, last->gpu_ms, median_ms,
+        last->draw_calls, last->tiles, last->tau_achieved_px, last->budget_hit, last->select_ms,
+        last->cpu_ms, last->gpu_ms, median_ms,
         (unsigned long long)app->renderer.gpu_bytes,
         (unsigned long long)app->scene.gpu_texture_bytes, error_json, pools);
     if (n < 0 || (size_t)n >= sizeof g_stats_text) {
@@ -348,6 +350,11 @@ static int cmd_render(int argc, char **argv)
         printf("frame: %llu triangles in %u draws, %.2f ms (first frame; median of later "
                "frames %.2f ms)\n",
                (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median);
+        if (st.tiles > 0u) {
+            printf("bintree: %u tiles, error bound %.3f px%s, selection %.3f ms\n", st.tiles,
+                   st.tau_achieved_px, st.budget_hit ? " (tile budget hit: tau raised)" : "",
+                   st.select_ms);
+        }
         if (FT_WITH_PNG) {
             printf("wrote %s\n", out_path);
         }

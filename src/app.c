@@ -209,6 +209,8 @@ ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_fra
     if (s != FT_OK) {
         return s;
     }
+    uint64_t ts = ft_plat_monotonic_ns();
+    ft_renderer_select(&app->renderer, cam); /* CPU LOD selection, its own stage */
     uint64_t t0 = ft_plat_monotonic_ns();
     s = ft_renderer_draw(&app->renderer, cam, st, err);
     uint64_t t1 = ft_plat_monotonic_ns();
@@ -223,6 +225,7 @@ ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_fra
             s = ft_plat_gpu_present(&app->gpu, err);
         }
     }
+    st->select_ms = (double)(t0 - ts) * 1e-6;
     st->cpu_ms = (double)(t1 - t0) * 1e-6;
     st->gpu_ms = (double)(t2 - t0) * 1e-6;
     return s;

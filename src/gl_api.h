@@ -38,6 +38,7 @@
     X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)           \
     X(PFNGLDELETESHADERPROC, DeleteShader)                         \
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                     \
+    X(PFNGLDISABLEVERTEXATTRIBARRAYPROC, DisableVertexAttribArray) \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                               \
     X(PFNGLDEPTHMASKPROC, DepthMask)                               \
     X(PFNGLDISABLEPROC, Disable)                                   \

@@ -1,8 +1,12 @@
 #include "method.h"
 
+#include <string.h>
+
 const char *ft_method_vertex_shader(ft_method_kind m)
 {
     switch (m) {
+    case FT_METHOD_BINTREE:
+        return "bintree.vert.glsl";
     default:
         return "terrain.vert.glsl";
     }
@@ -15,6 +19,11 @@ void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     case FT_METHOD_BRUTE:
 #if FT_WITH_METHOD_BRUTE
         ft_brute_plan(s, a);
+#endif
+        break;
+    case FT_METHOD_BINTREE:
+#if FT_WITH_METHOD_BINTREE
+        ft_bintree_method_plan(s, t, a);
 #endif
         break;
     default:
@@ -34,6 +43,12 @@ ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const
 #else
         break;
 #endif
+    case FT_METHOD_BINTREE:
+#if FT_WITH_METHOD_BINTREE
+        return ft_bintree_method_init(&m->u.bintree, gl, s, t, a, err);
+#else
+        break;
+#endif
     default:
         break;
     }
@@ -48,12 +63,16 @@ ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const
 void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
-    st->triangles = 0;
-    st->draw_calls = 0;
+    memset(st, 0, sizeof *st);
     switch (m->kind) {
     case FT_METHOD_BRUTE:
 #if FT_WITH_METHOD_BRUTE
         ft_brute_draw(&m->u.brute, gl, p, t, cam, st);
+#endif
+        break;
+    case FT_METHOD_BINTREE:
+#if FT_WITH_METHOD_BINTREE
+        ft_bintree_method_draw(&m->u.bintree, gl, p, t, cam, st);
 #endif
         break;
     default:
@@ -65,11 +84,28 @@ void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_progr
     (void)cam;
 }
 
+void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    switch (m->kind) {
+    case FT_METHOD_BINTREE:
+#if FT_WITH_METHOD_BINTREE
+        ft_bintree_method_select(&m->u.bintree, t, cam);
+#endif
+        break;
+    default:
+        break;
+    }
+    (void)t;
+    (void)cam;
+}
+
 uint64_t ft_method_gpu_bytes(const ft_method *m)
 {
     switch (m->kind) {
     case FT_METHOD_BRUTE:
         return m->u.brute.gpu_bytes;
+    case FT_METHOD_BINTREE:
+        return m->u.bintree.gpu_bytes;
     default:
         return 0;
     }
@@ -81,6 +117,11 @@ void ft_method_shutdown(ft_method *m, const ft_gl *gl)
     case FT_METHOD_BRUTE:
 #if FT_WITH_METHOD_BRUTE
         ft_brute_shutdown(&m->u.brute, gl);
+#endif
+        break;
+    case FT_METHOD_BINTREE:
+#if FT_WITH_METHOD_BINTREE
+        ft_bintree_method_shutdown(&m->u.bintree, gl);
 #endif
         break;
     default:

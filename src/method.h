@@ -6,7 +6,9 @@
 
 #include <stdint.h>
 
+#include "bintree.h"
 #include "camera.h"
+#include "gpu_texture.h"
 #include "gl_api.h"
 #include "mem_budget.h"
 #include "scene.h"
@@ -22,6 +24,9 @@ struct ft_terrain_program;
 typedef struct ft_method_draw_stats {
     uint64_t triangles;
     uint32_t draw_calls;
+    uint32_t tiles;          /* bintree: tiles drawn */
+    double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet */
+    int budget_hit;          /* bintree: tau was raised to fit the tile budget */
 } ft_method_draw_stats;
 
 typedef struct ft_brute {
@@ -32,10 +37,27 @@ typedef struct ft_brute {
     uint64_t gpu_bytes;
 } ft_brute;
 
+typedef struct ft_bintree_method {
+    ft_bintree bt;
+    GLuint vbo, ibo, inst_vbo, err_tex;
+    uint32_t index_count, triangles_per_tile;
+    float *inst; /* tiles_max * 6 corner coordinates (FT_POOL_METHOD) */
+    double tau_px;
+    int morph, es3;
+    ft_scalar_format err_fmt;
+    uint64_t gpu_bytes;
+    /* the last selection and the view it was made for */
+    int have_selection, uploaded;
+    ft_bt_select_stats sel;
+    double sel_eye_m[3], sel_fwd[3], sel_up[3], sel_fovy;
+    uint32_t sel_w, sel_h;
+} ft_bintree_method;
+
 typedef struct ft_method {
     ft_method_kind kind;
     union {
         ft_brute brute;
+        ft_bintree_method bintree;
     } u;
 } ft_method;
 
@@ -49,6 +71,9 @@ ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const
 /* Binds the method's vertex state; the program is already in use. */
 void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+/* Per-frame LOD selection for the camera (no-op when the view is unchanged
+ * or the method selects nothing); ft_method_draw calls it too. */
+void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);
 
@@ -59,6 +84,17 @@ ft_status ft_brute_init(ft_brute *b, const ft_gl *gl, const ft_scene *s, const f
 void ft_brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program *p,
                    const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 void ft_brute_shutdown(ft_brute *b, const ft_gl *gl);
+#endif
+
+#if FT_WITH_METHOD_BINTREE
+void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                                 const ft_terrain *t, ft_arena *a, ft_error *err);
+void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam);
+void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
+                            const struct ft_terrain_program *p, const ft_terrain *t,
+                            const ft_camera *cam, ft_method_draw_stats *st);
+void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl);
 #endif
 
 #endif

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "gpu_texture.h"
 #include "shade.h"
 #include "shaders.h"
 
@@ -126,6 +127,10 @@ static ft_status build_program(const ft_gl *gl, const char *vert_name, const cha
     FT_UNIFORM(u_light);
     FT_UNIFORM(u_tile0);
     FT_UNIFORM(u_tile1);
+    FT_UNIFORM(u_bt_err);
+    FT_UNIFORM(u_bt_err_pack);
+    FT_UNIFORM(u_bt_lattice);
+    FT_UNIFORM(u_bt_morph);
 #undef FT_UNIFORM
     return ft_gl_check(gl, frag_name, err);
 }
@@ -154,59 +159,12 @@ static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, co
 
 /* ---- terrain textures ------------------------------------------------------- */
 
-/* 24-bit fixed point over [min, min + range] in RGB, alpha 255. The shader
- * decodes it exactly (integers below 2^24 are exact in highp float). */
-static void pack_heights(const float *h, size_t n, float min_m, float range_m, uint8_t *out)
-{
-    for (size_t i = 0; i < n; ++i) {
-        double f = ((double)h[i] - min_m) / range_m;
-        f = (f > 0.0) ? ((f < 1.0) ? f : 1.0) : 0.0;
-        uint32_t q = (uint32_t)(f * 16777215.0 + 0.5);
-        out[i * 4u + 0u] = (uint8_t)(q >> 16);
-        out[i * 4u + 1u] = (uint8_t)(q >> 8);
-        out[i * 4u + 2u] = (uint8_t)q;
-        out[i * 4u + 3u] = 255u;
-    }
-}
-
-/* One single-channel float array as a NEAREST texture in the resolved
- * format. Packed texels go through the staging pool (reset afterwards). */
 static ft_status upload_array(ft_renderer *r, ft_arena *a, const float *data, uint32_t w_px,
                               uint32_t h_px, GLuint *tex, ft_error *err)
 {
-    const ft_gl *gl = r->gl;
-    const ft_gpu_terrain *gt = &r->gt;
-    const GLsizei w = (GLsizei)w_px, h = (GLsizei)h_px;
-    gl->GenTextures(1, tex);
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_2D, *tex);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    /* NEAREST: texels are fetched exactly (float linear filtering is optional). */
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    if (gt->format == FT_HEIGHT_FORMAT_FLOAT) {
-        if (gl->api == FT_GL_API_ES3) {
-            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, data);
-        } else {
-            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, w, h, 0, GL_LUMINANCE, GL_FLOAT, data);
-        }
-    } else {
-        uint8_t *staging = NULL;
-        size_t n = (size_t)w_px * h_px;
-        size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
-        ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING, n * 4u, (void **)&staging, err);
-        if (st != FT_OK) {
-            return st;
-        }
-        pack_heights(data, n, gt->pack_min_m, gt->pack_range_m, staging);
-        gl->TexImage2D(GL_TEXTURE_2D, 0, gl->api == FT_GL_API_ES3 ? GL_RGBA8 : GL_RGBA, w, h, 0,
-                       GL_RGBA, GL_UNSIGNED_BYTE, staging);
-        ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
-    }
-    r->gt.bytes += (uint64_t)w_px * (uint64_t)h_px * 4u;
-    return ft_gl_check(gl, "terrain texture upload", err);
+    const ft_scalar_format f = {r->gt.format, r->gt.pack_min_m, r->gt.pack_range_m};
+    return ft_gpu_upload_scalar(r->gl, &f, data, w_px, h_px, GL_TEXTURE0, a, tex, &r->gt.bytes,
+                                err);
 }
 
 static ft_status upload_terrain(ft_renderer *r, const ft_scene *s, ft_arena *a, ft_error *err)
@@ -320,6 +278,9 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     r->gl = &gpu->gl;
     r->terrain = t;
     r->scene = s;
+    r->clear_rgb[0] = FT_SKY_R;
+    r->clear_rgb[1] = FT_SKY_G;
+    r->clear_rgb[2] = FT_SKY_B;
     r->width_px = s->width_px;
     r->height_px = s->height_px;
     const ft_gl *gl = r->gl;
@@ -451,20 +412,29 @@ static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_came
     ft_method_draw(&r->method, gl, p, t, cam, ms);
 }
 
+void ft_renderer_select(ft_renderer *r, const ft_camera *cam)
+{
+    ft_method_select(&r->method, r->terrain, cam);
+}
+
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
                            ft_error *err)
 {
     const ft_gl *gl = r->gl;
-    ft_method_draw_stats ms = {0, 0};
+    ft_method_draw_stats ms;
+    memset(&ms, 0, sizeof ms);
     if (cam->width_px != r->width_px || cam->height_px != r->height_px) {
         return ft_fail(err, FT_ERR_ARG, "camera viewport %ux%u != target %ux%u", cam->width_px,
                        cam->height_px, r->width_px, r->height_px);
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
-    gl->ClearColor(FT_SKY_R, FT_SKY_G, FT_SKY_B, 1.0f);
+    gl->ClearColor(r->clear_rgb[0], r->clear_rgb[1], r->clear_rgb[2], 1.0f);
     draw_pass(r, &r->prog_color, cam, &ms);
     st->triangles = ms.triangles;
     st->draw_calls = ms.draw_calls;
+    st->tiles = ms.tiles;
+    st->tau_achieved_px = ms.tau_achieved_px;
+    st->budget_hit = ms.budget_hit;
     r->frames += 1u;
     return ft_gl_check(gl, "frame draw", err);
 }
@@ -497,7 +467,8 @@ ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err)
 ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_error *err)
 {
     const ft_gl *gl = r->gl;
-    ft_method_draw_stats ms = {0, 0};
+    ft_method_draw_stats ms;
+    memset(&ms, 0, sizeof ms);
     if (!r->has_pos_target) {
         return ft_fail(err, FT_ERR_UNSUPPORTED,
                        r->scene->metric_enabled

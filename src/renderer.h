@@ -26,6 +26,7 @@ typedef struct ft_terrain_program {
     GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
     GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
     GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
+    GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph; /* bintree geomorph */
 } ft_terrain_program;
 
 /* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
@@ -47,6 +48,10 @@ typedef struct ft_gpu_terrain {
 typedef struct ft_frame_stats {
     uint64_t triangles;
     uint32_t draw_calls;
+    uint32_t tiles;         /* bintree: tiles drawn (0 for other methods) */
+    double tau_achieved_px; /* bintree: screen-space bound the selection meets */
+    int budget_hit;         /* bintree: the tile budget forced a coarser tau */
+    double select_ms; /* LOD selection on the CPU (0 when the view did not change) */
     double cpu_ms;   /* frame submission on the CPU */
     double gpu_ms;   /* submission + glFinish (measurement mode) */
 } ft_frame_stats;
@@ -67,6 +72,7 @@ typedef struct ft_renderer {
     GLuint present_program, present_vbo; /* display != none only */
     uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */
     float *pos;     /* FT_POOL_FRAME_POS, width*height*4 (NULL if no float target) */
+    float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
     uint64_t gpu_bytes;
     uint64_t frames;
 } ft_renderer;
@@ -83,6 +89,11 @@ ft_status ft_renderer_camera(const ft_renderer *r, const ft_pose *pose, ft_camer
 ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fovy_deg,
                              uint32_t width_px, uint32_t height_px, ft_camera *cam,
                              ft_error *err);
+
+/* The method's per-frame LOD selection for cam (CPU only; ft_renderer_draw
+ * runs it too when it has not run for this view). Separate so the frame
+ * loop can time it as its own stage. */
+void ft_renderer_select(ft_renderer *r, const ft_camera *cam);
 
 /* Draws one colour frame into the RGBA8 target. */
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,

@@ -56,6 +56,10 @@ void ft_scene_defaults(ft_scene *s)
     s->gpu_texture_bytes = 64ull << 20;
     s->brute_patch_cells = 64;
     s->brute_max_vertices = 4200000;
+    s->bintree_template_k = 3;
+    s->bintree_tiles_max = 16384;
+    s->bintree_tau_px = 1.0;
+    s->bintree_morph = 1;
     s->metric_enabled = 0;
     /* Budgets of config/default.ini (tests/test_scene.c checks they agree). */
     s->budget_bytes[FT_POOL_HEIGHTS] = 6ull << 20;
@@ -63,7 +67,7 @@ void ft_scene_defaults(ft_scene *s)
     s->budget_bytes[FT_POOL_DEM_IO] = 2ull << 20;
     s->budget_bytes[FT_POOL_FRAME_RGBA] = 5ull << 20;
     s->budget_bytes[FT_POOL_GPU_STAGING] = 6ull << 20;
-    s->budget_bytes[FT_POOL_METHOD] = 512ull << 10;
+    s->budget_bytes[FT_POOL_METHOD] = 4ull << 20;
     s->budget_bytes[FT_POOL_PNG] = 512ull << 10;
 }
 
@@ -256,6 +260,25 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return RANGE(parse_u32(value, 4, UINT32_MAX, &s->brute_max_vertices),
                          "expected >= 4");
         }
+    } else if (strcmp(section, "bintree") == 0) {
+        if (strcmp(key, "template_k") == 0) {
+            return RANGE(parse_u32(value, 1, 6, &s->bintree_template_k), "expected 1..6");
+        }
+        if (strcmp(key, "tiles_max") == 0) {
+            return RANGE(parse_u32(value, 2, 1048576, &s->bintree_tiles_max),
+                         "expected 2..1048576");
+        }
+        if (strcmp(key, "tau_px") == 0) {
+            return RANGE(parse_f64(value, 0.0, 1000.0, &s->bintree_tau_px), "expected 0..1000");
+        }
+        if (strcmp(key, "morph") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->bintree_morph = (int)v;
+            return 1;
+        }
     } else if (strcmp(section, "metric") == 0) {
         if (strcmp(key, "enabled") == 0) {
             uint32_t v;
@@ -316,6 +339,13 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
     if (s->brute_patch_cells < 1 || s->brute_patch_cells > 180) {
         return ft_fail(err, FT_ERR_CONFIG, "brute.patch_cells %u outside 1..180",
                        s->brute_patch_cells);
+    }
+    if (s->bintree_template_k < 1 || s->bintree_template_k > 6 || s->bintree_tiles_max < 2 ||
+        s->bintree_tiles_max > 1048576 || !(s->bintree_tau_px >= 0.0 && s->bintree_tau_px <= 1000.0)) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "bintree: template_k %u (1..6), tiles_max %u (2..1048576), tau_px %g "
+                       "(0..1000) out of range",
+                       s->bintree_template_k, s->bintree_tiles_max, s->bintree_tau_px);
     }
     return FT_OK;
 }

@@ -6,7 +6,7 @@
  *
  * Keys (section.key = meaning [range]):
  *   scene.name            text (<= 63 chars)
- *   scene.method          brute                      (methods built in)
+ *   scene.method          brute | bintree            (methods built in)
  *   scene.backend         egl-gles3 | egl-gles2 | osmesa
  *   scene.display         none | x11   (where frames are shown; none = offscreen)
  *   view.width_px, view.height_px   [16, 8192]
@@ -22,6 +22,10 @@
  *   gpu.pyramid_textures  0 | 1: also upload the avg/min/max pyramids as textures
  *   brute.patch_cells     template patch side in cells [1, 180]
  *   brute.max_vertices    most grid vertices brute draws per frame (window)
+ *   bintree.template_k    template refinement: 2k bisections, 2^k segments per leg [1, 6]
+ *   bintree.tiles_max     tile budget per frame [2, 1048576]
+ *   bintree.tau_px        target screen-space error in pixels [0, 1000]
+ *   bintree.morph         0 | 1: geomorph split vertices (split at tau/2)
  *   metric.enabled        0 | 1: measure screen-space error against the reference
  *   budget.<pool>_bytes   one per pool in mem_budget.h (heights_bytes, ...) */
 #ifndef FT_SCENE_H
@@ -41,7 +45,9 @@
 #define FT_SCENE_NAME_MAX 64u
 #define FT_SCENE_PATH_MAX 512u
 
-#define FT_METHOD_LIST(X) X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")
+#define FT_METHOD_LIST(X)                                                                  \
+    X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                          \
+    X(FT_METHOD_BINTREE, "bintree", "crack-free bintree of triangular tiles, error-bounded")
 
 typedef enum ft_method_kind {
 #define FT_METHOD_ENUM(id, name, what) id,
@@ -68,6 +74,10 @@ typedef struct ft_scene {
     int pyramid_textures; /* gpu.pyramid_textures: upload avg/min/max pyramids too */
     uint32_t brute_patch_cells;
     uint32_t brute_max_vertices;
+    uint32_t bintree_template_k; /* bintree.template_k */
+    uint32_t bintree_tiles_max;  /* bintree.tiles_max */
+    double bintree_tau_px;       /* bintree.tau_px */
+    int bintree_morph;           /* bintree.morph */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
     uint64_t budget_bytes[FT_POOL_COUNT];
 } ft_scene;

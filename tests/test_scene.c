@@ -47,6 +47,9 @@ int main(void)
     CHECK(a.brute_patch_cells == b.brute_patch_cells);
     CHECK(a.brute_max_vertices == b.brute_max_vertices);
     CHECK(a.metric_enabled == b.metric_enabled);
+    CHECK(a.bintree_template_k == b.bintree_template_k && a.bintree_tiles_max == b.bintree_tiles_max);
+    CHECK_NEAR(a.bintree_tau_px, b.bintree_tau_px, 0.0);
+    CHECK(a.bintree_morph == b.bintree_morph);
     CHECK(a.pyramid_textures == b.pyramid_textures);
     CHECK(a.height_format == b.height_format);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {
@@ -80,6 +83,14 @@ int main(void)
     expect_error("[pose]\nalt_m = nan\n", "pose.alt_m");
     expect_error("[view]\nfovy_deg = inf\n", "view.fovy_deg");
     expect_error("[metric]\nenabled = 2\n", "expected 0 or 1");
+    expect_error("[bintree]\ntemplate_k = 7\n", "bintree.template_k");
+    expect_error("[bintree]\ntiles_max = 1\n", "expected 2..1048576");
+    expect_error("[bintree]\ntau_px = -0.5\n", "bintree.tau_px");
+    expect_error("[bintree]\nmorph = yes\n", "expected 0 or 1");
+    CHECK(parse("[scene]\nmethod = bintree\n[bintree]\ntemplate_k = 4\ntau_px = 0.5\n", &a, &err) ==
+          FT_OK);
+    CHECK(a.method == FT_METHOD_BINTREE && a.bintree_template_k == 4);
+    CHECK_NEAR(a.bintree_tau_px, 0.5, 0.0);
     expect_error("[view]\n\nwidth_px = 640\nthis line is wrong\n", "test.ini:4");
 
     /* --pose parsing */

@@ -1,0 +1,212 @@
+/* method_bintree.c - draws the tiles the bintree selection (src/bintree.h)
+ * picked, every tile with the same template (src/bintree_template.h).
+ *
+ * GLES 3: one instanced draw; the instance buffer holds the three corner grid
+ * coordinates per tile (6 floats, exact integers), rewritten each frame with
+ * glBufferSubData from a staging array in the method pool. GLES 2 (no
+ * instancing): one draw per tile with the corners as uniforms. Heights and
+ * the diamond errors (for geomorphing) are vertex textures.
+ *
+ * Grids that are not (2^n+1)^2 are padded by clamping (see bintree.h): the
+ * vertex shader clamps grid coordinates into the real grid, so the padded
+ * area collapses onto the grid's edge and is never drawn. */
+#include <math.h>
+#include <string.h>
+
+#include "bintree_template.h"
+#include "gpu_texture.h"
+#include "method.h"
+#include "renderer.h"
+
+#define FT_BT_FLOATS_PER_TILE 6u
+
+void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    uint32_t k = s->bintree_template_k;
+    if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
+        return; /* ft_bintree_init reports it */
+    }
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_vertices(k) * 2u * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_triangles(k) * 3u * sizeof(uint16_t));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
+    ft_arena_plan(a, FT_POOL_METHOD,
+                  (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
+    ft_bintree_plan(a, t->width, t->height, k, s->bintree_tiles_max);
+}
+
+ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                                 const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    const uint32_t k = s->bintree_template_k;
+    memset(m, 0, sizeof *m);
+    m->tau_px = s->bintree_tau_px;
+    m->morph = s->bintree_morph;
+    m->es3 = (gl->api == FT_GL_API_ES3);
+    ft_status st = ft_bintree_init(&m->bt, t, k, s->bintree_tiles_max, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const uint32_t nv = ft_bt_template_vertices(k), nt = ft_bt_template_triangles(k);
+    float *uv = NULL;
+    uint16_t *idx = NULL;
+    int16_t *scratch = NULL;
+    st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nv * 2u * sizeof(float), (void **)&uv, err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nt * 3u * sizeof(uint16_t), (void **)&idx,
+                           err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t),
+                           (void **)&scratch, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD,
+                           (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float),
+                           (void **)&m->inst, err);
+    }
+    if (st == FT_OK) {
+        st = ft_bt_template_build(k, uv, idx, scratch, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    m->index_count = nt * 3u;
+    m->triangles_per_tile = nt;
+    gl->GenBuffers(1, &m->vbo);
+    gl->GenBuffers(1, &m->ibo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)nv * 2u * sizeof(float)), uv,
+                   GL_STATIC_DRAW);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)nt * 3u * sizeof(uint16_t)), idx,
+                   GL_STATIC_DRAW);
+    m->gpu_bytes = (uint64_t)nv * 8u + (uint64_t)nt * 6u;
+    if (m->es3) {
+        const size_t bytes = (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float);
+        gl->GenBuffers(1, &m->inst_vbo);
+        gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
+        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
+        m->gpu_bytes += bytes;
+    }
+    /* Diamond errors for the geomorph: float where the context samples float
+     * textures in the vertex stage, else 24-bit fixed point over [0, max]. */
+    m->err_fmt.format = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT
+                                                    : FT_HEIGHT_FORMAT_PACKED;
+    m->err_fmt.pack_min = 0.0f;
+    m->err_fmt.pack_range = (m->bt.max_err_m > 0.0) ? (float)m->bt.max_err_m : 1.0f;
+    st = ft_gpu_upload_scalar(gl, &m->err_fmt, m->bt.err_m, m->bt.lattice_side,
+                              m->bt.lattice_side, GL_TEXTURE1, a, &m->err_tex, &m->gpu_bytes,
+                              err);
+    if (st != FT_OK) {
+        return st;
+    }
+    return ft_gl_check(gl, "bintree init (template, instance buffer, error texture)", err);
+}
+
+static int same_view(const ft_bintree_method *m, const ft_camera *cam)
+{
+    return m->have_selection && memcmp(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m) == 0 &&
+           memcmp(m->sel_fwd, cam->forward, sizeof m->sel_fwd) == 0 &&
+           memcmp(m->sel_up, cam->up, sizeof m->sel_up) == 0 && m->sel_fovy == cam->fovy_rad &&
+           m->sel_w == cam->width_px && m->sel_h == cam->height_px;
+}
+
+void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    if (same_view(m, cam)) {
+        return;
+    }
+    ft_bt_view v;
+    ft_bt_view_from_camera(cam, t, 1, m->morph, &v);
+    ft_bintree_select(&m->bt, &v, m->tau_px, &m->sel);
+    for (uint32_t i = 0; i < m->sel.tiles; ++i) {
+        const ft_bt_tile *tile = &m->bt.tiles[i];
+        float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
+        o[0] = (float)tile->apex[0];
+        o[1] = (float)tile->apex[1];
+        o[2] = (float)tile->left[0];
+        o[3] = (float)tile->left[1];
+        o[4] = (float)tile->right[0];
+        o[5] = (float)tile->right[1];
+    }
+    memcpy(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m);
+    memcpy(m->sel_fwd, cam->forward, sizeof m->sel_fwd);
+    memcpy(m->sel_up, cam->up, sizeof m->sel_up);
+    m->sel_fovy = cam->fovy_rad;
+    m->sel_w = cam->width_px;
+    m->sel_h = cam->height_px;
+    m->have_selection = 1;
+    m->uploaded = 0;
+}
+
+void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
+                            const struct ft_terrain_program *p, const ft_terrain *t,
+                            const ft_camera *cam, ft_method_draw_stats *st)
+{
+    ft_bintree_method_select(m, t, cam);
+    const double tau = m->sel.tau_achieved_px;
+    const double split = m->morph ? FT_BT_SPLIT_FRACTION * tau : tau;
+    const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform1i(p->u_bt_err, 1);
+    gl->Uniform2f(p->u_bt_err_pack, m->err_fmt.pack_min,
+                  m->err_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->err_fmt.pack_range : 0.0f);
+    gl->Uniform3f(p->u_bt_lattice, (float)m->bt.step, (float)m->bt.lattice_side,
+                  (float)m->bt.side_cells);
+    gl->Uniform4f(p->u_bt_morph, (float)cam->px_per_rad_k, (float)split, (float)band,
+                  (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
+
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    const uint32_t tiles = m->sel.tiles;
+    if (tiles > 0u && m->es3) {
+        const GLsizei stride = (GLsizei)(FT_BT_FLOATS_PER_TILE * sizeof(float));
+        gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
+        if (!m->uploaded) {
+            gl->BufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)((size_t)tiles * (size_t)stride),
+                              m->inst);
+            m->uploaded = 1;
+        }
+        gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
+        gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
+        gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
+        gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
+                                (const void *)(4u * sizeof(float)));
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
+        gl->DrawElementsInstanced(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
+                                  (const void *)0, (GLsizei)tiles);
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
+        gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
+        gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
+        st->draw_calls = 1u;
+    } else {
+        /* GLES 2: bounded by tiles_max draws */
+        for (uint32_t i = 0; i < tiles; ++i) {
+            const float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
+            gl->Uniform4f(p->u_tile0, o[0], o[1], o[2], o[3]);
+            gl->Uniform2f(p->u_tile1, o[4], o[5]);
+            gl->DrawElements(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
+                             (const void *)0);
+        }
+        st->draw_calls = tiles;
+    }
+    st->triangles = (uint64_t)tiles * m->triangles_per_tile;
+    st->tiles = tiles;
+    st->tau_achieved_px = tau;
+    st->budget_hit = m->sel.budget_hit;
+}
+
+void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl)
+{
+    if (m->vbo) gl->DeleteBuffers(1, &m->vbo);
+    if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
+    if (m->inst_vbo) gl->DeleteBuffers(1, &m->inst_vbo);
+    if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
+    m->vbo = m->ibo = m->inst_vbo = m->err_tex = 0u;
+}

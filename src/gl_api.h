@@ -86,7 +86,14 @@
     X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)     \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)       \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)             \
-    X(PFNGLGETSTRINGIPROC, GetStringi)
+    X(PFNGLGETSTRINGIPROC, GetStringi)                       \
+    X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)     \
+    X(PFNGLTRANSFORMFEEDBACKVARYINGSPROC, TransformFeedbackVaryings) \
+    X(PFNGLBEGINTRANSFORMFEEDBACKPROC, BeginTransformFeedback) \
+    X(PFNGLENDTRANSFORMFEEDBACKPROC, EndTransformFeedback)   \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)               \
+    X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange)               \
+    X(PFNGLUNMAPBUFFERPROC, UnmapBuffer)
 
 typedef enum ft_gl_api {
     FT_GL_API_ES2 = 2, /* GLSL ES 1.00 shaders, GLES 2.0 calls only */

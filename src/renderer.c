@@ -102,15 +102,9 @@ static ft_status link_program(const ft_gl *gl, const char *vert_name, const char
     return FT_OK;
 }
 
-static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                               ft_terrain_program *p, ft_error *err)
+static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
 {
-    GLuint prog = 0;
-    ft_status s = link_program(gl, vert_name, frag_name, "a_uv", &prog, err);
-    if (s != FT_OK) {
-        return s;
-    }
-    p->program = prog;
+    const GLuint prog = p->program;
 #define FT_UNIFORM(name) p->name = gl->GetUniformLocation(prog, #name)
     FT_UNIFORM(u_heights);
     FT_UNIFORM(u_grid_size);
@@ -132,6 +126,18 @@ static ft_status build_program(const ft_gl *gl, const char *vert_name, const cha
     FT_UNIFORM(u_bt_lattice);
     FT_UNIFORM(u_bt_morph);
 #undef FT_UNIFORM
+}
+
+static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                               ft_terrain_program *p, ft_error *err)
+{
+    GLuint prog = 0;
+    ft_status s = link_program(gl, vert_name, frag_name, "a_uv", &prog, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    p->program = prog;
+    locate_uniforms(gl, p);
     return ft_gl_check(gl, frag_name, err);
 }
 
@@ -387,6 +393,27 @@ ft_status ft_renderer_camera(const ft_renderer *r, const ft_pose *pose, ft_camer
 {
     return ft_camera_for_pose(r->terrain, pose, r->scene->fovy_deg, r->width_px, r->height_px,
                               cam, err);
+}
+
+ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    if (gl->api != FT_GL_API_ES3 || gl->TransformFeedbackVaryings == NULL) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED, "vertex capture needs transform feedback (GLES 3)");
+    }
+    static const char *const varyings[FT_CAPTURE_FLOATS_PER_VERTEX - 3] = {"gl_Position",
+                                                                           "v_morph"};
+    ft_terrain_program *p = &r->prog_color;
+    gl->TransformFeedbackVaryings(p->program, 2, varyings, GL_INTERLEAVED_ATTRIBS);
+    gl->LinkProgram(p->program); /* the shaders are still attached */
+    GLint ok = 0;
+    gl->GetProgramiv(p->program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        return ft_fail(err, FT_ERR_GPU, "relinking the colour program for capture failed");
+    }
+    locate_uniforms(gl, p); /* a relink may move uniforms and resets their values */
+    set_static_uniforms(gl, p, r->terrain, &r->gt);
+    return ft_gl_check(gl, "vertex capture relink", err);
 }
 
 /* ---- frames ------------------------------------------------------------------------- */

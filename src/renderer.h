@@ -95,6 +95,12 @@ ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fo
  * loop can time it as its own stage. */
 void ft_renderer_select(ft_renderer *r, const ft_camera *cam);
 
+/* Test and debugging aid, init time only: relinks the colour program so a
+ * transform feedback draw captures gl_Position (4 floats) and v_morph (1
+ * float) per vertex (GLES 3 only). Rendering is unchanged. */
+#define FT_CAPTURE_FLOATS_PER_VERTEX 5u
+ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err);
+
 /* Draws one colour frame into the RGBA8 target. */
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
                            ft_error *err);

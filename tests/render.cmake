@@ -54,6 +54,14 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
     "LINKER:--wrap=posix_memalign,--wrap=aligned_alloc,--wrap=mmap")
   if(FIXTERRAIN_WITH_EGL)
     add_test(NAME no_heap_egl COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap.png egl-gles3)
+    if(FIXTERRAIN_WITH_METHOD_BINTREE)
+      add_test(NAME no_heap_bintree_egl COMMAND test_no_heap
+               ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree.png egl-gles3 bintree)
+      add_test(NAME no_heap_bintree_gles2 COMMAND test_no_heap
+               ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree_es2.png egl-gles2 bintree)
+      set_tests_properties(no_heap_bintree_gles2 PROPERTIES
+                           ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+    endif()
   endif()
   if(FIXTERRAIN_WITH_OSMESA)
     add_test(NAME no_heap_osmesa COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap_osmesa.png osmesa)

@@ -1,0 +1,110 @@
+#!/bin/sh
+# Runs CMD inside the test VM and returns its exit status.
+#   tests/vm/run-vm.sh CMD [OUTDIR]
+# The VM: qemu-system-x86_64 (KVM if the CPU has vmx/svm and /dev/kvm works,
+# else TCG with -cpu max,-avx,-avx2), Debian's kernel (/boot/vmlinuz-<ver>)
+# and the initramfs of mkinitramfs.sh, which mounts the host's / read-only
+# over 9p and runs CMD as `chroot /host /bin/sh -c CMD` in the current
+# directory, with vcan0/vcan1 up and an 8-line gpio-sim chip (see init.sh for
+# the FT_* environment CMD gets).
+# In the guest, /tmp is an empty tmpfs (the host's /tmp is hidden), /proc,
+# /sys, /dev are the guest's, and everything else is the host's, read-only,
+# except OUTDIR: it is shared writable and appears at the same path, so CMD
+# writes results there (also in $FT_VM_OUT). Default OUTDIR: a new directory
+# under $FT_VM_DIR. OUTDIR/console.log is the serial console.
+# CMD and OUTDIR/cwd must not contain a double quote or a newline (they go on
+# the kernel command line), and OUTDIR/cwd no whitespace.
+# Environment:
+#   FT_VM_DIR      where gpio-sim and the initramfs are built/cached
+#                  (default: <repo>/build/vm)
+#   FT_VM_TIMEOUT  seconds before qemu is killed (default 300)
+#   FT_VM_ACCEL    tcg | kvm (default: kvm only if usable, see above)
+#   FT_VM_KVER     guest kernel version (default: newest installed)
+# Missing qemu, kernel, headers or busybox is an error (exit 1), never a skip.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/common.sh"
+[ $# -ge 1 ] && [ $# -le 2 ] || { echo "usage: $0 CMD [OUTDIR]" >&2; exit 2; }
+cmd=$1
+vmdir=${FT_VM_DIR:-$(cd "$here/../.." && pwd)/build/vm}
+timeout_s=${FT_VM_TIMEOUT:-300}
+ft_vm_need_cmd qemu-system-x86_64 timeout
+qemu=qemu-system-x86_64
+
+case $cmd in *'"'*|*'
+'*) ft_vm_die "CMD must not contain a double quote or newline: $cmd" ;; esac
+
+"$here/mkinitramfs.sh" "$vmdir" >&2
+kernel=$(cat "$vmdir/kernel")
+initrd=$vmdir/initramfs.cpio.gz
+[ -f "$kernel" ] || ft_vm_die "kernel image $kernel missing"
+[ -r "$kernel" ] || ft_vm_die "kernel image $kernel not readable"
+
+if [ $# -ge 2 ]; then
+  mkdir -p "$2"
+  out=$(cd "$2" && pwd)
+else
+  mkdir -p "$vmdir/runs"
+  out=$(mktemp -d "$vmdir/runs/run.XXXXXX")
+fi
+cwd=$(pwd)
+for p in "$out" "$cwd"; do
+  case $p in *[[:space:]\"]*) ft_vm_die "path with whitespace or quote not supported: '$p'" ;; esac
+done
+log=$out/console.log
+rm -f "$log"
+
+accel=${FT_VM_ACCEL:-}
+if [ -z "$accel" ]; then
+  accel=tcg
+  if grep -Eqw 'vmx|svm' /proc/cpuinfo && [ -w /dev/kvm ]; then accel=kvm; fi
+fi
+case $accel in
+  kvm) accel_opts="-accel kvm -cpu host" ;;
+  tcg) accel_opts="-accel tcg -cpu max,-avx,-avx2" ;;
+  *) ft_vm_die "FT_VM_ACCEL must be tcg or kvm, not '$accel'" ;;
+esac
+
+append="console=ttyS0 panic=-1 loglevel=4 ft.cmd=\"$cmd\" ft.cwd=$cwd ft.out=$out"
+echo "vm: $accel, $(basename "$kernel"), timeout ${timeout_s}s, out $out" >&2
+echo "vm: running: $cmd" >&2
+t0=$(date +%s.%N)
+set +e
+# shellcheck disable=SC2086
+timeout -k 5 "$timeout_s" "$qemu" $accel_opts -m 1024 -smp 2 \
+  -nodefaults -nographic -no-reboot -no-user-config \
+  -serial "file:$log" -monitor none \
+  -kernel "$kernel" -initrd "$initrd" -append "$append" \
+  -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
+  -virtfs "local,path=$out,mount_tag=ftout,security_model=none" \
+  < /dev/null > "$out/qemu.log" 2>&1
+qrc=$?
+set -e
+t1=$(date +%s.%N)
+secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
+
+rc=$(tr -d '\r' < "$log" 2>/dev/null | sed -n 's/^FT-VM-EXIT=\([0-9][0-9]*\)$/\1/p' | tail -n 1)
+# The command's own output (between the markers) always.
+tr -d '\r' < "$log" 2>/dev/null | sed -n '/^FT-VM-BEGIN$/,/^FT-VM-END$/p' | sed '1d;$d'
+why=
+if [ "$qrc" -eq 124 ] || [ "$qrc" -eq 137 ]; then
+  why="timed out after ${timeout_s}s (qemu killed)"
+elif [ -z "$rc" ]; then
+  why="no FT-VM-EXIT line on the console (qemu exit $qrc)"
+elif [ "$rc" -eq 125 ]; then
+  why="VM setup failed (FT-VM-EXIT=125)"
+elif [ "$rc" -ne 0 ]; then
+  why="command exited $rc"
+fi
+if [ -n "$why" ]; then
+  echo "vm: FAILED: $why; boot-to-poweroff ${secs}s" >&2
+  echo "----- qemu output ($out/qemu.log) -----" >&2
+  cat "$out/qemu.log" >&2
+  echo "----- console log ($log) -----" >&2
+  tr -d '\r' < "$log" >&2 2>/dev/null || echo "(no console log)" >&2
+  echo "----- end of console log -----" >&2
+  if [ -n "$rc" ] && [ "$rc" -ne 0 ]; then exit "$rc"; fi
+  exit 1
+fi
+echo "vm: ok: command exited 0; boot-to-poweroff ${secs}s" >&2
+exit 0

@@ -1,0 +1,15 @@
+# The bintree method on real contexts over real DEM data (tests/test_bintree_gl.c).
+if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BINTREE
+   AND FIXTERRAIN_WITH_METHOD_BRUTE AND FIXTERRAIN_WITH_EGL)
+  add_executable(test_bintree_gl test_bintree_gl.c)
+  target_compile_options(test_bintree_gl PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_bintree_gl PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_bintree_gl PRIVATE ft_app m)
+  set(_dem ${FT_SHARED_DATA_DIR}/N42E001.hgt)
+  # watertight (transform feedback), cracks, error bound
+  add_test(NAME bintree_gl_es3 COMMAND test_bintree_gl es3 ${_dem})
+  # the per-tile GLES 2 path in a strict ES 2.0 context
+  add_test(NAME bintree_gl_es2 COMMAND test_bintree_gl es2 ${_dem})
+  set_tests_properties(bintree_gl_es3 bintree_gl_es2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+  set_tests_properties(bintree_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+endif()

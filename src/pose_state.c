@@ -1,0 +1,358 @@
+/* pose_state.c - pose assembly and attitude prediction (contract in
+ * pose_state.h). Pure arithmetic on caller storage: no heap, no OS. */
+#include "pose_state.h"
+
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+
+#define FT_PI 3.14159265358979323846
+#define FT_DEG2RAD (FT_PI / 180.0)
+#define FT_RAD2DEG (180.0 / FT_PI)
+#define FT_NS_PER_MS UINT64_C(1000000)
+
+static const char *const k_qty_name[FT_QTY_COUNT] = {
+#define FT_POSE_QTY_NAME(id, name, unit) name,
+    FT_POSE_QTY_LIST(FT_POSE_QTY_NAME)
+#undef FT_POSE_QTY_NAME
+};
+
+static const char *const k_qty_unit[FT_QTY_COUNT] = {
+#define FT_POSE_QTY_UNIT(id, name, unit) unit,
+    FT_POSE_QTY_LIST(FT_POSE_QTY_UNIT)
+#undef FT_POSE_QTY_UNIT
+};
+
+const char *ft_pose_qty_name(ft_pose_qty q)
+{
+    return ((int)q >= 0 && q < FT_QTY_COUNT) ? k_qty_name[q] : "?";
+}
+
+const char *ft_pose_qty_unit(ft_pose_qty q)
+{
+    return ((int)q >= 0 && q < FT_QTY_COUNT) ? k_qty_unit[q] : "?";
+}
+
+/* ---- quaternion helpers ---------------------------------------------------- */
+
+ft_quat ft_quat_mul(ft_quat a, ft_quat b)
+{
+    ft_quat r;
+    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+    return r;
+}
+
+double ft_quat_norm(ft_quat q)
+{
+    return sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+}
+
+static int quat_is_finite(ft_quat q)
+{
+    return isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
+}
+
+/* Unit quaternion or identity: a zero or non-finite quaternion has no
+ * direction to keep, and the contract promises no NaN out. */
+static ft_quat quat_normalise(ft_quat q)
+{
+    double n = ft_quat_norm(q);
+    if (!quat_is_finite(q) || !(n > 0.0) || !isfinite(n)) {
+        ft_quat id = {1.0, 0.0, 0.0, 0.0};
+        return id;
+    }
+    q.w /= n;
+    q.x /= n;
+    q.y /= n;
+    q.z /= n;
+    return q;
+}
+
+double ft_wrap_deg_0_360(double a_deg)
+{
+    if (!isfinite(a_deg)) {
+        return 0.0;
+    }
+    double r = fmod(a_deg, 360.0); /* exact, sign of a_deg */
+    if (r < 0.0) {
+        r += 360.0;
+    }
+    /* -1e-15 + 360 rounds to 360.0, which is outside [0, 360). */
+    if (r >= 360.0) {
+        r -= 360.0;
+    }
+    return r;
+}
+
+double ft_wrap_deg_pm180(double a_deg)
+{
+    if (!isfinite(a_deg)) {
+        return 0.0;
+    }
+    double r = fmod(a_deg, 360.0); /* (-360, 360) */
+    if (r > 180.0) {
+        r -= 360.0;
+    } else if (r <= -180.0) {
+        r += 360.0;
+    }
+    return r;
+}
+
+ft_quat ft_quat_from_euler_deg(double heading_deg, double pitch_deg, double roll_deg)
+{
+    double hh = 0.5 * heading_deg * FT_DEG2RAD;
+    double hp = 0.5 * pitch_deg * FT_DEG2RAD;
+    double hr = 0.5 * roll_deg * FT_DEG2RAD;
+    double cy = cos(hh), sy = sin(hh);
+    double cp = cos(hp), sp = sin(hp);
+    double cr = cos(hr), sr = sin(hr);
+    /* qz(heading) * qy(pitch) * qx(roll), expanded. */
+    ft_quat q;
+    q.w = cy * cp * cr + sy * sp * sr;
+    q.x = cy * cp * sr - sy * sp * cr;
+    q.y = cy * sp * cr + sy * cp * sr;
+    q.z = sy * cp * cr - cy * sp * sr;
+    return quat_normalise(q);
+}
+
+void ft_quat_to_euler_deg(ft_quat q, double *heading_deg, double *pitch_deg, double *roll_deg)
+{
+    q = quat_normalise(q);
+    double w = q.w, x = q.x, y = q.y, z = q.z;
+    /* Rotation matrix C (body -> NED) elements that are needed. */
+    double c11 = 1.0 - 2.0 * (y * y + z * z);
+    double c21 = 2.0 * (x * y + w * z);
+    double c31 = 2.0 * (x * z - w * y);
+    double c32 = 2.0 * (y * z + w * x);
+    double c33 = 1.0 - 2.0 * (x * x + y * y);
+    double c12 = 2.0 * (x * y - w * z);
+    double c22 = 1.0 - 2.0 * (x * x + z * z);
+
+    /* cos(pitch) from the third row, not asin(-c31): asin loses half the
+     * digits near +-90 and is NaN if rounding pushes |c31| past 1. */
+    double cos_pitch = hypot(c32, c33);
+    double pitch = atan2(-c31, cos_pitch);
+    double heading, roll;
+    if (cos_pitch < FT_POSE_GIMBAL_COS_EPS) {
+        /* Gimbal lock: C12 = -sin(h -/+ r), C22 = cos(h -/+ r) for pitch
+         * +-90; with roll = 0 both cases give heading = atan2(-C12, C22). */
+        roll = 0.0;
+        heading = atan2(-c12, c22);
+    } else {
+        roll = atan2(c32, c33);
+        heading = atan2(c21, c11);
+    }
+    if (heading_deg != NULL) {
+        *heading_deg = ft_wrap_deg_0_360(heading * FT_RAD2DEG);
+    }
+    if (pitch_deg != NULL) {
+        *pitch_deg = pitch * FT_RAD2DEG;
+    }
+    if (roll_deg != NULL) {
+        *roll_deg = ft_wrap_deg_pm180(roll * FT_RAD2DEG);
+    }
+}
+
+/* sin(a)/a without the 0/0: below 1e-4 the series 1 - a^2/6 + a^4/120 is
+ * exact to double precision (the next term is a^6/5040 < 2e-28). */
+static double sinc(double a)
+{
+    double aa = fabs(a);
+    if (aa < 1e-4) {
+        double a2 = a * a;
+        return 1.0 - a2 / 6.0 + a2 * a2 / 120.0;
+    }
+    return sin(a) / a;
+}
+
+ft_quat ft_quat_integrate_body_rate(ft_quat q, const double omega_rad_s[3], double dt_s)
+{
+    if (omega_rad_s == NULL || !isfinite(dt_s) || !isfinite(omega_rad_s[0]) ||
+        !isfinite(omega_rad_s[1]) || !isfinite(omega_rad_s[2])) {
+        return quat_normalise(q);
+    }
+    /* exp of the pure quaternion v = 0.5 * omega * dt: (cos|v|, v sinc|v|).
+     * Right multiplication because omega is in body axes. */
+    double vx = 0.5 * omega_rad_s[0] * dt_s;
+    double vy = 0.5 * omega_rad_s[1] * dt_s;
+    double vz = 0.5 * omega_rad_s[2] * dt_s;
+    double a = sqrt(vx * vx + vy * vy + vz * vz);
+    double s = sinc(a);
+    ft_quat e = {cos(a), vx * s, vy * s, vz * s};
+    return quat_normalise(ft_quat_mul(quat_normalise(q), e));
+}
+
+/* ---- pose state ------------------------------------------------------------ */
+
+ft_status ft_pose_state_init(ft_pose_state *ps, uint32_t horizon_ms, ft_error *err)
+{
+    if (ps == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "pose state: no storage");
+    }
+    if (horizon_ms > FT_POSE_HORIZON_MAX_MS) {
+        return ft_fail(err, FT_ERR_ARG, "pose state: prediction horizon %" PRIu32
+                                        " ms exceeds the maximum %u ms",
+                       horizon_ms, FT_POSE_HORIZON_MAX_MS);
+    }
+    ft_pose_state zero = {0};
+    *ps = zero;
+    ps->horizon_ms = horizon_ms;
+    return FT_OK;
+}
+
+static uint64_t age_ns(const ft_pose_sample *s, uint64_t t_ns)
+{
+    return t_ns > s->t_ns ? t_ns - s->t_ns : 0u;
+}
+
+static int sample_stale(const ft_pose_sample *s, uint64_t t_ns)
+{
+    if (!s->valid) {
+        return 1;
+    }
+    return age_ns(s, t_ns) > (uint64_t)s->timeout_ms * FT_NS_PER_MS;
+}
+
+ft_status ft_pose_state_apply(ft_pose_state *ps, const ft_pose_input *in, int *applied,
+                              ft_error *err)
+{
+    if (applied != NULL) {
+        *applied = 0;
+    }
+    if (ps == NULL || in == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "pose state: no state or input");
+    }
+    if ((int)in->qty < 0 || in->qty >= FT_QTY_COUNT) {
+        return ft_fail(err, FT_ERR_ARG, "pose state: unknown quantity %d", (int)in->qty);
+    }
+    if (!isfinite(in->value)) {
+        return ft_fail(err, FT_ERR_NUMERIC, "pose state: %s is not finite",
+                       ft_pose_qty_name(in->qty));
+    }
+    if (in->timeout_ms == 0u) {
+        return ft_fail(err, FT_ERR_ARG, "pose state: %s has timeout 0 ms",
+                       ft_pose_qty_name(in->qty));
+    }
+    ft_pose_sample *s = &ps->s[in->qty];
+    if (s->valid) {
+        if (in->t_ns < s->t_ns) {
+            ++ps->dropped_older_count;
+            return FT_OK;
+        }
+        if (in->priority > s->priority && !sample_stale(s, in->t_ns)) {
+            ++ps->dropped_priority_count;
+            return FT_OK;
+        }
+    }
+    s->value = in->value;
+    s->t_ns = in->t_ns;
+    s->timeout_ms = in->timeout_ms;
+    s->source_id = in->source_id;
+    s->priority = in->priority;
+    s->valid = 1u;
+    ++ps->applied_count;
+    if (applied != NULL) {
+        *applied = 1;
+    }
+    return FT_OK;
+}
+
+uint32_t ft_pose_state_stale(const ft_pose_state *ps, uint64_t t_ns, char *reason, size_t cap)
+{
+    if (reason != NULL && cap > 0u) {
+        reason[0] = '\0';
+    }
+    if (ps == NULL) {
+        if (reason != NULL && cap > 0u) {
+            (void)snprintf(reason, cap, "no pose state");
+        }
+        return FT_QTY_ALL_MASK;
+    }
+    uint32_t mask = 0u;
+    int first = -1;
+    unsigned more = 0u;
+    for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
+        if (sample_stale(&ps->s[q], t_ns)) {
+            mask |= FT_QTY_BIT(q);
+            if (first < 0) {
+                first = q;
+            } else {
+                ++more;
+            }
+        }
+    }
+    if (first >= 0 && reason != NULL && cap > 0u) {
+        const ft_pose_sample *s = &ps->s[first];
+        char extra[24] = "";
+        if (more > 0u) {
+            (void)snprintf(extra, sizeof extra, " (+%u more)", more);
+        }
+        if (!s->valid) {
+            (void)snprintf(reason, cap, "no %s received%s", k_qty_name[first], extra);
+        } else {
+            (void)snprintf(reason, cap, "no %s for %" PRIu64 " ms%s", k_qty_name[first],
+                           age_ns(s, t_ns) / FT_NS_PER_MS, extra);
+        }
+    }
+    return mask;
+}
+
+void ft_pose_state_estimate(const ft_pose_state *ps, uint64_t t_ns, ft_pose_estimate *out)
+{
+    if (out == NULL) {
+        return;
+    }
+    ft_pose_estimate zero = {0};
+    *out = zero;
+    out->attitude.w = 1.0;
+    if (ps == NULL) {
+        out->stale_mask = FT_QTY_ALL_MASK;
+        return;
+    }
+    out->stale_mask = ft_pose_state_stale(ps, t_ns, NULL, 0u);
+
+    const ft_pose_sample *sh = &ps->s[FT_QTY_HEADING];
+    const ft_pose_sample *sp = &ps->s[FT_QTY_PITCH];
+    const ft_pose_sample *sr = &ps->s[FT_QTY_ROLL];
+    /* Never-received angles read 0 (their stale bits tell the caller). */
+    double heading = sh->valid ? sh->value : 0.0;
+    double pitch = sp->valid ? sp->value : 0.0;
+    double roll = sr->valid ? sr->value : 0.0;
+    uint64_t epoch = 0u;
+    int have_attitude = 0;
+    const ft_pose_sample *att[3] = {sh, sp, sr};
+    for (int k = 0; k < 3; ++k) {
+        if (att[k]->valid) {
+            have_attitude = 1;
+            if (att[k]->t_ns > epoch) {
+                epoch = att[k]->t_ns;
+            }
+        }
+    }
+    ft_quat q = ft_quat_from_euler_deg(heading, pitch, roll);
+    out->epoch_ns = epoch;
+
+    int rates_ok = (out->stale_mask & FT_QTY_RATE_MASK) == 0u;
+    if (have_attitude && rates_ok && ps->horizon_ms > 0u) {
+        uint64_t dt_ns = t_ns > epoch ? t_ns - epoch : 0u;
+        uint64_t horizon_ns = (uint64_t)ps->horizon_ms * FT_NS_PER_MS;
+        if (dt_ns > horizon_ns) {
+            dt_ns = horizon_ns;
+            out->horizon_clamped = 1;
+        }
+        double omega[3] = {ps->s[FT_QTY_ROLL_RATE].value * FT_DEG2RAD,
+                           ps->s[FT_QTY_PITCH_RATE].value * FT_DEG2RAD,
+                           ps->s[FT_QTY_YAW_RATE].value * FT_DEG2RAD};
+        out->predict_s = (double)dt_ns * 1e-9;
+        q = ft_quat_integrate_body_rate(q, omega, out->predict_s);
+        out->predicted = 1;
+    }
+    out->attitude = q;
+    ft_quat_to_euler_deg(q, &out->pose.heading_deg, &out->pose.pitch_deg, &out->pose.roll_deg);
+    out->pose.lat_deg = ps->s[FT_QTY_LAT].valid ? ps->s[FT_QTY_LAT].value : 0.0;
+    out->pose.lon_deg = ps->s[FT_QTY_LON].valid ? ps->s[FT_QTY_LON].value : 0.0;
+    out->pose.alt_m = ps->s[FT_QTY_ALT].valid ? ps->s[FT_QTY_ALT].value : 0.0;
+}

@@ -57,7 +57,13 @@ step mount -o bind /sys /host/sys
 grep -q ' /host/sys/kernel/config ' /proc/mounts ||
   mount -o bind /sys/kernel/config /host/sys/kernel/config 2>/dev/null
 step mount -o bind /dev /host/dev
-mount -t tmpfs -o mode=1777 tmpfs /host/tmp || fail "tmpfs on /host/tmp"
+# /tmp: the host's /tmp (read-only, so build trees under /tmp stay visible)
+# under a writable tmpfs layer; plain tmpfs if overlayfs refuses 9p.
+mkdir -p /ovl && mount -t tmpfs -o mode=755 tmpfs /ovl && mkdir -p /ovl/up /ovl/work &&
+  chmod 1777 /ovl/up &&
+  mount -t overlay -o lowerdir=/host/tmp,upperdir=/ovl/up,workdir=/ovl/work overlay /host/tmp ||
+  { echo "ft-vm-init: overlay on /tmp failed, using an empty tmpfs"
+    mount -t tmpfs -o mode=1777 tmpfs /host/tmp || fail "tmpfs on /host/tmp"; }
 mount -t tmpfs tmpfs /host/run 2>/dev/null
 if [ -n "$FT_OUT" ]; then
   mkdir -p "/host$FT_OUT" 2>/dev/null

@@ -58,7 +58,7 @@ add_ko() { # add_ko PATH: copy (decompressed) into the image, append to order
   esac
   echo "$base" >> "$root/lib/ft-modules/order"
 }
-for m in virtio_pci 9pnet_virtio 9p configfs can can-raw can-dev vcan; do
+for m in virtio_pci 9pnet_virtio 9p overlay configfs can can-raw can-dev vcan; do
   deps=$(modprobe --show-depends -S "$KVER" "$m" 2>&1) ||
     ft_vm_die "modprobe --show-depends -S $KVER $m: $deps"
   # lines: "insmod /path/x.ko [opts]" or "builtin x" (nothing to load)

@@ -34,7 +34,12 @@ qemu=qemu-system-x86_64
 case $cmd in *'"'*|*'
 '*) ft_vm_die "CMD must not contain a double quote or newline: $cmd" ;; esac
 
-"$here/mkinitramfs.sh" "$vmdir" >&2
+mkdir -p "$vmdir"
+if command -v flock >/dev/null 2>&1; then  # VMs started in parallel share vmdir
+  flock "$vmdir/.build-lock" "$here/mkinitramfs.sh" "$vmdir" >&2
+else
+  "$here/mkinitramfs.sh" "$vmdir" >&2
+fi
 kernel=$(cat "$vmdir/kernel")
 initrd=$vmdir/initramfs.cpio.gz
 [ -f "$kernel" ] || ft_vm_die "kernel image $kernel missing"

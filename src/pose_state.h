@@ -44,15 +44,15 @@
 /* X(id, name used in annunciations, unit) - in annunciation priority order:
  * attitude first (what the terrain picture depends on most), then position,
  * then the rates that only feed the prediction. */
-#define FT_POSE_QTY_LIST(X)                   \
-    X(FT_QTY_PITCH, "pitch", "deg")           \
-    X(FT_QTY_ROLL, "roll", "deg")             \
-    X(FT_QTY_HEADING, "heading", "deg")       \
-    X(FT_QTY_LAT, "latitude", "deg")          \
-    X(FT_QTY_LON, "longitude", "deg")         \
-    X(FT_QTY_ALT, "altitude", "m")            \
+#define FT_POSE_QTY_LIST(X)                     \
+    X(FT_QTY_PITCH, "pitch", "deg")             \
+    X(FT_QTY_ROLL, "roll", "deg")               \
+    X(FT_QTY_HEADING, "heading", "deg")         \
+    X(FT_QTY_LAT, "latitude", "deg")            \
+    X(FT_QTY_LON, "longitude", "deg")           \
+    X(FT_QTY_ALT, "altitude", "m")              \
     X(FT_QTY_PITCH_RATE, "pitch rate", "deg/s") \
-    X(FT_QTY_ROLL_RATE, "roll rate", "deg/s") \
+    X(FT_QTY_ROLL_RATE, "roll rate", "deg/s")   \
     X(FT_QTY_YAW_RATE, "yaw rate", "deg/s")
 
 typedef enum ft_pose_qty {

@@ -67,6 +67,21 @@ if [ -f "$data/N42E001.hgt" ]; then
     --out "$out/n42.png" --stats "$out/n42.json" --quiet || fail "N42E001 render failed"
   cmake -DJSON="$out/n42.json" -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "stats JSON check"
   expect 0 "7652 voids filled" -- "$bin" render --dem "$data/N42E001.hgt" --size 64x64 --out "$out/y.png"
+  # the bintree through the CLI: tau met, and a tile budget too small for it
+  "$bin" render --dem "$data/N42E001.hgt" --method bintree --pose 42.30,1.50,3800,0,-14,0 \
+    --size 320x240 --out "$out/n42bt.png" --stats "$out/n42bt.json" --quiet || fail "bintree render"
+  cmake -DJSON="$out/n42bt.json" -DMETHOD=bintree -DTAU=1.0000 -DBUDGET_HIT=0 \
+    -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "bintree stats JSON check"
+  printf '[scene]\nmethod = bintree\n[bintree]\ntiles_max = 64\n' > "$out/bt64.ini"
+  expect 0 "tile budget hit" -- "$bin" render --scene "$out/bt64.ini" --dem "$data/N42E001.hgt" \
+    --pose 42.30,1.50,3800,0,-14,0 --size 320x240 --out "$out/bt64.png" --stats "$out/bt64.json"
+  cmake -DJSON="$out/bt64.json" -DMETHOD=bintree -DTAU=1.0 -DBUDGET_HIT=1 \
+    -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "bintree budget stats JSON check"
+  printf '[scene]\nmethod = bintree\n[budget]\nmethod_bytes = 64K\n' > "$out/btmem.ini"
+  expect 1 "method_bytes" -- "$bin" render --scene "$out/btmem.ini" --dem "$data/N42E001.hgt" \
+    --out "$out/x.png"
+  printf '[scene]\nmethod = bintree\n[bintree]\ntemplate_k = 6\n' > "$out/btk.ini"
+  expect 0 "bintree:" -- "$bin" render --scene "$out/btk.ini" --size 64x64 --out "$out/x.png"
   # terrain.dem in a scene file is relative to the scene file, not the cwd
   scene_dir=$(cd "$(dirname "$0")/../config" && pwd)
   (cd "$out" && "$bin" render --scene "$scene_dir/pyrenees.ini" --size 64x64 --out z.png \

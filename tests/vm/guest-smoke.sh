@@ -32,7 +32,11 @@ n_replay=$(wc -l < "$t/replay.log")
 want=$((n_send + n_replay))
 timeout 20 candump -L -n "$want" vcan0 > "$t/dump.log" 2> "$t/candump.err" &
 dump_pid=$!
-sleep 0.5  # let candump bind before the first frame
+i=0  # wait until candump's socket is bound (an rx_all receiver on vcan0)
+until grep -Eq '^ +vcan0 +0+ +0+ ' /proc/net/can/rcvlist_all; do
+  i=$((i + 1)); [ "$i" -lt 100 ] || fail "candump never bound to vcan0: $(cat "$t/candump.err")"
+  sleep 0.1
+done
 cansend vcan0 123#DEADBEEF || fail "cansend 123#DEADBEEF"
 cansend vcan0 456#01 || fail "cansend 456#01"
 cansend vcan0 1F334455#1122334455667788 || fail "cansend extended id"

@@ -29,6 +29,7 @@ fail() {
   finish 125
 }
 step() { "$@" || fail "failed: $*"; }
+say() { read -r up _ < /proc/uptime; echo "ft-vm-init: [$up] $*"; }
 
 cmdline=$(cat /proc/cmdline)
 param() { # param NAME: value of NAME="..." or NAME=word from the cmdline
@@ -41,7 +42,7 @@ FT_CWD=$(param ft.cwd)
 FT_OUT=$(param ft.out)
 [ -n "$FT_CMD" ] || fail "no ft.cmd= on the kernel command line"
 
-echo "ft-vm-init: loading modules"
+say "loading modules"
 while read -r ko; do
   insmod "/lib/ft-modules/$ko" || fail "insmod $ko"
 done < /lib/ft-modules/order
@@ -72,7 +73,7 @@ if [ -n "$FT_OUT" ]; then
 fi
 
 step ip link set lo up
-echo "ft-vm-init: CAN"
+say "CAN"
 for i in vcan0 vcan1; do
   if ! ip link add dev "$i" type vcan 2>/dev/null; then
     # busybox ip may lack "type vcan": use the host's iproute2.
@@ -81,7 +82,7 @@ for i in vcan0 vcan1; do
   step ip link set up "$i"
 done
 
-echo "ft-vm-init: gpio-sim"
+say "gpio-sim"
 g=/sys/kernel/config/gpio-sim/ft
 step mkdir "$g" "$g/bank0"
 echo ft-gpio-sim > "$g/bank0/label" || fail "gpio-sim label"
@@ -102,10 +103,11 @@ export FT_VM=1 FT_VM_OUT="$FT_OUT" FT_CAN_IFS="vcan0 vcan1"
 export FT_GPIO_CHIP FT_GPIO_SIM_SYSFS FT_GPIO_LINES="${FT_GPIO_LINES# }"
 export HOME=/tmp TERM=dumb LANG=C.UTF-8
 export PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin
-echo "ft-vm-init: $FT_GPIO_CHIP ($FT_GPIO_SIM_SYSFS), vcan0 vcan1; running: $FT_CMD"
+say "$FT_GPIO_CHIP ($FT_GPIO_SIM_SYSFS), vcan0 vcan1; running: $FT_CMD"
 echo "FT-VM-BEGIN"
 chroot /host /bin/sh -c 'cd "$1" && shift && exec /bin/sh -c "$1"' ft-vm "${FT_CWD:-/}" "$FT_CMD"
 rc=$?
 echo "FT-VM-END"
+say "command exited $rc"
 if [ -n "$FT_OUT" ]; then sync; umount "/host$FT_OUT" 2>/dev/null; fi
 finish "$rc"

@@ -1,18 +1,20 @@
 # Sourced by the tests/vm scripts (POSIX sh). Picks the guest kernel: the
 # newest Debian kernel that has an image in /boot, modules in /lib/modules and
-# headers (for the out-of-tree gpio-sim). Deliberately NOT `uname -r`: the
+# (preferably) headers in /lib/modules/<ver>/build for the out-of-tree gpio-sim. Deliberately NOT `uname -r`: the
 # host kernel is not the one the VM boots. FT_VM_KVER overrides.
 
 ft_vm_die() { echo "tests/vm: ERROR: $*" >&2; exit 1; }
 
 ft_vm_kver() {
   if [ -n "${FT_VM_KVER:-}" ]; then echo "$FT_VM_KVER"; return 0; fi
-  best=
+  best='' with_headers=''
   for d in /lib/modules/*; do
     v=${d##*/}
     [ -f "/boot/vmlinuz-$v" ] && [ -f "$d/modules.dep" ] || continue
     best="$best $v"
+    [ -f "$d/build/Makefile" ] && with_headers="$with_headers $v"
   done
+  [ -n "$with_headers" ] && best=$with_headers  # gpio-sim needs the headers
   [ -n "$best" ] || return 1
   # shellcheck disable=SC2086
   printf '%s\n' $best | sort -V | tail -n 1

@@ -29,7 +29,7 @@ cmd=$1
 vmdir=${FT_VM_DIR:-$(cd "$here/../.." && pwd)/build/vm}
 timeout_s=${FT_VM_TIMEOUT:-300}
 ft_vm_need_cmd qemu-system-x86_64 timeout
-qemu=qemu-system-x86_64
+qemu="qemu-system-x86_64"
 
 case $cmd in *'"'*|*'
 '*) ft_vm_die "CMD must not contain a double quote or newline: $cmd" ;; esac

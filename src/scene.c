@@ -61,6 +61,12 @@ void ft_scene_defaults(ft_scene *s)
     s->bintree_tau_px = 1.0;
     s->bintree_morph = 1;
     s->metric_enabled = 0;
+    s->frame_period_ms = 16.667;
+    s->pose_horizon_ms = FT_POSE_HORIZON_DEFAULT_MS;
+    (void)snprintf(s->can_iface, sizeof s->can_iface, "%s", "vcan0");
+    s->can_backup_iface[0] = '\0';
+    s->can_failover_ms = 200;
+    ft_canaero_default_map(&s->can_map);
     /* Budgets of config/default.ini (tests/test_scene.c checks they agree). */
     s->budget_bytes[FT_POOL_HEIGHTS] = 6ull << 20;
     s->budget_bytes[FT_POOL_PYRAMIDS] = 18ull << 20;
@@ -142,6 +148,75 @@ static int parse_u32(const char *v, uint32_t lo, uint32_t hi, uint32_t *out)
     }
     *out = (uint32_t)u;
     return 1;
+}
+
+static const char *const k_can_qty_key[FT_QTY_COUNT] = {
+    [FT_QTY_PITCH] = "pitch",           [FT_QTY_ROLL] = "roll",
+    [FT_QTY_HEADING] = "heading",       [FT_QTY_LAT] = "lat",
+    [FT_QTY_LON] = "lon",               [FT_QTY_ALT] = "alt",
+    [FT_QTY_PITCH_RATE] = "pitch_rate", [FT_QTY_ROLL_RATE] = "roll_rate",
+    [FT_QTY_YAW_RATE] = "yaw_rate",
+};
+
+/* "ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY]" into e (qty set by the caller). */
+static int parse_can_entry(const char *v, ft_can_map_entry *e)
+{
+    double f[6];
+    int n = 0;
+    const char *p = v;
+    for (; n < 6; ++n) {
+        char *end = NULL;
+        errno = 0;
+        f[n] = strtod(p, &end);
+        if (end == p || errno != 0 || !isfinite(f[n])) {
+            return 0;
+        }
+        p = end;
+        while (*p == ' ') ++p;
+        if (*p == '\0') {
+            ++n;
+            break;
+        }
+        if (*p != ',') {
+            return 0;
+        }
+        ++p;
+    }
+    if (*p != '\0' || n < 5 || f[0] < 0.0 || f[0] > (double)FT_CAN_STD_ID_MAX ||
+        f[0] != floor(f[0]) || f[4] < 1.0 || f[4] > 60000.0 || f[4] != floor(f[4])) {
+        return 0;
+    }
+    if (n == 6 && (f[5] < 0.0 || f[5] > 255.0 || f[5] != floor(f[5]))) {
+        return 0;
+    }
+    e->can_id = (uint16_t)f[0];
+    e->scale = f[1];
+    e->min_value = f[2];
+    e->max_value = f[3];
+    e->timeout_ms = (uint32_t)f[4];
+    e->priority = (n == 6) ? (uint8_t)f[5] : 0u;
+    return 1;
+}
+
+/* Replaces an entry for the same quantity with the same id or priority; an id
+ * already mapped to another quantity is an error (ft_can_map_add says so). */
+static ft_status can_map_upsert(ft_can_map *m, const ft_can_map_entry *e, ft_error *err)
+{
+    ft_can_map next;
+    memset(&next, 0, sizeof next);
+    for (uint32_t i = 0; i < m->count && i < FT_CAN_MAP_MAX; ++i) {
+        const ft_can_map_entry *o = &m->e[i];
+        if ((o->can_id == e->can_id && o->qty == e->qty) ||
+            (o->qty == e->qty && o->priority == e->priority)) {
+            continue;
+        }
+        next.e[next.count++] = *o;
+    }
+    ft_status st = ft_can_map_add(&next, e, err);
+    if (st == FT_OK) {
+        *m = next;
+    }
+    return st;
 }
 
 #define RANGE(expr, why) ((expr) ? 1 : fail_key(c, section, key, value, why))
@@ -279,6 +354,60 @@ static int on_key(void *user, const char *section, const char *key, const char *
             s->bintree_morph = (int)v;
             return 1;
         }
+    } else if (strcmp(section, "frame") == 0) {
+        if (strcmp(key, "period_ms") == 0) {
+            return RANGE(parse_f64(value, 1.0, 1000.0, &s->frame_period_ms), "expected 1..1000");
+        }
+    } else if (strcmp(section, "pose_input") == 0) {
+        if (strcmp(key, "horizon_ms") == 0) {
+            return RANGE(parse_u32(value, 0, FT_POSE_HORIZON_MAX_MS, &s->pose_horizon_ms),
+                         "expected 0..1000");
+        }
+    } else if (strcmp(section, "can") == 0) {
+        char *dst = NULL;
+        if (strcmp(key, "interface") == 0) dst = s->can_iface;
+        if (strcmp(key, "backup_interface") == 0) dst = s->can_backup_iface;
+        if (dst != NULL) {
+            if (strlen(value) >= FT_CAN_IFACE_NAME_MAX) {
+                return fail_key(c, section, key, value, "interface name longer than 15");
+            }
+            (void)snprintf(dst, FT_CAN_IFACE_NAME_MAX, "%s", value);
+            return 1;
+        }
+        if (strcmp(key, "failover_ms") == 0) {
+            return RANGE(parse_u32(value, 1, 10000, &s->can_failover_ms), "expected 1..10000");
+        }
+    } else if (strcmp(section, "can_map") == 0) {
+        if (strcmp(key, "defaults") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            if (v) {
+                ft_canaero_default_map(&s->can_map);
+            } else {
+                memset(&s->can_map, 0, sizeof s->can_map);
+            }
+            return 1;
+        }
+        for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
+            if (strcmp(key, k_can_qty_key[q]) != 0) {
+                continue;
+            }
+            ft_can_map_entry e;
+            memset(&e, 0, sizeof e);
+            e.qty = (ft_pose_qty)q;
+            if (!parse_can_entry(value, &e)) {
+                return fail_key(c, section, key, value,
+                                "expected ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY] "
+                                "(id 0..2047, timeout 1..60000 ms, priority 0..255)");
+            }
+            ft_error e2;
+            if (can_map_upsert(&s->can_map, &e, &e2) != FT_OK) {
+                return fail_key(c, section, key, value, e2.text);
+            }
+            return 1;
+        }
     } else if (strcmp(section, "metric") == 0) {
         if (strcmp(key, "enabled") == 0) {
             uint32_t v;
@@ -339,6 +468,13 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
     if (s->brute_patch_cells < 1 || s->brute_patch_cells > 180) {
         return ft_fail(err, FT_ERR_CONFIG, "brute.patch_cells %u outside 1..180",
                        s->brute_patch_cells);
+    }
+    if (!(s->frame_period_ms >= 1.0 && s->frame_period_ms <= 1000.0) ||
+        s->pose_horizon_ms > FT_POSE_HORIZON_MAX_MS) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "frame.period_ms %g (1..1000) or pose_input.horizon_ms %u (0..1000) "
+                       "out of range",
+                       s->frame_period_ms, s->pose_horizon_ms);
     }
     if (s->bintree_template_k < 1 || s->bintree_template_k > 6 || s->bintree_tiles_max < 2 ||
         s->bintree_tiles_max > 1048576 || !(s->bintree_tau_px >= 0.0 && s->bintree_tau_px <= 1000.0)) {

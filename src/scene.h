@@ -27,6 +27,21 @@
  *   bintree.tau_px        target screen-space error in pixels [0, 1000]
  *   bintree.morph         0 | 1: geomorph split vertices (split at tau/2)
  *   metric.enabled        0 | 1: measure screen-space error against the reference
+ *   frame.period_ms       display frame period [1, 1000] (16.667 = 60 Hz); replay
+ *                         renders one frame per period of log time
+ *   pose_input.horizon_ms attitude prediction horizon from the body rates [0, 1000]
+ *                         (0 = no prediction)
+ *   can.interface, can.backup_interface   SocketCAN interfaces (live input;
+ *                         backup empty = none), can.failover_ms [1, 10000]
+ *   can_map.defaults      0 | 1: start from the CANaerospace default ids (1) or
+ *                         from an empty map (0; put it first in [can_map])
+ *   can_map.<quantity>    ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY]: map CAN id ID
+ *                         (11-bit) to quantity pitch|roll|heading|lat|lon|alt|
+ *                         pitch_rate|roll_rate|yaw_rate; value = decoded * SCALE,
+ *                         valid in [MIN, MAX], stale after TIMEOUT_MS; replaces
+ *                         the quantity's entry with the same id or priority (an
+ *                         id mapped to another quantity is an error); at most
+ *                         FT_CAN_MAP_MAX (16) entries
  *   budget.<pool>_bytes   one per pool in mem_budget.h (heights_bytes, ...) */
 #ifndef FT_SCENE_H
 #define FT_SCENE_H
@@ -35,6 +50,7 @@
 #include <stdint.h>
 
 #include "camera.h"
+#include "canaero.h"
 #include "ft_status.h"
 #include "gl_api.h"
 #include "gpu.h"
@@ -44,6 +60,7 @@
 #define FT_SCENE_TEXT_MAX 65536u /* scene files larger than this are rejected */
 #define FT_SCENE_NAME_MAX 64u
 #define FT_SCENE_PATH_MAX 512u
+#define FT_CAN_IFACE_NAME_MAX 16u /* IFNAMSIZ: 15 characters + NUL */
 
 #define FT_METHOD_LIST(X)                                                                  \
     X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                          \
@@ -79,6 +96,12 @@ typedef struct ft_scene {
     double bintree_tau_px;       /* bintree.tau_px */
     int bintree_morph;           /* bintree.morph */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
+    double frame_period_ms;   /* frame.period_ms */
+    uint32_t pose_horizon_ms; /* pose_input.horizon_ms */
+    char can_iface[FT_CAN_IFACE_NAME_MAX];        /* can.interface */
+    char can_backup_iface[FT_CAN_IFACE_NAME_MAX]; /* can.backup_interface */
+    uint32_t can_failover_ms;                     /* can.failover_ms */
+    ft_can_map can_map;                           /* [can_map] */
     uint64_t budget_bytes[FT_POOL_COUNT];
 } ft_scene;
 

@@ -50,6 +50,11 @@ int main(void)
     CHECK(a.bintree_template_k == b.bintree_template_k && a.bintree_tiles_max == b.bintree_tiles_max);
     CHECK_NEAR(a.bintree_tau_px, b.bintree_tau_px, 0.0);
     CHECK(a.bintree_morph == b.bintree_morph);
+    CHECK_NEAR(a.frame_period_ms, b.frame_period_ms, 0.0);
+    CHECK(a.pose_horizon_ms == b.pose_horizon_ms && a.can_failover_ms == b.can_failover_ms);
+    CHECK(strcmp(a.can_iface, b.can_iface) == 0 && strcmp(a.can_backup_iface, "") == 0);
+    CHECK(a.can_map.count == b.can_map.count && a.can_map.count == 10u);
+    CHECK(memcmp(&a.can_map, &b.can_map, sizeof a.can_map) == 0);
     CHECK(a.pyramid_textures == b.pyramid_textures);
     CHECK(a.height_format == b.height_format);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {
@@ -69,6 +74,30 @@ int main(void)
     CHECK(a.width_px == 640);
     CHECK(parse("[scene]\nbackend = osmesa\n[gpu]\nheight_format = packed\n", &a, &err) == FT_OK);
     CHECK(a.backend == FT_BACKEND_OSMESA && a.height_format == FT_HEIGHT_FORMAT_PACKED);
+
+    /* CAN map: replace by id, add a quantity, start empty. */
+    CHECK(parse("[can_map]\npitch = 311,0.5,-90,90,50\n", &a, &err) == FT_OK);
+    CHECK(a.can_map.count == 10u);
+    for (uint32_t i = 0; i < a.can_map.count; ++i) {
+        if (a.can_map.e[i].can_id == 311u) {
+            CHECK_NEAR(a.can_map.e[i].scale, 0.5, 0.0);
+            CHECK(a.can_map.e[i].timeout_ms == 50u && a.can_map.e[i].qty == FT_QTY_PITCH);
+        }
+    }
+    CHECK(parse("[can_map]\ndefaults = 0\nheading = 400,1,0,360,80\n", &a, &err) == FT_OK);
+    CHECK(a.can_map.count == 1u && a.can_map.e[0].can_id == 400u &&
+          a.can_map.e[0].qty == FT_QTY_HEADING);
+    CHECK(parse("[can_map]\nalt = 320,1,-1000,25000,500,0\nalt = 1038,1,-1000,25000,500,1\n",
+                &a, &err) == FT_OK);
+    CHECK(a.can_map.count == 10u);
+    expect_error("[can_map]\npitch = 3000,1,-90,90,100\n", "can_map.pitch");
+    expect_error("[can_map]\npitch = 311,1,-90,90\n", "TIMEOUT_MS");
+    expect_error("[can_map]\npitch = 311,1,90,-90,100\n", "can_map.pitch");
+    expect_error("[can_map]\nroll = 311,1,-90,90,100\npitch = 311,1,-90,90,100\n", "mapped");
+    expect_error("[can_map]\nspeed = 500,1,0,1,100\n", "unknown section or key");
+    expect_error("[can]\ninterface = averyveryverylongname0\n", "longer than 15");
+    expect_error("[frame]\nperiod_ms = 0\n", "frame.period_ms");
+    expect_error("[pose_input]\nhorizon_ms = 5000\n", "expected 0..1000");
 
     /* Errors carry the line number, the key and the reason. */
     expect_error("[view]\nwidth_px = 8193\n", "test.ini:2: view.width_px");

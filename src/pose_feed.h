@@ -1,0 +1,57 @@
+/* pose_feed.h - from CAN frames to the pose a frame is drawn with.
+ *
+ * One feed = one CANaerospace decoder (canaero.h) + one pose assembler
+ * (pose_state.h) + counters. Frames come from any source (candump replay,
+ * SocketCAN); the feed never sees the OS.
+ *
+ * The pose drawn at display time t (ft_pose_feed_view):
+ *   - attitude predicted to t from the body rates when all rates are fresh
+ *     (bounded horizon), else held; position held (no velocity is mapped);
+ *   - a quantity never received takes the fallback pose's value (the
+ *     scene's [pose]);
+ *   - annunciate = any attitude or position quantity stale at t (older than
+ *     its timeout, or never received): the frame is still drawn, from the
+ *     last good values, and the renderer puts the failure annunciation over
+ *     it with `reason`. Stale rates alone only switch prediction off (the
+ *     drawn attitude is then the last measured one, still within its own
+ *     timeout), which is reported (`predicted` = 0) but not annunciated. */
+#ifndef FT_POSE_FEED_H
+#define FT_POSE_FEED_H
+
+#include <stdint.h>
+
+#include "canaero.h"
+#include "pose_state.h"
+
+#define FT_POSE_FEED_ANNUNCIATE_MASK (FT_QTY_ATTITUDE_MASK | FT_QTY_POSITION_MASK)
+
+typedef struct ft_pose_feed {
+    ft_canaero dec;
+    ft_pose_state ps;
+    ft_pose fallback;
+    uint64_t frames_in;      /* frames offered */
+    uint64_t values_applied; /* decoded values the assembler stored */
+    uint64_t values_dropped; /* decoded but not stored (older, or a backup source) */
+} ft_pose_feed;
+
+typedef struct ft_pose_view {
+    ft_pose pose;
+    uint32_t stale_mask; /* FT_QTY_BIT per stale quantity at t */
+    int annunciate;      /* attitude or position stale: draw the failure annunciation */
+    int predicted;       /* attitude predicted from the rates */
+    double predict_s;
+    char reason[FT_POSE_REASON_MAX]; /* empty when nothing is stale */
+} ft_pose_view;
+
+ft_status ft_pose_feed_init(ft_pose_feed *f, const ft_can_map *map, uint32_t horizon_ms,
+                            const ft_pose *fallback, ft_error *err);
+
+/* Decodes and applies one frame; rejects are counted in f->dec.rejects. */
+void ft_pose_feed_frame(ft_pose_feed *f, const ft_can_frame *frame);
+
+void ft_pose_feed_view(const ft_pose_feed *f, uint64_t t_ns, ft_pose_view *out);
+
+/* Frames rejected for any reason (sum of f->dec.rejects). */
+uint64_t ft_pose_feed_rejected(const ft_pose_feed *f);
+
+#endif

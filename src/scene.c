@@ -29,6 +29,17 @@ int ft_method_from_name(const char *name, ft_method_kind *out)
     return 0;
 }
 
+static const char *const k_gpio_input_name[FT_GPIO_INPUT_COUNT] = {
+#define FT_GPIO_INPUT_NAME(id, name, what) name,
+    FT_GPIO_INPUT_LIST(FT_GPIO_INPUT_NAME)
+#undef FT_GPIO_INPUT_NAME
+};
+
+const char *ft_gpio_input_name(ft_gpio_input i)
+{
+    return ((unsigned)i < FT_GPIO_INPUT_COUNT) ? k_gpio_input_name[i] : "?";
+}
+
 void ft_scene_defaults(ft_scene *s)
 {
     memset(s, 0, sizeof *s);
@@ -67,6 +78,13 @@ void ft_scene_defaults(ft_scene *s)
     s->can_backup_iface[0] = '\0';
     s->can_failover_ms = 200;
     ft_canaero_default_map(&s->can_map);
+    s->gpio_chip[0] = '\0';
+    for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
+        s->gpio_input_line[i] = -1;
+    }
+    s->gpio_heartbeat_line = -1;
+    s->gpio_active_low = 0;
+    s->gpio_debounce_ms = 10;
     /* Budgets of config/default.ini (tests/test_scene.c checks they agree). */
     s->budget_bytes[FT_POOL_HEIGHTS] = 6ull << 20;
     s->budget_bytes[FT_POOL_PYRAMIDS] = 18ull << 20;
@@ -377,6 +395,40 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "failover_ms") == 0) {
             return RANGE(parse_u32(value, 1, 10000, &s->can_failover_ms), "expected 1..10000");
         }
+    } else if (strcmp(section, "gpio") == 0) {
+        if (strcmp(key, "chip") == 0) {
+            if (strlen(value) >= FT_GPIO_CHIP_NAME_MAX) {
+                return fail_key(c, section, key, value, "longer than 63 characters");
+            }
+            (void)snprintf(s->gpio_chip, sizeof s->gpio_chip, "%s", value);
+            return 1;
+        }
+        int *line = NULL;
+        char want[32];
+        for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
+            (void)snprintf(want, sizeof want, "%s_line", k_gpio_input_name[i]);
+            if (strcmp(key, want) == 0) line = &s->gpio_input_line[i];
+        }
+        if (strcmp(key, "heartbeat_line") == 0) line = &s->gpio_heartbeat_line;
+        if (line != NULL) {
+            double d;
+            if (!parse_f64(value, -1.0, (double)FT_GPIO_LINE_MAX, &d) || d != floor(d)) {
+                return fail_key(c, section, key, value, "expected -1 (none) or a line 0..511");
+            }
+            *line = (int)d;
+            return 1;
+        }
+        if (strcmp(key, "active_low") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->gpio_active_low = (int)v;
+            return 1;
+        }
+        if (strcmp(key, "debounce_ms") == 0) {
+            return RANGE(parse_u32(value, 0, 1000, &s->gpio_debounce_ms), "expected 0..1000");
+        }
     } else if (strcmp(section, "can_map") == 0) {
         if (strcmp(key, "defaults") == 0) {
             uint32_t v;
@@ -385,6 +437,13 @@ static int on_key(void *user, const char *section, const char *key, const char *
             }
             if (v) {
                 ft_canaero_default_map(&s->can_map);
+    s->gpio_chip[0] = '\0';
+    for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
+        s->gpio_input_line[i] = -1;
+    }
+    s->gpio_heartbeat_line = -1;
+    s->gpio_active_low = 0;
+    s->gpio_debounce_ms = 10;
             } else {
                 memset(&s->can_map, 0, sizeof s->can_map);
             }
@@ -475,6 +534,17 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
                        "frame.period_ms %g (1..1000) or pose_input.horizon_ms %u (0..1000) "
                        "out of range",
                        s->frame_period_ms, s->pose_horizon_ms);
+    }
+    /* GPIO lines: each used at most once */
+    int used[FT_GPIO_INPUT_COUNT + 1];
+    for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) used[i] = s->gpio_input_line[i];
+    used[FT_GPIO_INPUT_COUNT] = s->gpio_heartbeat_line;
+    for (int i = 0; i <= FT_GPIO_INPUT_COUNT; ++i) {
+        for (int j = i + 1; j <= FT_GPIO_INPUT_COUNT; ++j) {
+            if (used[i] >= 0 && used[i] == used[j]) {
+                return ft_fail(err, FT_ERR_CONFIG, "gpio: line %d is used twice", used[i]);
+            }
+        }
     }
     if (s->bintree_template_k < 1 || s->bintree_template_k > 6 || s->bintree_tiles_max < 2 ||
         s->bintree_tiles_max > 1048576 || !(s->bintree_tau_px >= 0.0 && s->bintree_tau_px <= 1000.0)) {

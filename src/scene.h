@@ -42,6 +42,13 @@
  *                         the quantity's entry with the same id or priority (an
  *                         id mapped to another quantity is an error); at most
  *                         FT_CAN_MAP_MAX (16) entries
+ *   gpio.chip             gpiochip name or path (live input; empty = no GPIO)
+ *   gpio.freeze_line      input: hold the drawn pose while active [-1 = none, 0..511]
+ *   gpio.source_line      input: use can.backup_interface while active
+ *   gpio.test_line        input: annunciation test (lamp test) while active
+ *   gpio.heartbeat_line   output: toggled once per presented frame
+ *   gpio.active_low       0 | 1: inputs are active low
+ *   gpio.debounce_ms      [0, 1000]: an input level must hold this long
  *   budget.<pool>_bytes   one per pool in mem_budget.h (heights_bytes, ...) */
 #ifndef FT_SCENE_H
 #define FT_SCENE_H
@@ -61,6 +68,23 @@
 #define FT_SCENE_NAME_MAX 64u
 #define FT_SCENE_PATH_MAX 512u
 #define FT_CAN_IFACE_NAME_MAX 16u /* IFNAMSIZ: 15 characters + NUL */
+#define FT_GPIO_CHIP_NAME_MAX 64u
+#define FT_GPIO_LINE_MAX 511
+
+/* Discrete inputs (gpio.<name>_line). */
+#define FT_GPIO_INPUT_LIST(X)                                             \
+    X(FT_GPIO_FREEZE, "freeze", "hold the drawn pose")                     \
+    X(FT_GPIO_SOURCE, "source", "use the backup CAN interface")            \
+    X(FT_GPIO_TEST, "test", "annunciation test")
+
+typedef enum ft_gpio_input {
+#define FT_GPIO_INPUT_ENUM(id, name, what) id,
+    FT_GPIO_INPUT_LIST(FT_GPIO_INPUT_ENUM)
+#undef FT_GPIO_INPUT_ENUM
+    FT_GPIO_INPUT_COUNT
+} ft_gpio_input;
+
+const char *ft_gpio_input_name(ft_gpio_input i); /* "freeze" */
 
 #define FT_METHOD_LIST(X)                                                                  \
     X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                          \
@@ -102,6 +126,11 @@ typedef struct ft_scene {
     char can_backup_iface[FT_CAN_IFACE_NAME_MAX]; /* can.backup_interface */
     uint32_t can_failover_ms;                     /* can.failover_ms */
     ft_can_map can_map;                           /* [can_map] */
+    char gpio_chip[FT_GPIO_CHIP_NAME_MAX];        /* gpio.chip; empty = none */
+    int gpio_input_line[FT_GPIO_INPUT_COUNT];     /* gpio.<name>_line, -1 = none */
+    int gpio_heartbeat_line;                      /* gpio.heartbeat_line, -1 = none */
+    int gpio_active_low;                          /* gpio.active_low */
+    uint32_t gpio_debounce_ms;                    /* gpio.debounce_ms */
     uint64_t budget_bytes[FT_POOL_COUNT];
 } ft_scene;
 

@@ -9,6 +9,7 @@
 
 #include "app.h"
 #include "platform_api.h"
+#include "replay.h"
 #include "scene.h"
 #if FT_WITH_GDAL_TOOLS
 #include "../tools/import_gdal.h"
@@ -49,6 +50,7 @@ static void print_help(void)
     printf("usage: fixterrain COMMAND [options]   (fixterrain COMMAND --help for details)\n\n"
            "commands:\n"
            "  render    render one frame of a scene offscreen to PNG\n"
+           "  replay    render a candump log of CANaerospace pose messages\n"
            "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file%s\n"
            "  help      this text\n\n"
            "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
@@ -144,6 +146,78 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
     return ft_plat_file_finish_write(&f, err);
 }
 
+/* Options every rendering command shares. */
+typedef struct scene_opts {
+    const char *scene_path, *dem, *method, *backend, *display, *size, *pose;
+} scene_opts;
+
+/* Scene file (or the embedded default) + command-line overrides. Returns an
+ * exit status: FT_EXIT_OK when the scene is ready. */
+static int resolve_scene(const char *cmd, const scene_opts *o, ft_scene *scene)
+{
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    ft_scene_defaults(scene);
+    if (o->scene_path != NULL) {
+        size_t len = 0;
+        if (ft_plat_file_read_text(o->scene_path, g_scene_text, sizeof g_scene_text, &len,
+                                   &err) != FT_OK ||
+            ft_scene_parse(scene, g_scene_text, o->scene_path, &err) != FT_OK) {
+            fprintf(stderr, "fixterrain: scene: %s\n", err.text);
+            return FT_EXIT_ERROR;
+        }
+    } else if (ft_scene_parse(scene, ft_default_scene_text, "embedded default scene", &err) !=
+               FT_OK) {
+        fprintf(stderr, "fixterrain: embedded scene: %s\n", err.text);
+        return FT_EXIT_ERROR;
+    }
+    /* A relative terrain.dem in a scene file is relative to that file, so a
+     * scene works from any working directory. */
+    if (o->dem == NULL && o->scene_path != NULL && scene->dem_path[0] != '\0' &&
+        scene->dem_path[0] != '/') {
+        const char *slash = strrchr(o->scene_path, '/');
+        if (slash != NULL) {
+            char joined[sizeof scene->dem_path];
+            int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - o->scene_path),
+                             o->scene_path, scene->dem_path);
+            if (n < 0 || (size_t)n >= sizeof joined) {
+                fprintf(stderr, "fixterrain: scene: terrain.dem path too long after joining\n");
+                return FT_EXIT_ERROR;
+            }
+            memcpy(scene->dem_path, joined, (size_t)n + 1u);
+        }
+    }
+    if (o->dem != NULL) {
+        if (strlen(o->dem) >= sizeof scene->dem_path) {
+            fprintf(stderr, "fixterrain %s: --dem path too long\n", cmd);
+            return FT_EXIT_USAGE;
+        }
+        (void)snprintf(scene->dem_path, sizeof scene->dem_path, "%s", o->dem);
+    }
+    if (o->method != NULL && !ft_method_from_name(o->method, &scene->method)) {
+        fprintf(stderr, "fixterrain %s: unknown method '%s'\n", cmd, o->method);
+        return FT_EXIT_USAGE;
+    }
+    if (o->backend != NULL && !ft_backend_from_name(o->backend, &scene->backend)) {
+        fprintf(stderr, "fixterrain %s: unknown backend '%s' (egl-gles3, egl-gles2, osmesa)\n",
+                cmd, o->backend);
+        return FT_EXIT_USAGE;
+    }
+    if (o->display != NULL && !ft_display_from_name(o->display, &scene->display)) {
+        fprintf(stderr, "fixterrain %s: unknown display '%s' (none, x11)\n", cmd, o->display);
+        return FT_EXIT_USAGE;
+    }
+    if (o->size != NULL && !parse_size(o->size, &scene->width_px, &scene->height_px)) {
+        fprintf(stderr, "fixterrain %s: --size wants WxH, each 16..8192\n", cmd);
+        return FT_EXIT_USAGE;
+    }
+    if (o->pose != NULL && ft_pose_parse(o->pose, &scene->pose, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain %s: %s\n", cmd, err.text);
+        return FT_EXIT_USAGE;
+    }
+    return FT_EXIT_OK;
+}
+
 static int cmd_render(int argc, char **argv)
 {
     ft_scene scene;
@@ -203,63 +277,12 @@ static int cmd_render(int argc, char **argv)
         ++i;
     }
 
-    ft_scene_defaults(&scene);
-    if (scene_path != NULL) {
-        size_t len = 0;
-        if (ft_plat_file_read_text(scene_path, g_scene_text, sizeof g_scene_text, &len, &err) !=
-                FT_OK ||
-            ft_scene_parse(&scene, g_scene_text, scene_path, &err) != FT_OK) {
-            fprintf(stderr, "fixterrain: scene: %s\n", err.text);
-            return FT_EXIT_ERROR;
+    {
+        const scene_opts o = {scene_path, dem, method, backend, display, size, pose};
+        int rc0 = resolve_scene("render", &o, &scene);
+        if (rc0 != FT_EXIT_OK) {
+            return rc0;
         }
-    } else if (ft_scene_parse(&scene, ft_default_scene_text, "embedded default scene", &err) !=
-               FT_OK) {
-        fprintf(stderr, "fixterrain: embedded scene: %s\n", err.text);
-        return FT_EXIT_ERROR;
-    }
-    /* A relative terrain.dem in a scene file is relative to that file, so a
-     * scene works from any working directory. */
-    if (dem == NULL && scene_path != NULL && scene.dem_path[0] != '\0' &&
-        scene.dem_path[0] != '/') {
-        const char *slash = strrchr(scene_path, '/');
-        if (slash != NULL) {
-            char joined[sizeof scene.dem_path];
-            int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - scene_path),
-                             scene_path, scene.dem_path);
-            if (n < 0 || (size_t)n >= sizeof joined) {
-                fprintf(stderr, "fixterrain: scene: terrain.dem path too long after joining\n");
-                return FT_EXIT_ERROR;
-            }
-            memcpy(scene.dem_path, joined, (size_t)n + 1u);
-        }
-    }
-    if (dem != NULL) {
-        if (strlen(dem) >= sizeof scene.dem_path) {
-            fprintf(stderr, "fixterrain render: --dem path too long\n");
-            return FT_EXIT_USAGE;
-        }
-        (void)snprintf(scene.dem_path, sizeof scene.dem_path, "%s", dem);
-    }
-    if (method != NULL && !ft_method_from_name(method, &scene.method)) {
-        fprintf(stderr, "fixterrain render: unknown method '%s'\n", method);
-        return FT_EXIT_USAGE;
-    }
-    if (backend != NULL && !ft_backend_from_name(backend, &scene.backend)) {
-        fprintf(stderr, "fixterrain render: unknown backend '%s' (egl-gles3, egl-gles2, osmesa)\n",
-                backend);
-        return FT_EXIT_USAGE;
-    }
-    if (display != NULL && !ft_display_from_name(display, &scene.display)) {
-        fprintf(stderr, "fixterrain render: unknown display '%s' (none, x11)\n", display);
-        return FT_EXIT_USAGE;
-    }
-    if (size != NULL && !parse_size(size, &scene.width_px, &scene.height_px)) {
-        fprintf(stderr, "fixterrain render: --size wants WxH, each 16..8192\n");
-        return FT_EXIT_USAGE;
-    }
-    if (pose != NULL && ft_pose_parse(pose, &scene.pose, &err) != FT_OK) {
-        fprintf(stderr, "fixterrain render: %s\n", err.text);
-        return FT_EXIT_USAGE;
     }
 
     if (ft_app_init(&g_app, &scene, &err) != FT_OK) {
@@ -369,6 +392,162 @@ done:
     return rc;
 }
 
+static void print_replay_help(void)
+{
+    printf("usage: fixterrain replay --log FILE [options]\n"
+           "Feeds a candump log (as `candump -l` writes it) through the CANaerospace\n"
+           "decoder and renders one frame per frame.period_ms of log time. Deterministic.\n\n"
+           "  --log FILE          candump log: (SECONDS.MICROS) IFACE ID#HEXDATA per line\n"
+           "  --scene FILE        scene file (CAN map, frame period, terrain, method)\n"
+           "  --dem FILE, --method NAME, --backend NAME, --size WxH   as for render\n"
+           "  --frames-out DIR    write every frame as DIR/frame_NNNNNN.png\n"
+           "  --poses FILE.csv    one row per frame: time, pose, annunciation, reason\n"
+           "  --stats FILE.json   counters: lines, rejects per reason, annunciated frames\n"
+           "  --frames N          stop after N frames\n"
+           "  --quiet             only errors\n");
+}
+
+static ft_pose_feed g_feed;
+
+static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
+                                    const ft_pose_feed *f, ft_error *err)
+{
+    char rejects[1024];
+    size_t n = 0;
+    for (int i = 0; i < FT_CAN_REJECT_COUNT; ++i) {
+        int w = snprintf(rejects + n, sizeof rejects - n, "%s\"%s\": %llu", i ? ", " : "",
+                         ft_can_reject_name((ft_can_reject)i),
+                         (unsigned long long)f->dec.rejects[i]);
+        if (w < 0 || (size_t)w >= sizeof rejects - n) {
+            return ft_fail(err, FT_ERR_OVERSIZED, "replay stats: reject list too long");
+        }
+        n += (size_t)w;
+    }
+    int len = snprintf(
+        g_stats_text, sizeof g_stats_text,
+        "{\n  \"lines\": %llu,\n  \"lines_bad\": %llu,\n  \"lines_unsupported\": %llu,\n"
+        "  \"gaps\": %llu,\n  \"can_frames\": %llu,\n  \"values_applied\": %llu,\n"
+        "  \"messages_lost\": %llu,\n  \"rejects\": {%s},\n"
+        "  \"frames\": %u,\n  \"frames_annunciated\": %u,\n  \"first_annunciated\": %lld,\n"
+        "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
+        "  \"draw_ms_max\": %.3f\n}\n",
+        (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
+        (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
+        (unsigned long long)f->frames_in, (unsigned long long)f->values_applied,
+        (unsigned long long)f->dec.lost, rejects, r->frames, r->frames_annunciated,
+        r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
+        r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max);
+    if (len < 0 || (size_t)len >= sizeof g_stats_text) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "replay stats longer than %u bytes",
+                       FT_STATS_TEXT_MAX);
+    }
+    ft_file file;
+    ft_status s = ft_plat_file_open_write(&file, path, err);
+    if (s == FT_OK) s = file.writer.write(file.writer.ctx, g_stats_text, (size_t)len);
+    if (s == FT_OK) s = ft_plat_file_finish_write(&file, err);
+    ft_plat_file_close(&file);
+    return s;
+}
+
+static int cmd_replay(int argc, char **argv)
+{
+    scene_opts o;
+    memset(&o, 0, sizeof o);
+    ft_replay_desc d;
+    memset(&d, 0, sizeof d);
+    const char *stats_path = NULL;
+    int quiet = 0;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_replay_help();
+            return FT_EXIT_OK;
+        }
+        if (strcmp(a, "--quiet") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "fixterrain replay: %s needs a value (or unknown option)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        if (strcmp(a, "--log") == 0) d.log_path = v;
+        else if (strcmp(a, "--scene") == 0) o.scene_path = v;
+        else if (strcmp(a, "--dem") == 0) o.dem = v;
+        else if (strcmp(a, "--method") == 0) o.method = v;
+        else if (strcmp(a, "--backend") == 0) o.backend = v;
+        else if (strcmp(a, "--size") == 0) o.size = v;
+        else if (strcmp(a, "--frames-out") == 0) d.frames_dir = v;
+        else if (strcmp(a, "--poses") == 0) d.poses_path = v;
+        else if (strcmp(a, "--stats") == 0) stats_path = v;
+        else if (strcmp(a, "--frames") == 0) {
+            char *end = NULL;
+            unsigned long f = strtoul(v, &end, 10);
+            if (end == v || *end != '\0' || f < 1 || f >= FT_REPLAY_FRAMES_LIMIT) {
+                fprintf(stderr, "fixterrain replay: --frames wants 1..%u\n",
+                        FT_REPLAY_FRAMES_LIMIT - 1u);
+                return FT_EXIT_USAGE;
+            }
+            d.frames_max = (uint32_t)f;
+        } else {
+            fprintf(stderr, "fixterrain replay: unknown option %s (see --help)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        ++i;
+    }
+    if (d.log_path == NULL) {
+        fprintf(stderr, "fixterrain replay: --log FILE is required (see --help)\n");
+        return FT_EXIT_USAGE;
+    }
+    static ft_scene scene;
+    int rc = resolve_scene("replay", &o, &scene);
+    if (rc != FT_EXIT_OK) {
+        return rc;
+    }
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    if (ft_app_init(&g_app, &scene, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain: init failed: %s: %s\n", ft_status_str(err.status), err.text);
+        return FT_EXIT_ERROR;
+    }
+    static ft_replay_result r;
+    ft_status st = ft_app_replay(&g_app, &d, &g_feed, &r, &err);
+    for (uint32_t i = 0; i < r.errors_kept; ++i) {
+        fprintf(stderr, "fixterrain replay: rejected %s\n", r.errors[i]);
+    }
+    if (r.lines_bad + r.lines_unsupported > r.errors_kept) {
+        fprintf(stderr, "fixterrain replay: ... %llu rejected lines in all\n",
+                (unsigned long long)(r.lines_bad + r.lines_unsupported));
+    }
+    if (st != FT_OK) {
+        fprintf(stderr, "fixterrain replay: %s\n", err.text);
+        rc = FT_EXIT_ERROR;
+    }
+    if (st == FT_OK && stats_path != NULL && write_replay_stats(stats_path, &r, &g_feed, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain replay: stats: %s\n", err.text);
+        rc = FT_EXIT_ERROR;
+    }
+    if (!quiet) {
+        printf("replay: %u frames over %.3f s of log (%llu lines, %llu rejected, %llu CAN frames, "
+               "%llu decoder rejects, %llu lost); %u frames annunciated",
+               r.frames, r.log_last_s - r.log_first_s, (unsigned long long)r.lines,
+               (unsigned long long)(r.lines_bad + r.lines_unsupported),
+               (unsigned long long)g_feed.frames_in,
+               (unsigned long long)ft_pose_feed_rejected(&g_feed),
+               (unsigned long long)g_feed.dec.lost, r.frames_annunciated);
+        if (r.first_annunciated != UINT32_MAX) {
+            printf(" (first: frame %u)", r.first_annunciated);
+        }
+        printf("\n");
+        if (r.last_view.annunciate) {
+            printf("replay: the last frame is annunciated: %s\n", r.last_view.reason);
+        }
+    }
+    ft_app_shutdown(&g_app);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -377,6 +556,9 @@ int main(int argc, char **argv)
     const char *cmd = argv[1];
     if (strcmp(cmd, "render") == 0) {
         return cmd_render(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "replay") == 0) {
+        return cmd_replay(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "import") == 0) {
 #if FT_WITH_GDAL_TOOLS

@@ -205,6 +205,12 @@ fail_file:
 ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_frame_stats *st,
                         ft_error *err)
 {
+    return ft_app_render_annunciated(app, pose, NULL, cam, st, err);
+}
+
+ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char *reason,
+                                    ft_camera *cam, ft_frame_stats *st, ft_error *err)
+{
     ft_status s = ft_renderer_camera(&app->renderer, pose, cam, err);
     if (s != FT_OK) {
         return s;
@@ -213,6 +219,9 @@ ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_fra
     ft_renderer_select(&app->renderer, cam); /* CPU LOD selection, its own stage */
     uint64_t t0 = ft_plat_monotonic_ns();
     s = ft_renderer_draw(&app->renderer, cam, st, err);
+    if (s == FT_OK && reason != NULL) {
+        s = ft_renderer_draw_annunciation(&app->renderer, reason, err);
+    }
     uint64_t t1 = ft_plat_monotonic_ns();
     if (s != FT_OK) {
         return s;

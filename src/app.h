@@ -55,6 +55,10 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err);
  * on the display when the scene has one. */
 ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_frame_stats *st,
                         ft_error *err);
+/* The same, with the failure annunciation (red cross + reason) drawn over
+ * the frame when reason is not NULL. */
+ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char *reason,
+                                    ft_camera *cam, ft_frame_stats *st, ft_error *err);
 
 #if FT_WITH_REFERENCE
 /* Position pass + reference + metric for the camera (metric.enabled). */

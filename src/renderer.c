@@ -348,6 +348,11 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return st;
     }
     r->gpu_bytes += ft_method_gpu_bytes(&r->method);
+    st = ft_overlay_init(&r->overlay, gl, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    r->gpu_bytes += FT_OVERLAY_GPU_BYTES;
     if (r->gpu_bytes > s->gpu_texture_bytes) {
         return ft_fail(err, FT_ERR_BUDGET,
                        "GPU memory: textures, targets and buffers need %llu bytes but the scene "
@@ -480,6 +485,13 @@ static void flip_rows(uint8_t *data, size_t row_bytes, uint32_t rows)
     }
 }
 
+ft_status ft_renderer_draw_annunciation(ft_renderer *r, const char *reason, ft_error *err)
+{
+    r->gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+    return ft_overlay_draw_annunciation(&r->overlay, r->gl, r->width_px, r->height_px, reason,
+                                        err);
+}
+
 ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err)
 {
     const ft_gl *gl = r->gl;
@@ -539,6 +551,7 @@ void ft_renderer_shutdown(ft_renderer *r)
         return;
     }
     ft_method_shutdown(&r->method, gl);
+    ft_overlay_shutdown(&r->overlay, gl);
     if (r->prog_color.program) gl->DeleteProgram(r->prog_color.program);
     if (r->present_program) gl->DeleteProgram(r->present_program);
     if (r->present_vbo) gl->DeleteBuffers(1, &r->present_vbo);

@@ -15,6 +15,7 @@
 #include "gpu.h"
 #include "mem_budget.h"
 #include "method.h"
+#include "overlay.h"
 #include "scene.h"
 #include "terrain.h"
 
@@ -72,6 +73,7 @@ typedef struct ft_renderer {
     GLuint present_program, present_vbo; /* display != none only */
     uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */
     float *pos;     /* FT_POOL_FRAME_POS, width*height*4 (NULL if no float target) */
+    ft_overlay overlay; /* the failure annunciation (red cross + reason) */
     float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
     uint64_t gpu_bytes;
     uint64_t frames;
@@ -104,6 +106,10 @@ ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err);
 /* Draws one colour frame into the RGBA8 target. */
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
                            ft_error *err);
+/* Draws the failure annunciation (red cross, reason text) over the colour
+ * target's current frame. */
+ft_status ft_renderer_draw_annunciation(ft_renderer *r, const char *reason, ft_error *err);
+
 /* Reads the colour target into r->rgba (row 0 = top). */
 ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err);
 /* Draws the position pass and reads it into r->pos (row 0 = top).

@@ -1,0 +1,187 @@
+/* replay.c - see replay.h. */
+#include "replay.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "candump.h"
+#include "line_reader.h"
+
+#define FT_REPLAY_ROW_MAX 512u
+
+static void keep_error(ft_replay_result *r, const char *log, uint64_t line_no, const char *text)
+{
+    if (r->errors_kept < FT_REPLAY_ERRORS_KEPT) {
+        (void)snprintf(r->errors[r->errors_kept], FT_REPLAY_ERROR_TEXT_MAX, "%.60s:%llu: %.120s", log,
+                       (unsigned long long)line_no, text);
+        r->errors_kept += 1u;
+    }
+}
+
+/* Next valid record from the log; *have = 0 at the end. Bad lines are
+ * counted and skipped (bounded by the file: every pass consumes a line). */
+static ft_status next_record(ft_line_reader *lr, const char *log, ft_replay_result *r,
+                             ft_candump_record *rec, int *have, ft_error *err)
+{
+    *have = 0;
+    for (;;) {
+        ft_line_kind kind;
+        ft_status st = ft_line_reader_next(lr, &kind, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        if (kind == FT_LINE_END) {
+            return FT_OK;
+        }
+        r->lines += 1u;
+        if (kind == FT_LINE_OVERLONG) {
+            r->lines_bad += 1u;
+            keep_error(r, log, lr->line_no, "line longer than the reader's limit");
+            continue;
+        }
+        if (lr->len == 0u) {
+            continue; /* blank lines are allowed (candump never writes them) */
+        }
+        ft_error e;
+        st = ft_candump_parse_line(lr->line, lr->len, rec, &e);
+        if (st == FT_OK) {
+            *have = 1;
+            return FT_OK;
+        }
+        if (st == FT_ERR_UNSUPPORTED) {
+            r->lines_unsupported += 1u;
+        } else {
+            r->lines_bad += 1u;
+        }
+        keep_error(r, log, lr->line_no, e.text);
+    }
+}
+
+static ft_status write_row(ft_writer *w, uint32_t frame, uint64_t t_ns, const ft_pose_view *v,
+                           ft_error *err)
+{
+    char row[FT_REPLAY_ROW_MAX];
+    const ft_pose *p = &v->pose;
+    int n = snprintf(row, sizeof row,
+                     "%u,%llu.%09llu,%.9f,%.9f,%.4f,%.6f,%.6f,%.6f,%d,%u,%d,\"%s\"\n", frame,
+                     (unsigned long long)(t_ns / 1000000000u),
+                     (unsigned long long)(t_ns % 1000000000u), p->lat_deg, p->lon_deg, p->alt_m,
+                     p->heading_deg, p->pitch_deg, p->roll_deg, v->annunciate, v->stale_mask,
+                     v->predicted, v->reason);
+    if (n < 0 || (size_t)n >= sizeof row) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "pose record row longer than %u bytes",
+                       FT_REPLAY_ROW_MAX);
+    }
+    return w->write(w->ctx, row, (size_t)n);
+}
+
+ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed,
+                        ft_replay_result *r, ft_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->first_annunciated = UINT32_MAX;
+    const ft_scene *s = &app->scene;
+    ft_status st = ft_pose_feed_init(feed, &s->can_map, s->pose_horizon_ms, &s->pose, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const uint64_t period_ns = (uint64_t)(s->frame_period_ms * 1e6 + 0.5);
+    const uint64_t gap_ns = (uint64_t)(FT_REPLAY_GAP_MAX_S * 1e9);
+    static ft_file log_file, pose_file; /* static: ft_file holds a path buffer */
+    static ft_line_reader lr;           /* 5 KiB of buffers: not on the stack */
+    st = ft_plat_file_open_read(&log_file, d->log_path, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    ft_line_reader_init(&lr, &log_file.reader);
+    int poses = 0;
+    if (d->poses_path != NULL) {
+        st = ft_plat_file_open_write(&pose_file, d->poses_path, err);
+        if (st != FT_OK) {
+            ft_plat_file_close(&log_file);
+            return st;
+        }
+        poses = 1;
+        static const char header[] = "frame,t_s,lat_deg,lon_deg,alt_m,heading_deg,pitch_deg,"
+                                     "roll_deg,annunciate,stale_mask,predicted,reason\n";
+        st = pose_file.writer.write(pose_file.writer.ctx, header, sizeof header - 1u);
+    }
+
+    ft_candump_record rec;
+    int have = 0;
+    if (st == FT_OK) {
+        st = next_record(&lr, d->log_path, r, &rec, &have, err);
+    }
+    if (st == FT_OK && !have) {
+        st = ft_fail(err, FT_ERR_FORMAT, "%s: no valid CAN frame in %llu lines", d->log_path,
+                     (unsigned long long)r->lines);
+    }
+    uint64_t t_display = have ? rec.frame.t_ns : 0u;
+    uint64_t t_last = t_display;
+    r->log_first_s = (double)t_display * 1e-9;
+    const uint32_t frames_max =
+        (d->frames_max > 0u && d->frames_max < FT_REPLAY_FRAMES_LIMIT) ? d->frames_max
+                                                                       : FT_REPLAY_FRAMES_LIMIT;
+    for (uint32_t k = 0; st == FT_OK && k < frames_max; ++k) {
+        /* feed everything up to this frame's display time */
+        while (have && rec.frame.t_ns <= t_display) {
+            ft_pose_feed_frame(feed, &rec.frame);
+            t_last = rec.frame.t_ns > t_last ? rec.frame.t_ns : t_last;
+            st = next_record(&lr, d->log_path, r, &rec, &have, err);
+            if (st != FT_OK) {
+                break;
+            }
+            if (have && rec.frame.t_ns > t_last + gap_ns) {
+                r->gaps += 1u; /* resume the timeline at the later frame */
+                t_display = rec.frame.t_ns;
+            }
+        }
+        if (st != FT_OK) {
+            break;
+        }
+        ft_pose_view v;
+        ft_pose_feed_view(feed, t_display, &v);
+        ft_camera cam;
+        ft_frame_stats fs;
+        st = ft_app_render_annunciated(app, &v.pose, v.annunciate ? v.reason : NULL, &cam, &fs,
+                                       err);
+        if (st != FT_OK) {
+            break;
+        }
+        double ms = fs.select_ms + fs.gpu_ms;
+        if (ms > r->draw_ms_max) r->draw_ms_max = ms;
+        r->frames += 1u;
+        r->frames_predicted += (uint32_t)v.predicted;
+        if (v.annunciate) {
+            r->frames_annunciated += 1u;
+            if (r->first_annunciated == UINT32_MAX) r->first_annunciated = k;
+        }
+        r->last_view = v;
+        if (poses) {
+            st = write_row(&pose_file.writer, k, t_display, &v, err);
+        }
+        if (st == FT_OK && d->frames_dir != NULL) {
+            char path[FT_PATH_MAX];
+            int n = snprintf(path, sizeof path, "%s/frame_%06u.png", d->frames_dir, k);
+            if (n < 0 || (size_t)n >= sizeof path) {
+                st = ft_fail(err, FT_ERR_ARG, "--frames-out path too long");
+            } else {
+                st = ft_plat_png_write(path, app->renderer.rgba, s->width_px, s->height_px,
+                                       &app->arena, err);
+            }
+        }
+        if (!have && t_display >= t_last) {
+            break; /* the log is done and this frame showed its end */
+        }
+        t_display += period_ns;
+    }
+    r->log_last_s = (double)t_last * 1e-9;
+    if (poses) {
+        if (st == FT_OK) {
+            st = ft_plat_file_finish_write(&pose_file, err);
+        }
+        ft_plat_file_close(&pose_file);
+    }
+    ft_plat_file_close(&log_file);
+    return st;
+}

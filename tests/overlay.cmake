@@ -14,9 +14,12 @@ if(TARGET ft_app)
   if(FIXTERRAIN_WITH_EGL)
     add_test(NAME overlay_egl_gles3 COMMAND test_overlay egl-gles3)
     add_test(NAME overlay_egl_gles2_strict COMMAND test_overlay egl-gles2)
-    set_tests_properties(overlay_egl_gles2_strict PROPERTIES
+    # 640x480: glyph pixel 2, bars 14 px
+    add_test(NAME overlay_egl_gles2_strict_640x480 COMMAND test_overlay egl-gles2 640x480)
+    set_tests_properties(overlay_egl_gles2_strict overlay_egl_gles2_strict_640x480 PROPERTIES
                          ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
-    set_tests_properties(overlay_egl_gles3 overlay_egl_gles2_strict PROPERTIES TIMEOUT 300)
+    set_tests_properties(overlay_egl_gles3 overlay_egl_gles2_strict
+                         overlay_egl_gles2_strict_640x480 PROPERTIES TIMEOUT 300)
   endif()
   if(FIXTERRAIN_WITH_OSMESA)
     add_test(NAME overlay_osmesa COMMAND test_overlay osmesa)

@@ -1,9 +1,13 @@
 /* test_overlay.c - the failure annunciation overlay and its 5x7 font.
  *
  * usage: test_overlay cpu        font table and layout rules (no GPU)
- *        test_overlay BACKEND    the above, then real frames: the embedded
- *                                default scene at 320x240, the annunciation
- *                                drawn into the renderer's colour target
+ *        test_overlay BACKEND [WxH [OUT.rgba]]
+ *                                the above, then real frames: the embedded
+ *                                default scene at WxH (default 320x240, at
+ *                                most 1024 per side), the annunciation drawn
+ *                                into the renderer's colour target
+ *                                (OUT.rgba: one of them, raw RGBA, row 0 at
+ *                                the top, for a person to look at)
  *
  * Built twice (tests/overlay.cmake): FT_OVERLAY_TEST_GL = 0 links the core
  * only; FT_OVERLAY_TEST_GL = 1 links the app and accepts a backend.
@@ -205,12 +209,14 @@ static void test_layout(void)
 
 #if FT_OVERLAY_TEST_GL
 
-#define W 320u
-#define H 240u
+#define VIEW_MAX_PX 1024u
+
+static uint32_t W = 320u, H = 240u; /* the view (argument WxH) */
 
 static ft_app g_app;
 static ft_overlay g_ov;
-static uint8_t g_base[W * H * 4u];
+static uint8_t g_base[VIEW_MAX_PX * VIEW_MAX_PX * 4u];
+static size_t g_frame_bytes;
 static ft_scene g_scene;
 
 static int is_red(const uint8_t *p)
@@ -274,7 +280,7 @@ static result annunciate(const char *reason, ft_overlay_layout *l)
     result res;
     memset(&res, 0, sizeof res);
     render_base();
-    memcpy(g_base, g_app.renderer.rgba, sizeof g_base);
+    memcpy(g_base, g_app.renderer.rgba, g_frame_bytes);
     const ft_gl *gl = &g_app.gpu.gl;
     gl->BindFramebuffer(GL_FRAMEBUFFER, g_app.renderer.fbo_color);
     ft_status st = ft_overlay_draw_annunciation(&g_ov, gl, W, H, reason, &err);
@@ -325,7 +331,7 @@ static result annunciate(const char *reason, ft_overlay_layout *l)
     CHECK(res.box_mismatch == 0u);
     CHECK(res.band_not_red == 0u);
     CHECK(res.far_changed == 0u);
-    CHECK(res.band_checked > 2u * W);   /* two bars of ~5 px over ~400 px */
+    CHECK(res.band_checked > 2u * W); /* two bars >= 5 px wide, each longer than W */
     CHECK(res.far_checked > W * H / 2u);
     return res;
 }
@@ -352,7 +358,7 @@ static void check_diagonals(const ft_overlay_layout *l)
     CHECK(is_red(px + ((size_t)(H / 2u) * W + W / 2u) * 4u)); /* where the bars cross */
 }
 
-static void test_gl(const char *backend)
+static void test_gl(const char *backend, const char *out_path)
 {
     ft_error err;
     ft_scene_defaults(&g_scene);
@@ -360,6 +366,7 @@ static void test_gl(const char *backend)
     REQUIRE(ft_backend_from_name(backend, &g_scene.backend));
     g_scene.width_px = W;
     g_scene.height_px = H;
+    g_frame_bytes = (size_t)W * H * 4u;
     ft_status st = ft_app_init(&g_app, &g_scene, &err);
     if (st != FT_OK) {
         fprintf(stderr, "init: %s\n", err.text);
@@ -415,11 +422,17 @@ static void test_gl(const char *backend)
 
     /* the terrain still renders normally after the overlay changed GL state */
     render_base();
-    CHECK(memcmp(g_base, g_app.renderer.rgba, sizeof g_base) == 0);
+    CHECK(memcmp(g_base, g_app.renderer.rgba, g_frame_bytes) == 0);
 
     /* lower case, digits, punctuation, an unknown character */
     const result r_mixed = annunciate("pose invalid: pitch 95.5 (>90) @", &l);
     CHECK(r_mixed.red_in_box > r_position.red_in_box);
+    if (out_path != NULL) {
+        FILE *f = fopen(out_path, "wb");
+        REQUIRE(f != NULL);
+        CHECK(fwrite(g_app.renderer.rgba, 1, g_frame_bytes, f) == g_frame_bytes);
+        CHECK(fclose(f) == 0);
+    }
 
     /* empty and NULL reasons: the cross only, no box */
     const result r_empty = annunciate("", &l);
@@ -429,14 +442,15 @@ static void test_gl(const char *backend)
     (void)annunciate(NULL, &l);
     check_diagonals(&l);
 
-    /* 500 characters: cut to what fits the 320 px view, ending in "..." */
+    /* 500 characters: cut to what fits the view, ending in "..." */
     static char longr[501];
     for (unsigned i = 0; i < 500u; ++i) {
         longr[i] = "NO HEADING 250 MS "[i % 18u];
     }
     longr[500] = '\0';
     const result r_long = annunciate(longr, &l);
-    CHECK(l.truncated && l.chars == 52u);
+    const uint32_t fit = (W - 9u) / 6u + 1u; /* characters that fit at glyph pixel 1 */
+    CHECK(l.truncated && l.chars == (fit < FT_OVERLAY_TEXT_MAX ? fit : FT_OVERLAY_TEXT_MAX));
     CHECK(strcmp(l.text + l.chars - 3u, "...") == 0);
     CHECK(r_long.red_in_box > r_heading.red_in_box);
     CHECK(strlen(longr) == 500u); /* the input is untouched */
@@ -461,7 +475,15 @@ int main(int argc, char **argv)
     test_layout();
     if (argc >= 2 && strcmp(argv[1], "cpu") != 0) {
 #if FT_OVERLAY_TEST_GL
-        test_gl(argv[1]);
+        if (argc >= 3) {
+            unsigned w = 0, h = 0;
+            char tail = 0;
+            REQUIRE(sscanf(argv[2], "%ux%u%c", &w, &h, &tail) == 2);
+            REQUIRE(w >= 64u && h >= 64u && w <= VIEW_MAX_PX && h <= VIEW_MAX_PX);
+            W = w;
+            H = h;
+        }
+        test_gl(argv[1], argc >= 4 ? argv[3] : NULL);
 #else
         fprintf(stderr, "this build of test_overlay has no GL (FT_OVERLAY_TEST_GL = 0)\n");
         return 1;

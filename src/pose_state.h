@@ -84,6 +84,9 @@ const char *ft_pose_qty_unit(ft_pose_qty q); /* "deg" */
 /* Below this cos(pitch) the roll/heading split is numerically meaningless
  * (1e-9 is pitch within 5.7e-8 deg of +-90). */
 #define FT_POSE_GIMBAL_COS_EPS 1e-9
+/* Staggered angle samples are aligned (Euler rates) only while |cos(pitch)|
+ * exceeds this (pitch within about 89.4 deg of level). */
+#define FT_POSE_ALIGN_COS_MIN 1e-2
 
 /* Annunciation text, e.g. "no heading for 250 ms (+2 more)". */
 #define FT_POSE_REASON_MAX 64

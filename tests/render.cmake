@@ -56,7 +56,7 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
     add_test(NAME no_heap_egl COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap.png egl-gles3)
     if(FIXTERRAIN_WITH_METHOD_BINTREE)
       add_test(NAME no_heap_bintree_egl COMMAND test_no_heap
-               ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree.png egl-gles3 bintree)
+               ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree.png egl-gles3 bintree replay)
       add_test(NAME no_heap_bintree_gles2 COMMAND test_no_heap
                ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree_es2.png egl-gles2 bintree)
       set_tests_properties(no_heap_bintree_gles2 PROPERTIES

@@ -44,6 +44,8 @@ void ft_plat_mem_release(void *p, size_t bytes);
 /* ---- clock ------------------------------------------------------------------ */
 uint64_t ft_plat_monotonic_ns(void);
 void ft_plat_sleep_ms(uint32_t ms);
+/* Sleeps ns (at most 1 s) on the monotonic clock (a signal does not cut it short). */
+void ft_plat_sleep_ns(uint64_t ns);
 
 /* ---- PNG output -------------------------------------------------------------- */
 /* rgba: width*height*4 bytes, row 0 = top. libpng and zlib allocate only from

@@ -18,6 +18,7 @@
 #ifndef FT_POSE_FEED_H
 #define FT_POSE_FEED_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "canaero.h"
@@ -50,6 +51,17 @@ ft_status ft_pose_feed_init(ft_pose_feed *f, const ft_can_map *map, uint32_t hor
 void ft_pose_feed_frame(ft_pose_feed *f, const ft_can_frame *frame);
 
 void ft_pose_feed_view(const ft_pose_feed *f, uint64_t t_ns, ft_pose_view *out);
+
+/* One row of a pose record (replay and run write the same CSV):
+ *   frame,t_s,lat_deg,lon_deg,alt_m,heading_deg,pitch_deg,roll_deg,
+ *   annunciate,stale_mask,predicted,frozen,source,reason
+ * Returns the length, or 0 if it does not fit in cap. */
+#define FT_POSE_ROW_HEADER                                                              \
+    "frame,t_s,lat_deg,lon_deg,alt_m,heading_deg,pitch_deg,roll_deg,annunciate,stale_mask," \
+    "predicted,frozen,source,reason\n"
+#define FT_POSE_ROW_MAX 512u
+size_t ft_pose_row_format(char *buf, size_t cap, uint32_t frame, uint64_t t_ns,
+                          const ft_pose_view *v, int frozen, int source);
 
 /* Frames rejected for any reason (sum of f->dec.rejects). */
 uint64_t ft_pose_feed_rejected(const ft_pose_feed *f);

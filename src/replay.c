@@ -7,7 +7,6 @@
 #include "candump.h"
 #include "line_reader.h"
 
-#define FT_REPLAY_ROW_MAX 512u
 
 static void keep_error(ft_replay_result *r, const char *log, uint64_t line_no, const char *text)
 {
@@ -60,19 +59,13 @@ static ft_status next_record(ft_line_reader *lr, const char *log, ft_replay_resu
 static ft_status write_row(ft_writer *w, uint32_t frame, uint64_t t_ns, const ft_pose_view *v,
                            ft_error *err)
 {
-    char row[FT_REPLAY_ROW_MAX];
-    const ft_pose *p = &v->pose;
-    int n = snprintf(row, sizeof row,
-                     "%u,%llu.%09llu,%.9f,%.9f,%.4f,%.6f,%.6f,%.6f,%d,%u,%d,\"%s\"\n", frame,
-                     (unsigned long long)(t_ns / 1000000000u),
-                     (unsigned long long)(t_ns % 1000000000u), p->lat_deg, p->lon_deg, p->alt_m,
-                     p->heading_deg, p->pitch_deg, p->roll_deg, v->annunciate, v->stale_mask,
-                     v->predicted, v->reason);
-    if (n < 0 || (size_t)n >= sizeof row) {
+    char row[FT_POSE_ROW_MAX];
+    size_t n = ft_pose_row_format(row, sizeof row, frame, t_ns, v, 0, 0);
+    if (n == 0u) {
         return ft_fail(err, FT_ERR_OVERSIZED, "pose record row longer than %u bytes",
-                       FT_REPLAY_ROW_MAX);
+                       FT_POSE_ROW_MAX);
     }
-    return w->write(w->ctx, row, (size_t)n);
+    return w->write(w->ctx, row, n);
 }
 
 ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed,
@@ -102,8 +95,7 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
             return st;
         }
         poses = 1;
-        static const char header[] = "frame,t_s,lat_deg,lon_deg,alt_m,heading_deg,pitch_deg,"
-                                     "roll_deg,annunciate,stale_mask,predicted,reason\n";
+        static const char header[] = FT_POSE_ROW_HEADER;
         st = pose_file.writer.write(pose_file.writer.ctx, header, sizeof header - 1u);
     }
 

@@ -1,6 +1,7 @@
 /* live.c - see live.h. */
 #include "live.h"
 
+#include <stdio.h>
 #include <string.h>
 
 static ft_status open_inputs(ft_live *lv, const ft_scene *s, ft_error *err)

@@ -10,6 +10,11 @@
 #include "app.h"
 #include "platform_api.h"
 #include "replay.h"
+#if FT_WITH_CAN && FT_WITH_GPIO
+#include <signal.h>
+
+#include "live.h"
+#endif
 #include "scene.h"
 #if FT_WITH_GDAL_TOOLS
 #include "../tools/import_gdal.h"
@@ -51,6 +56,7 @@ static void print_help(void)
            "commands:\n"
            "  render    render one frame of a scene offscreen to PNG\n"
            "  replay    render a candump log of CANaerospace pose messages\n"
+           "  run       live: pose from CAN and GPIO, frames at the scene's rate\n"
            "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file%s\n"
            "  help      this text\n\n"
            "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
@@ -548,6 +554,160 @@ static int cmd_replay(int argc, char **argv)
     return rc;
 }
 
+#if FT_WITH_CAN && FT_WITH_GPIO
+static volatile sig_atomic_t g_stop;
+_Static_assert(sizeof(sig_atomic_t) == sizeof(int), "the stop flag is read as an int");
+
+static void on_stop_signal(int sig)
+{
+    (void)sig;
+    g_stop = 1;
+}
+
+static void print_run_help(void)
+{
+    printf("usage: fixterrain run --scene FILE [options]\n"
+           "Live: pose from SocketCAN (can.interface, can.backup_interface) and GPIO\n"
+           "(gpio.*), one frame per frame.period_ms, until SIGINT/SIGTERM or --frames.\n\n"
+           "  --scene FILE        scene file (CAN map, interfaces, GPIO lines, period)\n"
+           "  --dem FILE, --method NAME, --backend NAME, --display NAME, --size WxH\n"
+           "  --poses FILE.csv    one row per frame: time, pose, annunciation, freeze, source\n"
+           "  --stats FILE.json   frames, deadline misses, CAN frames, rejects, GPIO, heartbeat\n"
+           "  --frames N          stop after N frames\n"
+           "  --quiet             only errors\n");
+}
+
+static ft_live g_live;
+
+static ft_status write_run_stats(const char *path, const ft_live_result *r, const ft_pose_feed *f,
+                                 ft_error *err)
+{
+    int len = snprintf(
+        g_stats_text, sizeof g_stats_text,
+        "{\n  \"frames\": %u,\n  \"deadline_misses\": %u,\n  \"frame_ms_max\": %.3f,\n"
+        "  \"frames_annunciated\": %u,\n  \"frames_frozen\": %u,\n  \"frames_test\": %u,\n"
+        "  \"frames_backup\": %u,\n  \"source_switches\": %u,\n"
+        "  \"can_frames\": [%llu, %llu],\n  \"can_dropped\": [%llu, %llu],\n"
+        "  \"decoder_rejects\": %llu,\n  \"messages_lost\": %llu,\n"
+        "  \"gpio_edges\": %llu,\n  \"gpio_changes\": %llu,\n  \"heartbeat_toggles\": %llu,\n"
+        "  \"t_start_ns\": %llu,\n  \"t_first_rx_ns\": %llu\n}\n",
+        r->frames, r->deadline_misses, r->frame_ms_max, r->frames_annunciated, r->frames_frozen,
+        r->frames_test, r->frames_backup, r->source_switches,
+        (unsigned long long)r->can_frames[0], (unsigned long long)r->can_frames[1],
+        (unsigned long long)r->can_dropped[0], (unsigned long long)r->can_dropped[1],
+        (unsigned long long)ft_pose_feed_rejected(f), (unsigned long long)f->dec.lost,
+        (unsigned long long)r->gpio_edges, (unsigned long long)r->gpio_changes,
+        (unsigned long long)r->heartbeat_toggles, (unsigned long long)r->t_start_ns,
+        (unsigned long long)r->t_first_rx_ns);
+    if (len < 0 || (size_t)len >= sizeof g_stats_text) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "run stats too long");
+    }
+    ft_file file;
+    ft_status s = ft_plat_file_open_write(&file, path, err);
+    if (s == FT_OK) s = file.writer.write(file.writer.ctx, g_stats_text, (size_t)len);
+    if (s == FT_OK) s = ft_plat_file_finish_write(&file, err);
+    ft_plat_file_close(&file);
+    return s;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    scene_opts o;
+    memset(&o, 0, sizeof o);
+    ft_live_desc d;
+    memset(&d, 0, sizeof d);
+    const char *stats_path = NULL;
+    int quiet = 0;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_run_help();
+            return FT_EXIT_OK;
+        }
+        if (strcmp(a, "--quiet") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "fixterrain run: %s needs a value (or unknown option)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        if (strcmp(a, "--scene") == 0) o.scene_path = v;
+        else if (strcmp(a, "--dem") == 0) o.dem = v;
+        else if (strcmp(a, "--method") == 0) o.method = v;
+        else if (strcmp(a, "--backend") == 0) o.backend = v;
+        else if (strcmp(a, "--display") == 0) o.display = v;
+        else if (strcmp(a, "--size") == 0) o.size = v;
+        else if (strcmp(a, "--poses") == 0) d.poses_path = v;
+        else if (strcmp(a, "--stats") == 0) stats_path = v;
+        else if (strcmp(a, "--frames") == 0) {
+            char *end = NULL;
+            unsigned long f = strtoul(v, &end, 10);
+            if (end == v || *end != '\0' || f < 1 || f > 100000000ul) {
+                fprintf(stderr, "fixterrain run: --frames wants 1..100000000\n");
+                return FT_EXIT_USAGE;
+            }
+            d.frames_max = (uint32_t)f;
+        } else {
+            fprintf(stderr, "fixterrain run: unknown option %s (see --help)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        ++i;
+    }
+    static ft_scene scene;
+    int rc = resolve_scene("run", &o, &scene);
+    if (rc != FT_EXIT_OK) {
+        return rc;
+    }
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    if (sigemptyset(&sa.sa_mask) != 0 || sigaction(SIGINT, &sa, NULL) != 0 ||
+        sigaction(SIGTERM, &sa, NULL) != 0) {
+        fprintf(stderr, "fixterrain run: cannot install the SIGINT/SIGTERM handlers\n");
+        return FT_EXIT_ERROR;
+    }
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    if (ft_app_init(&g_app, &scene, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain: init failed: %s: %s\n", ft_status_str(err.status), err.text);
+        return FT_EXIT_ERROR;
+    }
+    if (!quiet) {
+        printf("fixterrain run: %s on %s, CAN %s%s%s, GPIO %s, %.3f ms frames\n",
+               ft_method_name(scene.method), ft_backend_name(scene.backend), scene.can_iface,
+               scene.can_backup_iface[0] ? " + backup " : "", scene.can_backup_iface,
+               scene.gpio_chip[0] ? scene.gpio_chip : "none", scene.frame_period_ms);
+        (void)fflush(stdout);
+    }
+    d.stop = (const volatile int *)&g_stop;
+    static ft_live_result r;
+    ft_status st = ft_app_run_live(&g_app, &d, &g_live, &g_feed, &r, &err);
+    if (st != FT_OK) {
+        fprintf(stderr, "fixterrain run: %s\n", err.text);
+        rc = FT_EXIT_ERROR;
+    }
+    if (stats_path != NULL && write_run_stats(stats_path, &r, &g_feed, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain run: stats: %s\n", err.text);
+        rc = FT_EXIT_ERROR;
+    }
+    if (!quiet) {
+        printf("run: %u frames, %u deadline misses (slowest %.1f ms), %u annunciated, "
+               "CAN %llu + %llu frames (%llu rejected, %llu lost), %u source switches, "
+               "%llu GPIO edges, %llu heartbeat toggles%s\n",
+               r.frames, r.deadline_misses, r.frame_ms_max, r.frames_annunciated,
+               (unsigned long long)r.can_frames[0], (unsigned long long)r.can_frames[1],
+               (unsigned long long)ft_pose_feed_rejected(&g_feed),
+               (unsigned long long)g_feed.dec.lost, r.source_switches,
+               (unsigned long long)r.gpio_edges, (unsigned long long)r.heartbeat_toggles,
+               g_stop ? " (stopped by a signal)" : "");
+    }
+    ft_app_shutdown(&g_app);
+    return rc;
+}
+#endif
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -559,6 +719,15 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "replay") == 0) {
         return cmd_replay(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "run") == 0) {
+#if FT_WITH_CAN && FT_WITH_GPIO
+        return cmd_run(argc - 1, argv + 1);
+#else
+        fprintf(stderr, "fixterrain: 'run' was left out of this build "
+                        "(FIXTERRAIN_WITH_CAN and FIXTERRAIN_WITH_GPIO are needed)\n");
+        return FT_EXIT_ERROR;
+#endif
     }
     if (strcmp(cmd, "import") == 0) {
 #if FT_WITH_GDAL_TOOLS

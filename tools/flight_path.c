@@ -933,7 +933,11 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
             switch ((flightgen_msg)m) {
             case FLIGHTGEN_PITCH: v = smp.pitch_deg; break;
             case FLIGHTGEN_ROLL: v = smp.roll_deg; break;
-            case FLIGHTGEN_HEADING: v = smp.heading_deg; break;
+            case FLIGHTGEN_HEADING:
+                /* 359.99999 rounds to 360.0f: send the same direction as 0 to
+                 * stay in [0, 360) */
+                v = ((float)smp.heading_deg >= 360.0f) ? 0.0 : smp.heading_deg;
+                break;
             case FLIGHTGEN_ROLL_RATE: v = smp.p_deg_s; break;
             case FLIGHTGEN_PITCH_RATE: v = smp.q_deg_s; break;
             case FLIGHTGEN_YAW_RATE: v = smp.r_deg_s; break;

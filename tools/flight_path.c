@@ -835,7 +835,7 @@ static uint32_t float_bits(double v)
 static ft_status check_time_opt(const char *what, double v, ft_error *err)
 {
     if (!isnan(v) && !isfinite(v)) {
-        return ft_fail(err, FT_ERR_ARG, "flightgen: %s must be a finite time", what);
+        return ft_fail(err, FT_ERR_ARG, "%s must be a finite time", what);
     }
     return FT_OK;
 }
@@ -847,23 +847,23 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
     flightgen_stats *st = stats != NULL ? stats : &local;
     memset(st, 0, sizeof *st);
     if (p == NULL || o == NULL || sink == NULL || !p->finished) {
-        return ft_fail(err, FT_ERR_ARG, "flightgen: no finished path, options or sink");
+        return ft_fail(err, FT_ERR_ARG, "no finished path, options or sink");
     }
     const char *nul = memchr(o->iface, '\0', sizeof o->iface);
     size_t if_len = nul != NULL ? (size_t)(nul - o->iface) : sizeof o->iface;
     if (if_len == 0u || if_len > FT_CANDUMP_IFACE_MAX) {
-        return ft_fail(err, FT_ERR_ARG, "flightgen: interface name must be 1..%u characters",
+        return ft_fail(err, FT_ERR_ARG, "interface name must be 1..%u characters",
                        FT_CANDUMP_IFACE_MAX);
     }
     if (o->start_us > FLIGHTGEN_START_MAX_US) {
-        return ft_fail(err, FT_ERR_ARG, "flightgen: start time beyond %llu s",
+        return ft_fail(err, FT_ERR_ARG, "start time beyond %llu s",
                        (unsigned long long)(FLIGHTGEN_START_MAX_US / 1000000u));
     }
     double dur_s = flight_path_duration_s(p);
     if (!isnan(o->duration_s)) {
         if (!(o->duration_s > 0.0 && o->duration_s <= dur_s)) {
             return ft_fail(err, FT_ERR_ARG,
-                           "flightgen: duration %g s must be > 0 and at most the path's %g s",
+                           "duration %g s must be > 0 and at most the path's %g s",
                            o->duration_s, dur_s);
         }
         dur_s = o->duration_s;
@@ -881,7 +881,7 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
     int stall = !isnan(o->stall_from_s) || !isnan(o->stall_to_s);
     if (stall && !(isfinite(o->stall_from_s) && isfinite(o->stall_to_s) &&
                    o->stall_from_s < o->stall_to_s)) {
-        return ft_fail(err, FT_ERR_ARG, "flightgen: --stall FROM,TO needs finite FROM < TO");
+        return ft_fail(err, FT_ERR_ARG, "--stall FROM,TO needs finite FROM < TO");
     }
 
     gen_out g = {sink, ctx, o->iface, st};

@@ -19,4 +19,23 @@ if(CMAKE_SYSTEM_NAME STREQUAL "Linux")
     TIMEOUT 400
     LABELS vm
     ENVIRONMENT "FT_VM_DIR=${CMAKE_BINARY_DIR}/vm;FT_VM_TIMEOUT=300")
+
+  # The platform CAN and GPIO code (platform/can_socketcan.c, gpio_gpiod.c)
+  # against vcan0 and gpio-sim: one boot, tests/vm/guest-platform.sh.
+  if(TARGET ft_platform AND FIXTERRAIN_WITH_CAN AND FIXTERRAIN_WITH_GPIO)
+    add_executable(vm_platform_check ${CMAKE_SOURCE_DIR}/tests/vm/platform-check.c)
+    target_compile_options(vm_platform_check PRIVATE ${FT_WARNINGS})
+    target_link_libraries(vm_platform_check PRIVATE ft_platform)
+
+    file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/test-out/vm_platform)
+    add_test(NAME vm_platform
+             COMMAND ${CMAKE_SOURCE_DIR}/tests/vm/run-vm.sh
+                     "tests/vm/guest-platform.sh $<TARGET_FILE:vm_platform_check>"
+                     ${CMAKE_BINARY_DIR}/test-out/vm_platform
+             WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+    set_tests_properties(vm_platform PROPERTIES
+      TIMEOUT 400
+      LABELS vm
+      ENVIRONMENT "FT_VM_DIR=${CMAKE_BINARY_DIR}/vm;FT_VM_TIMEOUT=300")
+  endif()
 endif()

@@ -74,6 +74,10 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
     memset(r, 0, sizeof *r);
     r->first_annunciated = UINT32_MAX;
     const ft_scene *s = &app->scene;
+    if (d->frames_dir != NULL && !FT_WITH_PNG) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "--frames-out: PNG output was left out of this build (FIXTERRAIN_WITH_PNG)");
+    }
     ft_status st = ft_pose_feed_init(feed, &s->can_map, s->pose_horizon_ms, &s->pose, err);
     if (st != FT_OK) {
         return st;
@@ -158,8 +162,10 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
             if (n < 0 || (size_t)n >= sizeof path) {
                 st = ft_fail(err, FT_ERR_ARG, "--frames-out path too long");
             } else {
+#if FT_WITH_PNG
                 st = ft_plat_png_write(path, app->renderer.rgba, s->width_px, s->height_px,
                                        &app->arena, err);
+#endif
             }
         }
         if (!have && t_display >= t_last) {

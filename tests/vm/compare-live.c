@@ -1,0 +1,179 @@
+/* compare-live.c - checks a live run (`fixterrain run` in the VM, fed by
+ * canplayer on vcan0) against `fixterrain replay` of the same log.
+ *
+ * usage: compare-live LIVE.csv LIVE.json REPLAY.csv LOG_T0_S STALL_FROM_S STALL_TO_S
+ *                     PERIOD_MS TIMEOUT_MS
+ * Time mapping: log time = live monotonic time - t_first_rx_ns + LOG_T0_S
+ * (canplayer sends the first frame at once and keeps the log's spacing).
+ * Tolerances (stated, with why):
+ *   attitude 0.5 deg: receive latency and canplayer's timing jitter in the
+ *     emulated VM (a few ms) times the path's turn rate (< 10 deg/s);
+ *   lat/lon 1e-4 deg, alt 2 m: position is held between 10 Hz samples, so a
+ *     live frame a few ms off the replay's timing may hold the neighbouring
+ *     sample (the path moves < 10 m per sample);
+ *   annunciation: the first annunciated frame after the stall starts must
+ *     come no later than timeout + one period + 20 ms of jitter after the
+ *     last frame before it, and none before the timeout; recovery no later
+ *     than one period + 20 ms (+ the position timeout logic) after data is
+ *     back.
+ * Rows that are frozen or in the annunciation test are checked separately:
+ * frozen rows hold one pose; test rows say ANNUNCIATION TEST. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define ROWS_MAX 200000
+
+typedef struct row {
+    double t_s, lat, lon, alt, hdg, pitch, roll;
+    int ann, pred, frozen, source;
+    char reason[80];
+} row;
+
+static row g_live[ROWS_MAX], g_rep[ROWS_MAX];
+
+static int load(const char *path, row *rows)
+{
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        fprintf(stderr, "cannot open %s\n", path);
+        exit(2);
+    }
+    char line[1024];
+    int n = 0;
+    if (fgets(line, sizeof line, f) == NULL) { /* header */
+        fclose(f);
+        return 0;
+    }
+    while (n < ROWS_MAX && fgets(line, sizeof line, f) != NULL) {
+        row *r = &rows[n];
+        unsigned k, mask;
+        int used = 0;
+        if (sscanf(line, "%u,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%u,%d,%d,%d,%n", &k, &r->t_s, &r->lat,
+                   &r->lon, &r->alt, &r->hdg, &r->pitch, &r->roll, &r->ann, &mask, &r->pred,
+                   &r->frozen, &r->source, &used) < 13) {
+            fprintf(stderr, "%s: bad row %d: %s", path, n + 2, line);
+            exit(2);
+        }
+        (void)snprintf(r->reason, sizeof r->reason, "%s", line + used);
+        ++n;
+    }
+    fclose(f);
+    return n;
+}
+
+static double ang_diff(double a, double b)
+{
+    return fabs(fmod(a - b + 540.0, 360.0) - 180.0);
+}
+
+/* replay pose at log time t (linear between rows; headings unwrapped) */
+static int replay_at(int n, double t, row *out)
+{
+    int lo = 0, hi = n - 1;
+    if (n < 2 || t < g_rep[0].t_s || t > g_rep[n - 1].t_s) return 0;
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (g_rep[mid].t_s <= t) lo = mid; else hi = mid;
+    }
+    const row *a = &g_rep[lo], *b = &g_rep[hi];
+    double w = (t - a->t_s) / (b->t_s - a->t_s);
+    *out = *a;
+    double dh = fmod(b->hdg - a->hdg + 540.0, 360.0) - 180.0;
+    out->hdg = fmod(a->hdg + w * dh + 360.0, 360.0);
+    out->pitch = a->pitch + w * (b->pitch - a->pitch);
+    out->roll = a->roll + w * (b->roll - a->roll);
+    out->ann = a->ann || b->ann;
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 9) {
+        fprintf(stderr, "usage: %s LIVE.csv LIVE.json REPLAY.csv LOG_T0_S STALL_FROM_S STALL_TO_S "
+                        "PERIOD_MS TIMEOUT_MS\n", argv[0]);
+        return 2;
+    }
+    const int nl = load(argv[1], g_live), nr = load(argv[3], g_rep);
+    FILE *jf = fopen(argv[2], "r");
+    if (jf == NULL) return 2;
+    static char json[8192];
+    size_t jn = fread(json, 1, sizeof json - 1, jf);
+    json[jn] = '\0';
+    fclose(jf);
+    const char *p = strstr(json, "\"t_first_rx_ns\": ");
+    if (p == NULL) return 2;
+    const double t_rx0_s = strtod(p + 17, NULL) * 1e-9;
+    const double log_t0 = atof(argv[4]), stall_from = atof(argv[5]), stall_to = atof(argv[6]);
+    const double period_s = atof(argv[7]) * 1e-3, timeout_s = atof(argv[8]) * 1e-3;
+    const double jitter_s = 0.020;
+    int fails = 0, compared = 0, frozen_rows = 0, test_rows = 0;
+    double worst_att = 0.0, worst_pos = 0.0, worst_alt = 0.0;
+    double first_ann = -1.0, last_before = -1.0, recovered = -1.0;
+    double frozen_hdg = NAN;
+    for (int i = 0; i < nl; ++i) {
+        const row *r = &g_live[i];
+        const double t_log = r->t_s - t_rx0_s + log_t0; /* log time of this frame */
+        const double t_path = t_log - log_t0;
+        if (strstr(r->reason, "ANNUNCIATION TEST") != NULL) {
+            ++test_rows;
+            continue;
+        }
+        if (r->frozen) {
+            if (isnan(frozen_hdg) || (i > 0 && !g_live[i - 1].frozen)) frozen_hdg = r->hdg;
+            if (r->hdg != frozen_hdg) {
+                fprintf(stderr, "frozen row %d moved: heading %.6f vs %.6f\n", i, r->hdg,
+                        frozen_hdg);
+                ++fails;
+            }
+            ++frozen_rows;
+            continue;
+        }
+        if (t_path >= stall_from - 1.0 && t_path < stall_from && !r->ann) last_before = t_path;
+        if (t_path >= stall_from && r->ann && first_ann < 0.0) first_ann = t_path;
+        if (t_path >= stall_to && !r->ann && recovered < 0.0 && first_ann >= 0.0) recovered = t_path;
+        row e;
+        if (r->ann || !replay_at(nr, t_log, &e) || e.ann) continue;
+        if (t_path < 0.5) continue; /* start-up: the feed fills within the first frames */
+        const double da = fmax(ang_diff(r->hdg, e.hdg),
+                               fmax(fabs(r->pitch - e.pitch), ang_diff(r->roll, e.roll)));
+        const double dp = fmax(fabs(r->lat - e.lat), fabs(r->lon - e.lon));
+        const double dz = fabs(r->alt - e.alt);
+        if (da > worst_att) worst_att = da;
+        if (dp > worst_pos) worst_pos = dp;
+        if (dz > worst_alt) worst_alt = dz;
+        if (da > 0.5 || dp > 1e-4 || dz > 2.0) {
+            if (fails < 10) {
+                fprintf(stderr, "frame %d (path %.3f s): live hdg %.3f pitch %.3f roll %.3f, "
+                        "replay %.3f %.3f %.3f; dpos %.2e dalt %.2f\n", i, t_path, r->hdg,
+                        r->pitch, r->roll, e.hdg, e.pitch, e.roll, dp, dz);
+            }
+            ++fails;
+        }
+        ++compared;
+    }
+    printf("compare-live: %d live rows, %d compared with the replay: worst attitude %.4f deg, "
+           "position %.2e deg, altitude %.3f m; %d frozen rows, %d test rows\n",
+           nl, compared, worst_att, worst_pos, worst_alt, frozen_rows, test_rows);
+    printf("compare-live: stall %.3f..%.3f s: last good frame %.3f s, first annunciated %.3f s "
+           "(allowed %.3f..%.3f), recovered %.3f s (allowed <= %.3f)\n",
+           stall_from, stall_to, last_before, first_ann, stall_from + timeout_s - 0.0125,
+           stall_from + timeout_s + period_s + jitter_s, recovered,
+           stall_to + period_s + jitter_s);
+    if (compared < nl / 2) { fprintf(stderr, "too few rows compared\n"); ++fails; }
+    if (frozen_rows == 0) { fprintf(stderr, "no frozen rows (GPIO freeze)\n"); ++fails; }
+    if (test_rows == 0) { fprintf(stderr, "no test rows (GPIO annunciation test)\n"); ++fails; }
+    /* the last attitude frame before the stall is 12.5 ms before it */
+    if (first_ann < stall_from + timeout_s - 0.0125 ||
+        first_ann > stall_from + timeout_s + period_s + jitter_s) {
+        fprintf(stderr, "annunciation not within one frame of the timeout\n");
+        ++fails;
+    }
+    if (recovered < 0.0 || recovered > stall_to + period_s + jitter_s) {
+        fprintf(stderr, "no recovery within one frame after the data came back\n");
+        ++fails;
+    }
+    printf("compare-live: %s\n", fails ? "FAILED" : "ok");
+    return fails ? 1 : 0;
+}

@@ -1,0 +1,54 @@
+#!/bin/sh
+# Runs INSIDE the test VM (tests/vm/live-test.sh starts it): the live renderer
+# on vcan0 + gpio-sim while canplayer replays a generated flight, with GPIO
+# freeze and annunciation-test pulses, a heartbeat sampler, and SIGTERM.
+#   guest-live.sh FIXTERRAIN LOG SCENE   (results in $FT_VM_OUT)
+set -u
+bin=$1; log=$2; scene=$3
+out=${FT_VM_OUT:?run it with tests/vm/run-vm.sh}
+fail() { echo "guest-live: FAIL: $*" >&2; exit 1; }
+[ "${FT_VM:-}" = 1 ] || fail "not inside the test VM"
+sim=${FT_GPIO_SIM_SYSFS:?no gpio-sim}
+pull() { echo "$2" > "$sim/sim_gpio$1/pull" || fail "pull line $1 $2"; }
+pull 0 pull-down; pull 1 pull-down
+
+"$bin" run --scene "$scene" --poses "$out/live.csv" --stats "$out/live.json" \
+  > "$out/run.log" 2>&1 &
+pid=$!
+# wait until init is done (it prints its first line then; the pose record
+# only appears under its name when the run ends)
+i=0
+until grep -q "^fixterrain run:" "$out/run.log" 2>/dev/null; do
+  i=$((i + 1)); [ "$i" -lt 1200 ] || fail "the renderer never started: $(cat "$out/run.log")"
+  kill -0 "$pid" 2>/dev/null || fail "the renderer exited: $(cat "$out/run.log")"
+  sleep 0.1
+done
+sleep 1 # the first frames (shader compilation)
+
+# heartbeat sampler: uptime, line value, renderer alive (1/0)
+( while :; do
+    alive=0; kill -0 "$pid" 2>/dev/null && alive=1
+    echo "$(cut -d' ' -f1 /proc/uptime) $(cat "$sim/sim_gpio7/value") $alive"
+    [ -f "$out/hb.stop" ] && break
+    sleep 0.01
+  done > "$out/hb.txt" ) &
+hb=$!
+
+canplayer -I "$log" &
+player=$!
+sleep 2;   pull 0 pull-up      # freeze for 1 s
+sleep 1;   pull 0 pull-down
+sleep 1;   pull 1 pull-up      # annunciation test for 0.5 s
+sleep 0.5; pull 1 pull-down
+wait "$player" || fail "canplayer failed"
+sleep 1
+kill -TERM "$pid"
+t0=$(cut -d' ' -f1 /proc/uptime)
+wait "$pid"; rc=$?
+t1=$(cut -d' ' -f1 /proc/uptime)
+echo "renderer exit status $rc after SIGTERM ($t0 -> $t1 s)" | tee "$out/term.txt"
+sleep 0.5
+touch "$out/hb.stop"; wait "$hb"
+cat "$out/run.log"
+[ "$rc" -eq 0 ] || fail "renderer exit status $rc"
+echo "guest-live: done"

@@ -1,0 +1,79 @@
+#!/bin/sh
+# The live pose path on real vcan and GPIO lines (issue 5), in one VM boot:
+#   live-test.sh BUILD_DIR OUT_DIR COMPARE_LIVE_BINARY
+# 1. fixterrain-flightgen writes a 9 s orbit as a CANaerospace candump log
+#    with faults: a NaN pitch at 3 s, every 10th attitude frame dropped, and a
+#    stalled bus from 6 to 7 s;
+# 2. in the VM, `fixterrain run` draws from vcan0 while canplayer replays the
+#    log; GPIO line 0 freezes the pose for 1 s, line 1 holds the annunciation
+#    test for 0.5 s, line 7 is the heartbeat; then SIGTERM;
+# 3. on the host, `fixterrain replay` of the same log, and compare-live checks
+#    the live poses against it, the annunciation timing and recovery, freeze
+#    and test; this script checks the heartbeat and the deadline misses.
+set -eu
+build=$(cd "$1" && pwd); out=$2; compare=$3
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$out"; out=$(cd "$out" && pwd)
+rm -f "$out"/live.* "$out"/hb.* "$out"/replay.*
+fail() { echo "live-test: FAIL: $*" >&2; exit 1; }
+period_ms=50
+"$build/fixterrain-flightgen" --path orbit --centre 46.517,8.025 --radius 800 --alt 2600 \
+  --duration 9 --nan-at 3 --drop-every 10 --stall 6,7 --out "$out/flight.log" --quiet
+log_t0=$(head -n 1 "$out/flight.log" | sed 's/^(\([0-9.]*\)).*/\1/')
+scene() { # $1 period_ms
+  cat <<EOS
+[scene]
+name = vm-live
+method = brute
+backend = egl-gles3
+[view]
+width_px = 64
+height_px = 48
+[terrain]
+dem =
+synth_side = 129
+synth_anchor_lat_deg = 46.5
+synth_anchor_lon_deg = 8.0
+[frame]
+period_ms = $1
+[can]
+interface = vcan0
+backup_interface = vcan1
+[gpio]
+chip = ft-gpio-sim
+freeze_line = 0
+test_line = 1
+heartbeat_line = 7
+debounce_ms = 10
+EOS
+}
+scene "$period_ms" > "$out/live.ini"
+scene 5 > "$out/replay.ini"
+
+FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} "$here/run-vm.sh" \
+  "tests/vm/guest-live.sh $build/fixterrain $out/flight.log $out/live.ini" "$out"
+
+"$build/fixterrain" replay --log "$out/flight.log" --scene "$out/replay.ini" \
+  --poses "$out/replay.csv" --quiet || fail "host replay"
+"$compare" "$out/live.csv" "$out/live.json" "$out/replay.csv" "$log_t0" 6 7 \
+  "$period_ms" 100 || fail "live poses against the replay"
+
+# no missed frames; every presented frame toggled the heartbeat
+frames=$(sed -n 's/.*"frames": \([0-9]*\).*/\1/p' "$out/live.json")
+misses=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$out/live.json")
+toggles=$(sed -n 's/.*"heartbeat_toggles": \([0-9]*\).*/\1/p' "$out/live.json")
+echo "live-test: $frames frames, $misses deadline misses, $toggles heartbeat toggles"
+[ "$misses" -eq 0 ] || fail "$misses deadline misses at ${period_ms} ms frames"
+[ "$toggles" -eq "$frames" ] || fail "heartbeat toggled $toggles times for $frames frames"
+# the line itself: sampled every ~10 ms in the guest while the renderer ran,
+# it changes about once per frame; after the renderer exits it stays put
+awk -v period="$period_ms" '
+  NR > 1 && $3 == 1 && p3 == 1 { run_t += $1 - p1; if ($2 != p2) run_changes++ }
+  NR > 1 && $3 == 0 && p3 == 0 { if ($2 != p2) dead_changes++; dead_t += $1 - p1 }
+  { p1 = $1; p2 = $2; p3 = $3 }
+  END {
+    rate = run_changes / run_t; want = 1000 / period
+    printf "live-test: heartbeat line: %d changes in %.2f s alive (%.1f/s, frame rate %.1f/s), %d changes in %.2f s after exit\n", run_changes, run_t, rate, want, dead_changes, dead_t
+    if (rate < 0.8 * want || rate > 1.2 * want || dead_changes > 0 || dead_t < 0.3) exit 1
+  }' "$out/hb.txt" || fail "heartbeat line"
+echo "live-test: ok"

@@ -22,7 +22,12 @@
  * is full new events are dropped silently (v1 has no sequence numbers; the
  * debouncer treats two edges in the same direction as a lost one). Edges
  * are physical (no active-low flag is requested): rising = the line went
- * 0 -> 1. ft_plat_gpio_read_edges first reads up to cap / in_count events
+ * 0 -> 1. In uAPI v1 the kernel's IRQ thread decides rising/falling by
+ * reading the level when it runs, so a pulse shorter than that thread's
+ * latency shows as two edges of the same direction (or, where the IRQ
+ * controller does not latch an edge while the ONESHOT IRQ is masked, as
+ * gpio-sim does not, as one edge): the debouncer's repeated-edge rule and
+ * ft_debounce_sample with ft_plat_gpio_levels cover both. ft_plat_gpio_read_edges first reads up to cap / in_count events
  * per line, then fills what is left of cap in slot order, so a busy line
  * cannot starve the others, and returns them sorted by time.
  *
@@ -32,7 +37,9 @@
  * was ktime_get_real_ns(). libgpiod 1.6 only splits that u64 into a struct
  * timespec. On >= 5.7 (Debian 12: 6.1) the stamp is therefore on exactly the
  * base of ft_plat_monotonic_ns (clock_gettime(CLOCK_MONOTONIC)), with no
- * conversion error; the VM test checks it against both clocks. On an older
+ * conversion error; the VM test checks it against both clocks. (Chips behind
+ * a slow bus, e.g. I2C expanders with nested threaded IRQs, are stamped in
+ * the IRQ thread instead: still monotonic, later by the bus latency.) On an older
  * kernel (found with uname at open) a stamp is converted from realtime like
  * the CAN receive times (realtime - monotonic sampled at read; error: the
  * sampling bracket plus any realtime step between the edge and the read). */

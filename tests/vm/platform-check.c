@@ -11,7 +11,8 @@
  * CAN: (a) filters pass exactly the 311/321 data frames (cansend), remote
  * frames are counted as ignored, timestamps lie between the send and the
  * read on the monotonic base; timestamp accuracy against frames this program
- * sends itself; (b) error texts; (c) canplayer replays 200 frames at 1 kHz:
+ * sends itself; the kernel drop counter when the receive buffer overflows;
+ * (b) error texts; (c) canplayer replays 200 frames at 1 kHz:
  * all received in order, none dropped, receive latency measured.
  * GPIO: (d) edges from gpio-sim pulls with monotonic kernel stamps, levels,
  * a burst of edges in one read, the output followed by gpio-sim's value;
@@ -235,6 +236,62 @@ static int check_can_filters(const char *ifname)
     ft_plat_can_close(&p);
     EXPECT(p.fd == -1, "close left fd %d", p.fd);
     ft_plat_can_close(&p); /* twice is harmless */
+    return 0;
+}
+
+/* ---- receive buffer overflow: the kernel drop counter ------------------------- */
+/* Sends N_FLOOD frames without reading: what does not fit in the default
+ * receive buffer is dropped by the kernel, and delivered + rx_dropped must
+ * account for every frame. Prints how many frames the buffer holds. */
+static int check_can_overflow(const char *ifname)
+{
+    enum { N_FLOOD = 3000 };
+    ft_can_port p;
+    ft_error err = {0};
+    const uint16_t ids[1] = {ID_PITCH};
+    EXPECT(ft_plat_can_open(&p, ifname, ids, 1, &err) == FT_OK, "open: %s", err.text);
+    int tx = socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
+    EXPECT(tx >= 0, "socket(AF_CAN): %s", strerror(errno));
+    struct sockaddr_can a;
+    memset(&a, 0, sizeof a);
+    a.can_family = AF_CAN;
+    a.can_ifindex = (int)if_nametoindex(ifname);
+    EXPECT(bind(tx, (struct sockaddr *)&a, sizeof a) == 0, "bind tx: %s", strerror(errno));
+    for (int i = 0; i < N_FLOOD; ++i) {
+        struct can_frame cf;
+        memset(&cf, 0, sizeof cf);
+        cf.can_id = ID_PITCH;
+        cf.len = 8;
+        cf.data[2] = (uint8_t)(i >> 8);
+        cf.data[3] = (uint8_t)i;
+        EXPECT(write(tx, &cf, sizeof cf) == (ssize_t)sizeof cf, "write %d: %s", i,
+               strerror(errno));
+    }
+    (void)close(tx);
+    static ft_can_frame f[64];
+    uint32_t total = 0, calls = 0, first_lost = 0;
+    for (;;) {
+        uint32_t got = 0;
+        EXPECT(ft_plat_can_read(&p, f, 64, &got, &err) == FT_OK, "read: %s", err.text);
+        ++calls;
+        for (uint32_t k = 0; k < got; ++k) {
+            uint32_t seq = (uint32_t)f[k].data[2] << 8 | f[k].data[3];
+            EXPECT(seq == total + k, "frame %u has sequence %u: not the oldest first", total + k,
+                   seq);
+        }
+        total += got;
+        if (got == 0u || calls > N_FLOOD) {
+            break;
+        }
+    }
+    first_lost = total;
+    EXPECT(p.rx_dropped > 0u && total + p.rx_dropped == (uint64_t)N_FLOOD,
+           "flood: delivered %u + rx_dropped %llu != %d sent", total,
+           (unsigned long long)p.rx_dropped, N_FLOOD);
+    printf("platform-check: ok: %d frames sent without reading: the default receive buffer held "
+           "%u (the oldest), rx_dropped %llu = the rest (newest dropped; SO_RXQ_OVFL + SO_MEMINFO); delivered + dropped = sent\n",
+           N_FLOOD, first_lost, (unsigned long long)p.rx_dropped);
+    ft_plat_can_close(&p);
     return 0;
 }
 
@@ -570,7 +627,7 @@ int main(int argc, char **argv)
     setvbuf(stdout, NULL, _IOLBF, 0);
     g_sim = argv[3];
     uint64_t t0 = ft_plat_monotonic_ns();
-    if (check_can_filters(argv[1]) || check_can_errors() || check_can_replay(argv[1], argv[4]) ||
+    if (check_can_filters(argv[1]) || check_can_overflow(argv[1]) || check_can_errors() || check_can_replay(argv[1], argv[4]) ||
         check_gpio(argv[2])) {
         return 1;
     }

@@ -253,7 +253,8 @@ ft_status ft_plat_can_read(ft_can_port *p, ft_can_frame *out, uint32_t cap, uint
     }
 
     uint32_t n = 0;
-    const uint32_t iterations_max = cap + FT_CAN_NONDATA_MAX;
+    const uint32_t iterations_max =
+        cap > UINT32_MAX - FT_CAN_NONDATA_MAX ? UINT32_MAX : cap + FT_CAN_NONDATA_MAX;
     for (uint32_t it = 0; it < iterations_max && n < cap; ++it) {
         struct can_frame cf;
         struct iovec iov = {.iov_base = &cf, .iov_len = sizeof cf};

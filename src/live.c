@@ -152,6 +152,15 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
             st = pose_file.writer.write(pose_file.writer.ctx, header, sizeof header - 1u);
         }
     }
+    /* Warm-up frame before the schedule starts: drivers compile shaders at
+     * their first draw (seconds on a software rasteriser), which would
+     * otherwise be the first deadline miss. It shows the annunciation test
+     * (a power-up lamp test), which also compiles the overlay's program. */
+    if (st == FT_OK) {
+        ft_camera cam;
+        ft_frame_stats fs;
+        st = ft_app_render_annunciated(app, &s->pose, FT_LIVE_TEST_REASON, &cam, &fs, err);
+    }
     const uint64_t period_ns = (uint64_t)(s->frame_period_ms * 1e6 + 0.5);
     const uint64_t failover_ns = (uint64_t)s->can_failover_ms * 1000000u;
     int source = 0, frozen = 0, heartbeat = 0;

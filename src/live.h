@@ -1,7 +1,9 @@
 /* live.h - `fixterrain run`: live pose input (SocketCAN, GPIO) and a frame
  * loop paced by the monotonic clock.
  *
- * Every frame k (due at t_start + k * frame.period_ms):
+ * First one warm-up frame showing the annunciation test (power-up lamp
+ * test; it makes the driver compile its shaders before the schedule starts).
+ * Then every frame k (due at t_start + k * frame.period_ms):
  *   1. drain the CAN sockets (primary and backup; only the active source
  *      feeds the pose), poll the GPIO edges and debounce them;
  *   2. pick the source: the backup while gpio.source_line is active, or

@@ -16,8 +16,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"; out=$(cd "$out" && pwd)
 rm -f "$out"/live.* "$out"/hb.* "$out"/replay.*
 fail() { echo "live-test: FAIL: $*" >&2; exit 1; }
-period_ms=50
-"$build/fixterrain-flightgen" --path orbit --centre 46.517,8.025 --radius 800 --alt 2600 \
+period_ms=200
+"$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 500 --alt 2600 \
   --duration 9 --nan-at 3 --drop-every 10 --stall 6,7 --out "$out/flight.log" --quiet
 log_t0=$(head -n 1 "$out/flight.log" | sed 's/^(\([0-9.]*\)).*/\1/')
 scene() { # $1 period_ms
@@ -27,11 +27,11 @@ name = vm-live
 method = brute
 backend = egl-gles3
 [view]
-width_px = 64
-height_px = 48
+width_px = 48
+height_px = 36
 [terrain]
 dem =
-synth_side = 129
+synth_side = 65
 synth_anchor_lat_deg = 46.5
 synth_anchor_lon_deg = 8.0
 [frame]
@@ -65,6 +65,7 @@ toggles=$(sed -n 's/.*"heartbeat_toggles": \([0-9]*\).*/\1/p' "$out/live.json")
 echo "live-test: $frames frames, $misses deadline misses, $toggles heartbeat toggles"
 [ "$misses" -eq 0 ] || fail "$misses deadline misses at ${period_ms} ms frames"
 [ "$toggles" -eq "$frames" ] || fail "heartbeat toggled $toggles times for $frames frames"
+grep -q '"can_dropped": \[0, 0\]' "$out/live.json" || fail "the kernel dropped CAN frames"
 # the line itself: sampled every ~10 ms in the guest while the renderer ran,
 # it changes about once per frame; after the renderer exits it stays put
 awk -v period="$period_ms" '

@@ -111,7 +111,7 @@ int main(int argc, char **argv)
     const double jitter_s = 0.020;
     int fails = 0, compared = 0, frozen_rows = 0, test_rows = 0;
     double worst_att = 0.0, worst_pos = 0.0, worst_alt = 0.0;
-    double first_ann = -1.0, last_before = -1.0, recovered = -1.0;
+    double first_ann = -1.0, last_before = -1.0, recovered = -1.0, first_age_ms = -1.0;
     double frozen_hdg = NAN;
     for (int i = 0; i < nl; ++i) {
         const row *r = &g_live[i];
@@ -132,7 +132,13 @@ int main(int argc, char **argv)
             continue;
         }
         if (t_path >= stall_from - 1.0 && t_path < stall_from && !r->ann) last_before = t_path;
-        if (t_path >= stall_from && r->ann && first_ann < 0.0) first_ann = t_path;
+        if (t_path >= stall_from && r->ann && first_ann < 0.0) {
+            first_ann = t_path;
+            /* the reason carries the age the feed measured on the receive
+             * timestamps: "no pitch for 105 ms" - independent of the mapping */
+            const char *q = strstr(r->reason, " for ");
+            first_age_ms = q ? atof(q + 5) : -1.0;
+        }
         if (t_path >= stall_to && !r->ann && recovered < 0.0 && first_ann >= 0.0) recovered = t_path;
         row e;
         if (r->ann || !replay_at(nr, t_log, &e) || e.ann) continue;
@@ -169,6 +175,13 @@ int main(int argc, char **argv)
     if (first_ann < stall_from + timeout_s - 0.0125 - jitter_s ||
         first_ann > stall_from + timeout_s + period_s + jitter_s) {
         fprintf(stderr, "annunciation not within one frame of the timeout\n");
+        ++fails;
+    }
+    printf("compare-live: the first annunciated frame says the data was %.0f ms old "
+           "(allowed %.0f..%.0f ms)\n", first_age_ms, timeout_s * 1e3,
+           (timeout_s + period_s) * 1e3 + 1.0);
+    if (first_age_ms < timeout_s * 1e3 || first_age_ms > (timeout_s + period_s) * 1e3 + 1.0) {
+        fprintf(stderr, "annunciation age outside one frame after the timeout\n");
         ++fails;
     }
     if (recovered < 0.0 || recovered > stall_to + period_s + jitter_s) {

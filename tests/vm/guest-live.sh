@@ -23,7 +23,14 @@ until grep -q "^fixterrain run:" "$out/run.log" 2>/dev/null; do
   kill -0 "$pid" 2>/dev/null || fail "the renderer exited: $(cat "$out/run.log")"
   sleep 0.1
 done
-sleep 1 # the first frames (shader compilation)
+# the first presented frame toggles the heartbeat (after shader compilation,
+# which takes seconds in the emulated VM): start the bus only then
+i=0
+until [ "$(cat "$sim/sim_gpio7/value")" = 1 ]; do
+  i=$((i + 1)); [ "$i" -lt 1200 ] || fail "no heartbeat from the renderer"
+  sleep 0.05
+done
+sleep 0.5
 
 # heartbeat sampler: uptime, line value, renderer alive (1/0)
 ( while :; do
@@ -36,9 +43,10 @@ hb=$!
 
 canplayer -I "$log" &
 player=$!
-sleep 2;   pull 0 pull-up      # freeze for 1 s
+# the GPIO pulses stay well clear of the stall (6..7 s of log time)
+sleep 1.5; pull 0 pull-up      # freeze for 1 s
 sleep 1;   pull 0 pull-down
-sleep 1;   pull 1 pull-up      # annunciation test for 0.5 s
+sleep 0.5; pull 1 pull-up      # annunciation test for 0.5 s
 sleep 0.5; pull 1 pull-down
 wait "$player" || fail "canplayer failed"
 sleep 1

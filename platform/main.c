@@ -40,7 +40,10 @@ static void print_render_help(void)
            "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
            "  --method NAME       terrain method: brute | bintree (as built)\n"
            "  --backend NAME      egl-gles3 | egl-gles2 | osmesa\n"
-           "  --display NAME      none (offscreen) | x11 (a window; EGL backends)\n"
+           "  --display NAME      none (offscreen) | x11 (a window; EGL backends) |\n"
+           "                      kms[:/dev/dri/cardN] (full screen on DRM/KMS, page flips;\n"
+           "                      the mode's size must be the view size: --size WxH;\n"
+           "                      display.mode and display.connector in the scene)\n"
            "  --hold-ms N         with a display: keep the last frame shown N ms\n"
            "  --size WxH          image size in pixels (16..8192)\n"
            "  --pose LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG\n"
@@ -209,8 +212,11 @@ static int resolve_scene(const char *cmd, const scene_opts *o, ft_scene *scene)
                 cmd, o->backend);
         return FT_EXIT_USAGE;
     }
-    if (o->display != NULL && !ft_display_from_name(o->display, &scene->display)) {
-        fprintf(stderr, "fixterrain %s: unknown display '%s' (none, x11)\n", cmd, o->display);
+    if (o->display != NULL && !ft_display_parse(o->display, &scene->display,
+                                                scene->display_device,
+                                                sizeof scene->display_device)) {
+        fprintf(stderr, "fixterrain %s: unknown display '%s' (none, x11, kms, "
+                        "kms:/dev/dri/cardN)\n", cmd, o->display);
         return FT_EXIT_USAGE;
     }
     if (o->size != NULL && !parse_size(o->size, &scene->width_px, &scene->height_px)) {
@@ -570,7 +576,10 @@ static void print_run_help(void)
            "Live: pose from SocketCAN (can.interface, can.backup_interface) and GPIO\n"
            "(gpio.*), one frame per frame.period_ms, until SIGINT/SIGTERM or --frames.\n\n"
            "  --scene FILE        scene file (CAN map, interfaces, GPIO lines, period)\n"
-           "  --dem FILE, --method NAME, --backend NAME, --display NAME, --size WxH\n"
+           "  --dem FILE, --method NAME, --backend NAME, --size WxH   as for render\n"
+           "  --display NAME      none | x11 | kms[:/dev/dri/cardN]: on kms every frame is\n"
+           "                      page-flipped and present waits for the flip, so a late\n"
+           "                      flip is a deadline miss; SIGINT/SIGTERM restore the CRTC\n"
            "  --poses FILE.csv    one row per frame: time, pose, annunciation, freeze, source\n"
            "  --stats FILE.json   frames, deadline misses, CAN frames, rejects, GPIO, heartbeat\n"
            "  --frames N          stop after N frames\n"

@@ -159,8 +159,10 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
     if (st != FT_OK) {
         goto fail_memory;
     }
-    ft_gpu_desc gd = {app->scene.backend, app->scene.display, app->scene.width_px,
-                      app->scene.height_px};
+    const ft_gpu_desc gd = {app->scene.backend,           app->scene.display,
+                            app->scene.width_px,          app->scene.height_px,
+                            app->scene.display_device,    app->scene.display_connector,
+                            app->scene.display_mode};
     st = ft_plat_gpu_open(&gd, &app->gpu, err);
     if (st != FT_OK) {
         goto fail_memory;

@@ -256,11 +256,32 @@ static int on_key(void *user, const char *section, const char *key, const char *
                          "unknown method (built in: see 'fixterrain render --help')");
         }
         if (strcmp(key, "display") == 0) {
-            return RANGE(ft_display_from_name(value, &s->display), "unknown display (none, x11)");
+            return RANGE(ft_display_parse(value, &s->display, s->display_device,
+                                          sizeof s->display_device),
+                         "unknown display (none, x11, kms, kms:/dev/dri/cardN)");
         }
         if (strcmp(key, "backend") == 0) {
             return RANGE(ft_backend_from_name(value, &s->backend),
                          "unknown backend (egl-gles3, egl-gles2, osmesa)");
+        }
+    } else if (strcmp(section, "display") == 0) {
+        if (strcmp(key, "connector") == 0) {
+            if (strlen(value) >= sizeof s->display_connector) {
+                return fail_key(c, section, key, value, "longer than 31 characters");
+            }
+            (void)snprintf(s->display_connector, sizeof s->display_connector, "%s", value);
+            return 1;
+        }
+        if (strcmp(key, "mode") == 0) {
+            ft_display_mode m;
+            if (strlen(value) >= sizeof s->display_mode) {
+                return fail_key(c, section, key, value, "longer than 31 characters");
+            }
+            if (value[0] != '\0' && !ft_display_mode_parse(value, &m)) {
+                return fail_key(c, section, key, value, "expected WxH, WxH@HZ or preferred");
+            }
+            (void)snprintf(s->display_mode, sizeof s->display_mode, "%s", value);
+            return 1;
         }
     } else if (strcmp(section, "view") == 0) {
         if (strcmp(key, "width_px") == 0) {

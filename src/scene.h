@@ -8,7 +8,13 @@
  *   scene.name            text (<= 63 chars)
  *   scene.method          brute | bintree            (methods built in)
  *   scene.backend         egl-gles3 | egl-gles2 | osmesa
- *   scene.display         none | x11   (where frames are shown; none = offscreen)
+ *   scene.display         none | x11 | kms | kms:/dev/dri/cardN   (where frames are
+ *                         shown; none = offscreen; kms = full screen on DRM/KMS)
+ *   display.connector     KMS connector: name as the kernel spells it (HDMI-A-1,
+ *                         Virtual-1, ...) or its id; empty = the first connected
+ *   display.mode          KMS mode: WxH, WxH@HZ or preferred; empty = a mode of the
+ *                         view size. Frames are shown 1:1 (never scaled), so the
+ *                         mode's size must equal view.width_px x view.height_px
  *   view.width_px, view.height_px   [16, 8192]
  *   view.fovy_deg         [1, 170]
  *   pose.lat_deg [-89,89] pose.lon_deg [-360,360] pose.alt_m [-12000, 1e6]
@@ -105,6 +111,9 @@ typedef struct ft_scene {
     ft_method_kind method;
     ft_backend backend;
     ft_display display;
+    char display_device[FT_DISPLAY_DEVICE_MAX];       /* kms:PATH; "" = default */
+    char display_connector[FT_DISPLAY_CONNECTOR_MAX]; /* display.connector */
+    char display_mode[FT_DISPLAY_MODE_MAX];           /* display.mode */
     uint32_t width_px, height_px;
     double fovy_deg;
     ft_pose pose;

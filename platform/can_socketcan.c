@@ -73,6 +73,8 @@
 
 #include "platform_api.h"
 
+#define FT_CAN_RCVBUF_BYTES (2 * 1024 * 1024) /* about 2700 frames */
+
 /* Non-data frames (remote, error, odd sizes) one read may consume beyond
  * cap before it returns: a flood of them cannot hold the caller here. */
 #define FT_CAN_NONDATA_MAX 64u
@@ -185,6 +187,14 @@ ft_status ft_plat_can_open(ft_can_port *p, const char *iface, const uint16_t *id
     }
     if (setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on) != 0) {
         return open_fail(p, fd, err, FT_ERR_IO, "setsockopt(SO_RXQ_OVFL)", errno);
+    }
+    /* A larger receive queue rides out a slow frame (the default holds
+     * about 278 frames: half a second of a CANaerospace attitude stream).
+     * SO_RCVBUFFORCE needs CAP_NET_ADMIN; without it SO_RCVBUF is capped
+     * by net.core.rmem_max. Neither failing is an error: drops are counted. */
+    const int rcvbuf_bytes = FT_CAN_RCVBUF_BYTES;
+    if (setsockopt(fd, SOL_SOCKET, SO_RCVBUFFORCE, &rcvbuf_bytes, sizeof rcvbuf_bytes) != 0) {
+        (void)setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes, sizeof rcvbuf_bytes);
     }
     struct sockaddr_can addr;
     memset(&addr, 0, sizeof addr);

@@ -7,6 +7,8 @@ const char *ft_method_vertex_shader(ft_method_kind m)
     switch (m) {
     case FT_METHOD_BINTREE:
         return "bintree.vert.glsl";
+    case FT_METHOD_PGM:
+        return "pgm.vert.glsl";
     default:
         return "terrain.vert.glsl";
     }
@@ -24,6 +26,11 @@ void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     case FT_METHOD_BINTREE:
 #if FT_WITH_METHOD_BINTREE
         ft_bintree_method_plan(s, t, a);
+#endif
+        break;
+    case FT_METHOD_PGM:
+#if FT_WITH_METHOD_PGM
+        ft_pgm_method_plan(s, t, a);
 #endif
         break;
     default:
@@ -46,6 +53,12 @@ ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const
     case FT_METHOD_BINTREE:
 #if FT_WITH_METHOD_BINTREE
         return ft_bintree_method_init(&m->u.bintree, gl, s, t, a, err);
+#else
+        break;
+#endif
+    case FT_METHOD_PGM:
+#if FT_WITH_METHOD_PGM
+        return ft_pgm_method_init(&m->u.pgm, gl, s, t, a, err);
 #else
         break;
 #endif
@@ -75,6 +88,11 @@ void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_progr
         ft_bintree_method_draw(&m->u.bintree, gl, p, t, cam, st);
 #endif
         break;
+    case FT_METHOD_PGM:
+#if FT_WITH_METHOD_PGM
+        ft_pgm_method_draw(&m->u.pgm, gl, p, t, cam, st);
+#endif
+        break;
     default:
         break;
     }
@@ -92,6 +110,11 @@ void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
         ft_bintree_method_select(&m->u.bintree, t, cam);
 #endif
         break;
+    case FT_METHOD_PGM:
+#if FT_WITH_METHOD_PGM
+        ft_pgm_method_select(&m->u.pgm, t, cam);
+#endif
+        break;
     default:
         break;
     }
@@ -106,6 +129,8 @@ uint64_t ft_method_gpu_bytes(const ft_method *m)
         return m->u.brute.gpu_bytes;
     case FT_METHOD_BINTREE:
         return m->u.bintree.gpu_bytes;
+    case FT_METHOD_PGM:
+        return m->u.pgm.gpu_bytes;
     default:
         return 0;
     }
@@ -122,6 +147,11 @@ void ft_method_shutdown(ft_method *m, const ft_gl *gl)
     case FT_METHOD_BINTREE:
 #if FT_WITH_METHOD_BINTREE
         ft_bintree_method_shutdown(&m->u.bintree, gl);
+#endif
+        break;
+    case FT_METHOD_PGM:
+#if FT_WITH_METHOD_PGM
+        ft_pgm_method_shutdown(&m->u.pgm, gl);
 #endif
         break;
     default:

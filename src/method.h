@@ -11,6 +11,7 @@
 #include "gpu_texture.h"
 #include "gl_api.h"
 #include "mem_budget.h"
+#include "pgm.h"
 #include "scene.h"
 #include "terrain.h"
 
@@ -53,11 +54,33 @@ typedef struct ft_bintree_method {
     uint32_t sel_w, sel_h;
 } ft_bintree_method;
 
+/* Persistent grid mapping (src/pgm.h, shaders/pgm.vert.glsl). The grid is
+ * drawn in bands of band_rows cell rows with one 16-bit template band (vbo:
+ * (column, row in band) per vertex; ibo: the band's triangles row by row,
+ * so the last, shorter band draws a prefix), the same on every context. */
+typedef struct ft_pgm_method {
+    GLuint vbo, ibo, atlas_tex;
+    uint32_t cols, rows;      /* grid vertices */
+    uint32_t band_rows;       /* cell rows per band (vertex rows - 1) */
+    uint32_t band_count;
+    uint32_t atlas_w, atlas_h;
+    uint32_t levels;          /* avg pyramid levels (level 0 = heights texture) */
+    float level_px[FT_PYRAMID_LEVELS_MAX][4]; /* atlas origin xy, size zw per level */
+    ft_scalar_format atlas_fmt;
+    uint64_t gpu_bytes;
+    /* the last sampling set-up and the view it was made for */
+    int have_sampling;
+    ft_pgm_sampling sampling;
+    double sel_eye_m[3], sel_fwd[3], sel_up[3], sel_fovy;
+    uint32_t sel_w, sel_h;
+} ft_pgm_method;
+
 typedef struct ft_method {
     ft_method_kind kind;
     union {
         ft_brute brute;
         ft_bintree_method bintree;
+        ft_pgm_method pgm;
     } u;
 } ft_method;
 
@@ -95,6 +118,18 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
                             const struct ft_terrain_program *p, const ft_terrain *t,
                             const ft_camera *cam, ft_method_draw_stats *st);
 void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl);
+#endif
+
+#if FT_WITH_METHOD_PGM
+void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+                             const ft_terrain *t, ft_arena *a, ft_error *err);
+void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
+/* Cell rows drawn by band b (the last band may be shorter). */
+uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
+void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);
 #endif
 
 #endif

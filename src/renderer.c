@@ -125,7 +125,22 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_bt_err_pack);
     FT_UNIFORM(u_bt_lattice);
     FT_UNIFORM(u_bt_morph);
+    FT_UNIFORM(u_pgm_atlas);
+    FT_UNIFORM(u_pgm_atlas_size);
+    FT_UNIFORM(u_pgm_atlas_pack);
+    FT_UNIFORM(u_pgm_grid);
+    FT_UNIFORM(u_pgm_fwd);
+    FT_UNIFORM(u_pgm_right);
+    FT_UNIFORM(u_pgm_up);
+    FT_UNIFORM(u_pgm_rect);
+    FT_UNIFORM(u_pgm_eye);
 #undef FT_UNIFORM
+    /* the pgm level table element by element (the GL subset has no Uniform4fv) */
+    for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[32];
+        (void)snprintf(name, sizeof name, "u_pgm_level[%u]", l);
+        p->u_pgm_level[l] = gl->GetUniformLocation(prog, name);
+    }
 }
 
 static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *frag_name,

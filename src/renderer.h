@@ -28,6 +28,10 @@ typedef struct ft_terrain_program {
     GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
     GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
     GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph; /* bintree geomorph */
+    /* pgm: avg-pyramid atlas, sampling camera, grid band (shaders/pgm.vert.glsl) */
+    GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
+    GLint u_pgm_fwd, u_pgm_right, u_pgm_up, u_pgm_rect, u_pgm_eye;
+    GLint u_pgm_level[FT_PYRAMID_LEVELS_MAX]; /* one location per element */
 } ft_terrain_program;
 
 /* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,

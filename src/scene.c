@@ -71,6 +71,8 @@ void ft_scene_defaults(ft_scene *s)
     s->bintree_tiles_max = 16384;
     s->bintree_tau_px = 1.0;
     s->bintree_morph = 1;
+    s->pgm_grid_cols = 430;
+    s->pgm_grid_rows = 430;
     s->metric_enabled = 0;
     s->frame_period_ms = 16.667;
     s->pose_horizon_ms = FT_POSE_HORIZON_DEFAULT_MS;
@@ -393,6 +395,13 @@ static int on_key(void *user, const char *section, const char *key, const char *
             s->bintree_morph = (int)v;
             return 1;
         }
+    } else if (strcmp(section, "pgm") == 0) {
+        if (strcmp(key, "grid_cols") == 0) {
+            return RANGE(parse_u32(value, 2, 8192, &s->pgm_grid_cols), "expected 2..8192");
+        }
+        if (strcmp(key, "grid_rows") == 0) {
+            return RANGE(parse_u32(value, 2, 8192, &s->pgm_grid_rows), "expected 2..8192");
+        }
     } else if (strcmp(section, "frame") == 0) {
         if (strcmp(key, "period_ms") == 0) {
             return RANGE(parse_f64(value, 1.0, 1000.0, &s->frame_period_ms), "expected 1..1000");
@@ -573,6 +582,11 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
                        "bintree: template_k %u (1..6), tiles_max %u (2..1048576), tau_px %g "
                        "(0..1000) out of range",
                        s->bintree_template_k, s->bintree_tiles_max, s->bintree_tau_px);
+    }
+    if (s->pgm_grid_cols < 2 || s->pgm_grid_cols > 8192 || s->pgm_grid_rows < 2 ||
+        s->pgm_grid_rows > 8192) {
+        return ft_fail(err, FT_ERR_CONFIG, "pgm: grid %u x %u outside 2..8192 per side",
+                       s->pgm_grid_cols, s->pgm_grid_rows);
     }
     return FT_OK;
 }

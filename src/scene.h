@@ -6,7 +6,7 @@
  *
  * Keys (section.key = meaning [range]):
  *   scene.name            text (<= 63 chars)
- *   scene.method          brute | bintree            (methods built in)
+ *   scene.method          brute | bintree | pgm      (methods built in)
  *   scene.backend         egl-gles3 | egl-gles2 | osmesa
  *   scene.display         none | x11 | kms | kms:/dev/dri/cardN   (where frames are
  *                         shown; none = offscreen; kms = full screen on DRM/KMS)
@@ -32,6 +32,10 @@
  *   bintree.tiles_max     tile budget per frame [2, 1048576]
  *   bintree.tau_px        target screen-space error in pixels [0, 1000]
  *   bintree.morph         0 | 1: geomorph split vertices (split at tau/2)
+ *   pgm.grid_cols         persistent grid columns (vertices across the view) [2, 8192]
+ *   pgm.grid_rows         persistent grid rows (vertices from near to far) [2, 8192]
+ *                         (pgm uploads its own avg-pyramid atlas: gpu.pyramid_textures
+ *                         is not needed; see src/pgm.h)
  *   metric.enabled        0 | 1: measure screen-space error against the reference
  *   frame.period_ms       display frame period [1, 1000] (16.667 = 60 Hz); replay
  *                         renders one frame per period of log time
@@ -92,9 +96,10 @@ typedef enum ft_gpio_input {
 
 const char *ft_gpio_input_name(ft_gpio_input i); /* "freeze" */
 
-#define FT_METHOD_LIST(X)                                                                  \
-    X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                          \
-    X(FT_METHOD_BINTREE, "bintree", "crack-free bintree of triangular tiles, error-bounded")
+#define FT_METHOD_LIST(X)                                                                     \
+    X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                             \
+    X(FT_METHOD_BINTREE, "bintree", "crack-free bintree of triangular tiles, error-bounded")  \
+    X(FT_METHOD_PGM, "pgm", "persistent grid mapping: a view-plane grid laid on the terrain")
 
 typedef enum ft_method_kind {
 #define FT_METHOD_ENUM(id, name, what) id,
@@ -128,6 +133,8 @@ typedef struct ft_scene {
     uint32_t bintree_tiles_max;  /* bintree.tiles_max */
     double bintree_tau_px;       /* bintree.tau_px */
     int bintree_morph;           /* bintree.morph */
+    uint32_t pgm_grid_cols;      /* pgm.grid_cols */
+    uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
     double frame_period_ms;   /* frame.period_ms */
     uint32_t pose_horizon_ms; /* pose_input.horizon_ms */

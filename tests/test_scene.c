@@ -50,6 +50,7 @@ int main(void)
     CHECK(a.bintree_template_k == b.bintree_template_k && a.bintree_tiles_max == b.bintree_tiles_max);
     CHECK_NEAR(a.bintree_tau_px, b.bintree_tau_px, 0.0);
     CHECK(a.bintree_morph == b.bintree_morph);
+    CHECK(a.pgm_grid_cols == b.pgm_grid_cols && a.pgm_grid_rows == b.pgm_grid_rows);
     CHECK_NEAR(a.frame_period_ms, b.frame_period_ms, 0.0);
     CHECK(a.pose_horizon_ms == b.pose_horizon_ms && a.can_failover_ms == b.can_failover_ms);
     CHECK(strcmp(a.can_iface, b.can_iface) == 0 && strcmp(a.can_backup_iface, "") == 0);
@@ -129,6 +130,14 @@ int main(void)
           FT_OK);
     CHECK(a.method == FT_METHOD_BINTREE && a.bintree_template_k == 4);
     CHECK_NEAR(a.bintree_tau_px, 0.5, 0.0);
+    expect_error("[pgm]\ngrid_cols = 1\n", "pgm.grid_cols");
+    expect_error("[pgm]\ngrid_rows = 8193\n", "expected 2..8192");
+    expect_error("[pgm]\ngrid_size = 100\n", "unknown section or key");
+    CHECK(parse("[scene]\nmethod = pgm\n[pgm]\ngrid_cols = 200\ngrid_rows = 800\n", &a, &err) ==
+          FT_OK);
+    CHECK(a.method == FT_METHOD_PGM && a.pgm_grid_cols == 200u && a.pgm_grid_rows == 800u);
+    a.pgm_grid_rows = 1u; /* validate catches what a command line could set */
+    CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG && strstr(err.text, "pgm") != NULL);
     expect_error("[view]\n\nwidth_px = 640\nthis line is wrong\n", "test.ini:4");
 
     /* --pose parsing */

@@ -5,6 +5,9 @@
 #   ft.cwd=DIR     working directory for CMD inside the chroot (default /)
 #   ft.out=DIR     host directory shared writable (9p tag ftout), mounted at
 #                  the same path DIR inside the chroot; exported as FT_VM_OUT
+#   ft.display=NAME  bochs | virtio: load that display device's DRM modules
+#                  (run-vm.sh FT_VM_DISPLAY) and wait for /dev/dri/card0;
+#                  exported as FT_VM_DISPLAY (and FT_DRM_CARD=/dev/dri/card0)
 # Environment for CMD: FT_VM=1, FT_VM_OUT, FT_CAN_IFS="vcan0 vcan1",
 # FT_GPIO_CHIP (e.g. gpiochip0), FT_GPIO_SIM_SYSFS (dir holding sim_gpioN/pull
 # and sim_gpioN/value), FT_GPIO_LINES (8 line names, offset order).
@@ -40,12 +43,28 @@ param() { # param NAME: value of NAME="..." or NAME=word from the cmdline
 FT_CMD=$(param ft.cmd)
 FT_CWD=$(param ft.cwd)
 FT_OUT=$(param ft.out)
+FT_DISPLAY=$(param ft.display)
 [ -n "$FT_CMD" ] || fail "no ft.cmd= on the kernel command line"
 
 say "loading modules"
 while read -r ko; do
   insmod "/lib/ft-modules/$ko" || fail "insmod $ko"
 done < /lib/ft-modules/order
+
+if [ -n "$FT_DISPLAY" ]; then
+  say "display $FT_DISPLAY: DRM modules"
+  [ -f "/lib/ft-modules/display-$FT_DISPLAY.order" ] ||
+    fail "no modules for display '$FT_DISPLAY' (bochs, virtio)"
+  while read -r ko; do
+    insmod "/lib/ft-modules/$ko" || fail "insmod $ko"
+  done < "/lib/ft-modules/display-$FT_DISPLAY.order"
+  n=0
+  until [ -e /dev/dri/card0 ]; do
+    n=$((n + 1)); [ "$n" -le 50 ] || fail "/dev/dri/card0 did not appear"
+    sleep 0.1
+  done
+  say "display $FT_DISPLAY: /dev/dri/card0"
+fi
 
 mkdir -p /sys/kernel/config
 grep -q ' /sys/kernel/config ' /proc/mounts ||
@@ -100,6 +119,7 @@ FT_GPIO_SIM_SYSFS=/sys/devices/platform/$(cat "$g/dev_name")/$FT_GPIO_CHIP
 [ -d "$FT_GPIO_SIM_SYSFS/sim_gpio0" ] || fail "$FT_GPIO_SIM_SYSFS/sim_gpio0 missing"
 
 export FT_VM=1 FT_VM_OUT="$FT_OUT" FT_CAN_IFS="vcan0 vcan1"
+[ -z "$FT_DISPLAY" ] || export FT_VM_DISPLAY="$FT_DISPLAY" FT_DRM_CARD=/dev/dri/card0
 export FT_GPIO_CHIP FT_GPIO_SIM_SYSFS FT_GPIO_LINES="${FT_GPIO_LINES# }"
 export HOME=/tmp TERM=dumb LANG=C.UTF-8
 export PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Builds the test VM's initramfs: busybox-static, tests/vm/init.sh as /init,
 # and the modules it needs (virtio-pci + 9p stack, configfs, CAN + vcan,
-# out-of-tree irq_sim + gpio-sim) from Debian's kernel.
+# out-of-tree irq_sim + gpio-sim) from Debian's kernel, plus the DRM modules
+# of the display devices (bochs, virtio-gpu), loaded only on request.
 #   tests/vm/mkinitramfs.sh OUTDIR
 # Writes OUTDIR/initramfs.cpio.gz and OUTDIR/kernel (the matching
 # /boot/vmlinuz-<ver> path, for run-vm.sh). Builds gpio-sim into OUTDIR first
@@ -43,20 +44,27 @@ chmod 755 "$root/init"
 
 # Module load order: modprobe's dependency resolution, deduplicated.
 : > "$root/lib/ft-modules/order"
-add_ko() { # add_ko PATH: copy (decompressed) into the image, append to order
+add_ko() { # add_ko PATH [LIST]: copy (decompressed) into the image, append to LIST (order)
   name=$(basename "$1")
+  ko_list=$root/lib/ft-modules/${2:-order}
   case $name in
-    *.ko.xz) base=${name%.xz}; grep -qx "$base" "$root/lib/ft-modules/order" && return 0
-             xz -dc "$1" > "$root/lib/ft-modules/$base" ;;
-    *.ko.zst) base=${name%.zst}; grep -qx "$base" "$root/lib/ft-modules/order" && return 0
-             ft_vm_need_cmd zstd; zstd -qdc "$1" > "$root/lib/ft-modules/$base" ;;
-    *.ko.gz) base=${name%.gz}; grep -qx "$base" "$root/lib/ft-modules/order" && return 0
-             gzip -dc "$1" > "$root/lib/ft-modules/$base" ;;
-    *.ko) base=$name; grep -qx "$base" "$root/lib/ft-modules/order" && return 0
-             cp "$1" "$root/lib/ft-modules/$base" ;;
+    *.ko.xz) base=${name%.xz} ;;
+    *.ko.zst) base=${name%.zst} ;;
+    *.ko.gz) base=${name%.gz} ;;
+    *.ko) base=$name ;;
     *) ft_vm_die "unexpected module file $1" ;;
   esac
-  echo "$base" >> "$root/lib/ft-modules/order"
+  # loaded at boot already (order), or already in this list: nothing to do
+  grep -qx "$base" "$root/lib/ft-modules/order" "$ko_list" 2>/dev/null && return 0
+  if [ ! -f "$root/lib/ft-modules/$base" ]; then
+    case $name in
+      *.ko.xz) xz -dc "$1" > "$root/lib/ft-modules/$base" ;;
+      *.ko.zst) ft_vm_need_cmd zstd; zstd -qdc "$1" > "$root/lib/ft-modules/$base" ;;
+      *.ko.gz) gzip -dc "$1" > "$root/lib/ft-modules/$base" ;;
+      *) cp "$1" "$root/lib/ft-modules/$base" ;;
+    esac
+  fi
+  echo "$base" >> "$ko_list"
 }
 for m in virtio_pci 9pnet_virtio 9p overlay configfs can can-raw can-dev vcan; do
   deps=$(modprobe --show-depends -S "$KVER" "$m" 2>&1) ||
@@ -68,6 +76,17 @@ for m in virtio_pci 9pnet_virtio 9p overlay configfs can can-raw can-dev vcan; d
 done
 add_ko "$out/irq_sim.ko"
 add_ko "$out/gpio-sim.ko"
+# Display devices (FT_VM_DISPLAY in run-vm.sh): DRM modules, loaded by init.sh
+# only when the kernel command line has ft.display=NAME, in this order.
+for d in bochs:bochs virtio:virtio-gpu; do
+  list=display-${d%%:*}.order
+  : > "$root/lib/ft-modules/$list"
+  deps=$(modprobe --show-depends -S "$KVER" "${d#*:}" 2>&1) ||
+    ft_vm_die "modprobe --show-depends -S $KVER ${d#*:}: $deps"
+  for p in $(printf '%s\n' "$deps" | awk '$1 == "insmod" { print $2 }'); do
+    add_ko "$p" "$list"
+  done
+done
 
 (cd "$root" && find . | LC_ALL=C sort | cpio -o -H newc --quiet) | gzip -6 > "$out/initramfs.cpio.gz.tmp"
 mv "$out/initramfs.cpio.gz.tmp" "$out/initramfs.cpio.gz"

@@ -20,6 +20,12 @@
 #   FT_VM_TIMEOUT  seconds before qemu is killed (default 300)
 #   FT_VM_ACCEL    tcg | kvm (default: kvm only if usable, see above)
 #   FT_VM_KVER     guest kernel version (default: newest installed)
+#   FT_VM_DISPLAY  bochs | virtio: add a display device (-device VGA,edid=on or
+#                  -device virtio-gpu-pci, preferred mode FT_VM_DISPLAY_SIZE,
+#                  default 1024x768), its DRM modules in the guest
+#                  (/dev/dri/card0) and a QMP socket OUTDIR/qmp.sock from which
+#                  the host can take a `screendump` of the scanout. Unset
+#                  (default): no display device, no QMP, as before.
 # Missing qemu, kernel, headers or busybox is an error (exit 1), never a skip.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
@@ -71,14 +77,30 @@ case $accel in
 esac
 
 append="console=ttyS0 panic=-1 loglevel=4 ft.cmd=\"$cmd\" ft.cwd=$cwd ft.out=$out"
-echo "vm: $accel, $(basename "$kernel"), timeout ${timeout_s}s, out $out" >&2
+display_opts=
+case ${FT_VM_DISPLAY:-} in
+  '') ;;
+  bochs|virtio)
+    size=${FT_VM_DISPLAY_SIZE:-1024x768}
+    xres=${size%x*}; yres=${size#*x}
+    case "$xres$yres" in *[!0-9]*|'') ft_vm_die "FT_VM_DISPLAY_SIZE must be WxH, not '$size'" ;; esac
+    if [ "$FT_VM_DISPLAY" = bochs ]; then dev="VGA,edid=on,xres=$xres,yres=$yres"
+    else dev="virtio-gpu-pci,edid=on,xres=$xres,yres=$yres"; fi
+    qmp=$out/qmp.sock
+    [ ${#qmp} -lt 100 ] || ft_vm_die "QMP socket path too long for a unix socket: $qmp"
+    rm -f "$qmp"
+    display_opts="-device $dev -qmp unix:$qmp,server=on,wait=off"
+    append="$append ft.display=$FT_VM_DISPLAY" ;;
+  *) ft_vm_die "FT_VM_DISPLAY must be bochs or virtio, not '$FT_VM_DISPLAY'" ;;
+esac
+echo "vm: $accel, $(basename "$kernel"), timeout ${timeout_s}s, out $out${FT_VM_DISPLAY:+, display $FT_VM_DISPLAY}" >&2
 echo "vm: running: $cmd" >&2
 t0=$(date +%s.%N)
 set +e
 # shellcheck disable=SC2086
 timeout -k 5 "$timeout_s" "$qemu" $accel_opts -m 1024 -smp 2 \
   -nodefaults -nographic -no-reboot -no-user-config \
-  -serial "file:$log" -monitor none \
+  -serial "file:$log" -monitor none $display_opts \
   -kernel "$kernel" -initrd "$initrd" -append "$append" \
   -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
   -virtfs "local,path=$out,mount_tag=ftout,security_model=none" \

@@ -1,0 +1,129 @@
+#!/bin/sh
+# The cockpit display path (issue 7) proven in the test VM, one boot per
+# display device (bochs-drm, virtio-gpu):
+#   kms-test.sh BUILD_DIR OUT_DIR COMPARE_IMAGE QMP_SCREENDUMP KMS_CRTC [DEVICES]
+# On the host: the scene (640x480, the smallest standard mode, a 65^2 synthetic
+# terrain), its offscreen render (ref.png), a deliberately wrong frame (the
+# same with the heading 1 degree off: wrong.png) and the frame `run` draws
+# without CAN data (the scene pose with the failure annunciation, from
+# `fixterrain replay` of a one-line log: ref-run.png).
+# In the VM (guest-kms.sh): fixterrain shows those frames on KMS; the host
+# serves its screendump requests over QMP (scanout -> PPM) and then compares:
+#   render.ppm vs ref.png and guest.png  must MATCH (tolerance below)
+#   render.ppm vs wrong.png              must DIFFER
+#   run.ppm vs ref-run.png               must MATCH
+#   console-after.ppm vs console-before  must MATCH loosely (the console is
+#                                        back; its cursor may blink)
+# Tolerance for a frame: a pixel differs when a channel differs by more than
+# 2 levels; at most 0.1% of the pixels may differ and the mean absolute
+# channel difference must be <= 0.5 levels (the display path copies texel
+# for texel, so the measured difference is expected to be 0).
+# DEVICES defaults to "bochs virtio".
+set -eu
+build=$(cd "$1" && pwd); out=$2; compare=$3; qmpdump=$4; crtc=$5
+devices=${6:-bochs virtio}
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$out"; out=$(cd "$out" && pwd)
+fail() { echo "kms-test: FAIL: $*" >&2; exit 1; }
+fx=$build/fixterrain
+period_ms=${FT_KMS_PERIOD_MS:-100}
+
+cat > "$out/kms.ini" <<EOS
+[scene]
+name = vm-kms
+method = brute
+backend = egl-gles3
+display = kms
+[view]
+width_px = 640
+height_px = 480
+[terrain]
+dem =
+synth_side = 65
+synth_spacing_m = 120
+synth_anchor_lat_deg = 46.5
+synth_anchor_lon_deg = 8.0
+[pose]
+lat_deg = 46.52
+lon_deg = 8.03
+alt_m = 3800
+heading_deg = 30
+pitch_deg = -15
+roll_deg = 0
+[frame]
+period_ms = $period_ms
+[can]
+interface = vcan0
+EOS
+"$fx" render --scene "$out/kms.ini" --display none --out "$out/ref.png" --quiet ||
+  fail "host render"
+"$fx" render --scene "$out/kms.ini" --display none --pose 46.52,8.03,3800,31,-15,0 \
+  --out "$out/wrong.png" --quiet || fail "host render (wrong pose)"
+echo "(1000.000000) vcan0 7FF#0000000000000000" > "$out/one.log"
+rm -rf "$out/ref-run"; mkdir -p "$out/ref-run"
+"$fx" replay --log "$out/one.log" --scene "$out/kms.ini" --frames-out "$out/ref-run" --quiet ||
+  fail "host replay (annunciated frame)"
+cp "$out/ref-run/frame_000000.png" "$out/ref-run.png"
+"$compare" "$out/ref.png" "$out/wrong.png" --expect-differ > /dev/null ||
+  fail "the wrong pose renders the same frame: the test would prove nothing"
+
+summary=$out/summary.txt
+: > "$summary"
+for dev in $devices; do
+  d=$out/$dev
+  rm -rf "$d"; mkdir -p "$d"
+  echo "kms-test: $dev: booting" >&2
+  t0=$(date +%s.%N)
+  FT_VM_DISPLAY=$dev FT_VM_DISPLAY_SIZE=640x480 FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} \
+    "$here/run-vm.sh" "tests/vm/guest-kms.sh $fx $out/kms.ini $crtc" "$d" > "$d/vm.txt" 2>&1 &
+  vm=$!
+  # serve the guest's screendump requests until the VM is gone (bounded)
+  served=' '
+  i=0
+  while kill -0 "$vm" 2>/dev/null; do
+    i=$((i + 1)); [ "$i" -lt 20000 ] || { kill "$vm"; fail "$dev: VM did not finish"; }
+    for name in $(tr -d '\r' < "$d/console.log" 2>/dev/null | sed -n 's/^FT-KMS-DUMP \([a-z-]*\)$/\1/p'); do
+      case $served in *" $name "*) continue ;; esac
+      served="$served$name "
+      if [ "$name" = render ]; then
+        awk -v a="$t0" -v b="$(date +%s.%N)" \
+          'BEGIN { printf "%.1f\n", b - a }' > "$d/host-first-frame-s.txt"
+      fi
+      "$qmpdump" "$d/qmp.sock" "$d/$name.ppm" >> "$d/dumps.txt" 2>&1 ||
+        { cat "$d/dumps.txt" >&2; kill "$vm"; fail "$dev: screendump $name"; }
+      touch "$d/$name.ack"
+    done
+    sleep 0.05
+  done
+  rc=0; wait "$vm" || rc=$?
+  cat "$d/vm.txt"
+  [ "$rc" -eq 0 ] || fail "$dev: the guest part failed (exit $rc)"
+  cat "$d/dumps.txt"
+
+  c() { "$compare" "$@" | tee -a "$d/compare.txt"; }
+  c "$d/render.ppm" "$out/ref.png" || fail "$dev: the KMS scanout is not the host's offscreen frame"
+  c "$d/render.ppm" "$d/guest.png" || fail "$dev: the KMS scanout is not the guest's own readback"
+  c "$d/render.ppm" "$out/wrong.png" --expect-differ || fail "$dev: a wrong frame matched"
+  c "$d/run.ppm" "$out/ref-run.png" || fail "$dev: the run frame on KMS is not the replay's"
+  c "$d/console-after.ppm" "$d/console-before.ppm" --level 0 --max-fraction 0.01 --max-mean 5 ||
+    fail "$dev: the console is not back after SIGTERM"
+  c "$d/console-after.ppm" "$out/ref.png" --expect-differ || fail "$dev: the terrain is still shown"
+
+  frames=$(sed -n 's/.*"frames": \([0-9]*\).*/\1/p' "$d/run.json")
+  misses=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$d/run.json")
+  slowest=$(sed -n 's/.*"frame_ms_max": \([0-9.]*\).*/\1/p' "$d/run.json")
+  [ -n "$frames" ] && [ -n "$misses" ] || fail "$dev: no frames/deadline_misses in run.json"
+  [ "$frames" -gt 0 ] || fail "$dev: run drew no frames"
+  flips=$(sed -n 's/^kms: restored CRTC.*; \([0-9]*\) flips, flip time mean \([0-9.]*\) ms, max \([0-9.]*\) ms.*/\1 flips, mean \2 ms, max \3 ms/p' "$d/run.log")
+  first=$(sed -n 's/^kms: first frame on screen \([0-9.]*\) ms after open.*/\1/p' "$d/render.log")
+  boot=$(sed -n 's/^guest-kms: render: start at [0-9.]* s, frame shown by \([0-9.]*\) s.*/\1/p' "$d/vm.txt")
+  {
+    echo "$dev: boot to first terrain frame: ${boot} s uptime (host: $(cat "$d/host-first-frame-s.txt") s from qemu start); display open to first flip ${first} ms"
+    echo "$dev: run at ${period_ms} ms: $frames frames, $misses deadline misses (slowest frame ${slowest} ms); flips: $flips"
+    sed -n 's/^qmp-screendump: .*\/\([a-z-]*\.ppm\) in \(.*\)/screendump \1: \2/p' "$d/dumps.txt" | sed "s/^/$dev: /"
+    sed -n 's/^compare-image: .*\/\([a-z-]*\.[a-z]*\) vs .*\/\([a-z-]*\.[a-z]*\): [0-9x]*, \(.*\)/\1 vs \2: \3/p' "$d/compare.txt" | sed "s/^/$dev: /"
+  } >> "$summary"
+done
+echo "----- kms-test summary"
+cat "$summary"
+echo "kms-test: ok"

@@ -2,9 +2,9 @@
 # Runs INSIDE the test VM (tests/vm/live-test.sh starts it): the live renderer
 # on vcan0 + gpio-sim while canplayer replays a generated flight, with GPIO
 # freeze and annunciation-test pulses, a heartbeat sampler, and SIGTERM.
-#   guest-live.sh FIXTERRAIN LOG SCENE   (results in $FT_VM_OUT)
+#   guest-live.sh FIXTERRAIN LOG SCENE HB_SAMPLER   (results in $FT_VM_OUT)
 set -u
-bin=$1; log=$2; scene=$3
+bin=$1; log=$2; scene=$3; sampler=$4
 out=${FT_VM_OUT:?run it with tests/vm/run-vm.sh}
 fail() { echo "guest-live: FAIL: $*" >&2; exit 1; }
 [ "${FT_VM:-}" = 1 ] || fail "not inside the test VM"
@@ -32,13 +32,8 @@ until [ "$(cat "$sim/sim_gpio7/value")" = 1 ]; do
 done
 sleep 0.5
 
-# heartbeat sampler: uptime, line value, renderer alive (1/0)
-( while :; do
-    alive=0; kill -0 "$pid" 2>/dev/null && alive=1
-    echo "$(cut -d' ' -f1 /proc/uptime) $(cat "$sim/sim_gpio7/value") $alive"
-    [ -f "$out/hb.stop" ] && break
-    sleep 0.01
-  done > "$out/hb.txt" ) &
+# heartbeat sampler (a C program: a shell loop is too slow under emulation)
+"$sampler" "$sim/sim_gpio7/value" "$pid" "$out/hb.txt" &
 hb=$!
 
 canplayer -I "$log" &
@@ -55,8 +50,7 @@ t0=$(cut -d' ' -f1 /proc/uptime)
 wait "$pid"; rc=$?
 t1=$(cut -d' ' -f1 /proc/uptime)
 echo "renderer exit status $rc after SIGTERM ($t0 -> $t1 s)" | tee "$out/term.txt"
-sleep 0.5
-touch "$out/hb.stop"; wait "$hb"
+wait "$hb" || fail "heartbeat sampler"
 cat "$out/run.log"
 [ "$rc" -eq 0 ] || fail "renderer exit status $rc"
 echo "guest-live: done"

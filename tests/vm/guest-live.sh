@@ -38,7 +38,7 @@ hb=$!
 
 canplayer -I "$log" &
 player=$!
-# the GPIO pulses stay well clear of the stall (6..7 s of log time)
+# the GPIO pulses stay well clear of the stall (8..9 s of log time)
 sleep 1.5; pull 0 pull-up      # freeze for 1 s
 sleep 1;   pull 0 pull-down
 sleep 0.5; pull 1 pull-up      # annunciation test for 0.5 s

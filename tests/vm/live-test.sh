@@ -1,9 +1,9 @@
 #!/bin/sh
 # The live pose path on real vcan and GPIO lines (issue 5), in one VM boot:
 #   live-test.sh BUILD_DIR OUT_DIR COMPARE_LIVE_BINARY HB_SAMPLER_BINARY
-# 1. fixterrain-flightgen writes a 9 s orbit as a CANaerospace candump log
+# 1. fixterrain-flightgen writes a 12 s orbit as a CANaerospace candump log
 #    with faults: a NaN pitch at 3 s, every 10th attitude frame dropped, and a
-#    stalled bus from 6 to 7 s;
+#    stalled bus from 8 to 9 s;
 # 2. in the VM, `fixterrain run` draws from vcan0 while canplayer replays the
 #    log; GPIO line 0 freezes the pose for 1 s, line 1 holds the annunciation
 #    test for 0.5 s, line 7 is the heartbeat; then SIGTERM;
@@ -18,7 +18,7 @@ rm -f "$out"/live.* "$out"/hb.* "$out"/replay.*
 fail() { echo "live-test: FAIL: $*" >&2; exit 1; }
 period_ms=200
 "$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 500 --alt 2600 \
-  --duration 9 --nan-at 3 --drop-every 10 --stall 6,7 --out "$out/flight.log" --quiet
+  --duration 12 --nan-at 3 --drop-every 10 --stall 8,9 --out "$out/flight.log" --quiet
 log_t0=$(head -n 1 "$out/flight.log" | sed 's/^(\([0-9.]*\)).*/\1/')
 scene() { # $1 period_ms
   cat <<EOS
@@ -55,7 +55,7 @@ FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} "$here/run-vm.sh" \
 
 "$build/fixterrain" replay --log "$out/flight.log" --scene "$out/replay.ini" \
   --poses "$out/replay.csv" --quiet || fail "host replay"
-"$compare" "$out/live.csv" "$out/live.json" "$out/replay.csv" "$log_t0" 6 7 \
+"$compare" "$out/live.csv" "$out/live.json" "$out/replay.csv" "$log_t0" 8 9 \
   "$period_ms" 100 || fail "live poses against the replay"
 
 # no missed frames; every presented frame toggled the heartbeat

@@ -17,7 +17,7 @@ mkdir -p "$out"; out=$(cd "$out" && pwd)
 rm -f "$out"/live.* "$out"/hb.* "$out"/replay.*
 fail() { echo "live-test: FAIL: $*" >&2; exit 1; }
 period_ms=200
-"$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 500 --alt 2600 \
+"$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 2000 --alt 2600 \
   --duration 12 --nan-at 3 --drop-every 10 --stall 8,9 --out "$out/flight.log" --quiet
 log_t0=$(head -n 1 "$out/flight.log" | sed 's/^(\([0-9.]*\)).*/\1/')
 scene() { # $1 period_ms

@@ -60,6 +60,7 @@ static void print_help(void)
            "  render    render one frame of a scene offscreen to PNG\n"
            "  replay    render a candump log of CANaerospace pose messages\n"
            "  run       live: pose from CAN and GPIO, frames at the scene's rate\n"
+           "  budget    static memory, GPU memory and worst-case work against the budgets\n"
            "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file%s\n"
            "  help      this text\n\n"
            "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
@@ -717,6 +718,110 @@ static int cmd_run(int argc, char **argv)
 }
 #endif
 
+/* ---- fixterrain budget -------------------------------------------------------- */
+/* The binary's own static footprint, from the ELF linker symbols (GNU ld and
+ * lld define them for Linux executables). */
+extern char __executable_start, etext, __data_start, edata, end;
+
+static void print_budget_help(void)
+{
+    printf("usage: fixterrain budget [--scene FILE] [--dem FILE] [--method NAME] [--backend NAME]\n"
+           "                        [--size WxH]\n"
+           "Initialises the scene (terrain, GPU, method) and prints every static memory\n"
+           "pool, the binary's static footprint, GPU memory, and the worst-case triangles\n"
+           "per frame and ray-cast pixels, each against its budget. Exit status 1 when\n"
+           "any budget is exceeded (the message names it), 2 for a usage error.\n");
+}
+
+/* Worst case over every view, from the method's fixed capacities. */
+static uint64_t worst_triangles(const ft_app *app, const char **rule)
+{
+    const ft_method *m = &app->renderer.method;
+    const ft_terrain *t = &app->terrain;
+    switch (m->kind) {
+#if FT_WITH_METHOD_BRUTE
+    case FT_METHOD_BRUTE: {
+        /* the window (brute.max_vertices) rounded up to whole patches */
+        const uint64_t p = m->u.brute.patch_cells, win = m->u.brute.window_side;
+        const uint64_t w = (t->width < win ? t->width : win) - 1u;
+        const uint64_t h = (t->height < win ? t->height : win) - 1u;
+        *rule = "whole patches covering the drawn window, 2 per cell";
+        return ((w + p - 1u) / p) * ((h + p - 1u) / p) * p * p * 2u;
+    }
+#endif
+#if FT_WITH_METHOD_BINTREE
+    case FT_METHOD_BINTREE:
+        *rule = "bintree.tiles_max x 4^template_k";
+        return (uint64_t)m->u.bintree.bt.tiles_max * m->u.bintree.triangles_per_tile;
+#endif
+    default:
+        *rule = "not known for this method";
+        return 0u;
+    }
+}
+
+static int cmd_budget(int argc, char **argv)
+{
+    scene_opts o;
+    memset(&o, 0, sizeof o);
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_budget_help();
+            return FT_EXIT_OK;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "fixterrain budget: %s needs a value (or unknown option)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        if (strcmp(a, "--scene") == 0) o.scene_path = v;
+        else if (strcmp(a, "--dem") == 0) o.dem = v;
+        else if (strcmp(a, "--method") == 0) o.method = v;
+        else if (strcmp(a, "--backend") == 0) o.backend = v;
+        else if (strcmp(a, "--size") == 0) o.size = v;
+        else {
+            fprintf(stderr, "fixterrain budget: unknown option %s (see --help)\n", a);
+            return FT_EXIT_USAGE;
+        }
+        ++i;
+    }
+    static ft_scene scene;
+    int rc = resolve_scene("budget", &o, &scene);
+    if (rc != FT_EXIT_OK) {
+        return rc;
+    }
+    const size_t text_b = (size_t)(&etext - &__executable_start);
+    const size_t data_b = (size_t)(&edata - &__data_start);
+    const size_t bss_b = (size_t)(&end - &edata);
+    printf("scene %s: method %s, %ux%u, backend %s\n", scene.name, ft_method_name(scene.method),
+           scene.width_px, scene.height_px, ft_backend_name(scene.backend));
+    printf("binary static footprint: text %zu, data %zu, bss %zu bytes (total %zu)\n", text_b,
+           data_b, bss_b, text_b + data_b + bss_b);
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    if (ft_app_init(&g_app, &scene, &err) != FT_OK) {
+        /* init checks every pool and the GPU budget first: the message names
+         * the one exceeded and the numbers */
+        fprintf(stderr, "fixterrain budget: OVER BUDGET or init failed: %s: %s\n",
+                ft_status_str(err.status), err.text);
+        return FT_EXIT_ERROR;
+    }
+    printf("static memory (one arena of %zu bytes, reserved at init, locked after it):\n%s",
+           g_app.arena_bytes, g_app.pool_table);
+    printf("GPU memory: %llu of %llu bytes (gpu.texture_bytes)\n",
+           (unsigned long long)g_app.renderer.gpu_bytes,
+           (unsigned long long)scene.gpu_texture_bytes);
+    const char *rule = "";
+    const uint64_t tris = worst_triangles(&g_app, &rule);
+    printf("worst-case triangles per frame: %llu (%s)\n", (unsigned long long)tris, rule);
+    printf("worst-case ray-cast pixels per frame: 0 (no ray casting in method %s)\n",
+           ft_method_name(scene.method));
+    printf("budget: every pool and the GPU memory fit\n");
+    ft_app_shutdown(&g_app);
+    return FT_EXIT_OK;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -728,6 +833,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "replay") == 0) {
         return cmd_replay(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "budget") == 0) {
+        return cmd_budget(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "run") == 0) {
 #if FT_WITH_CAN && FT_WITH_GPIO

@@ -46,6 +46,14 @@ printf '[scene]\nmethod = brute\n' > "$out/ok.ini"
 head -c 70000 /dev/zero | tr '\0' ';' >> "$out/ok.ini"
 expect 1 "the limit is 65535 bytes" -- "$bin" render --scene "$out/ok.ini"
 
+# fixterrain budget: the table and worst cases; an exceeded budget exits 1 naming it.
+expect 0 "worst-case triangles per frame: 2097152" -- "$bin" budget
+expect 0 "binary static footprint" -- "$bin" budget --method bintree
+printf '[scene]\nmethod = bintree\n[budget]\nmethod_bytes = 64K\n' > "$out/bmem.ini"
+expect 1 "OVER BUDGET" -- "$bin" budget --scene "$out/bmem.ini"
+expect 1 "method_bytes" -- "$bin" budget --scene "$out/bmem.ini"
+expect 2 "unknown option" -- "$bin" budget --bogus 1
+
 # Bad DEM files: clear errors, never a crash.
 printf 'this is not a terrain file at all, but it is long enough to hold a header.%0256d' 0 > "$out/bad.ftt"
 expect 1 "magic" -- "$bin" render --dem "$out/bad.ftt" --out "$out/x.png"

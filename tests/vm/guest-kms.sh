@@ -66,10 +66,12 @@ expect_error not-master "not the DRM master" render --scene "$scene" --display k
   --quiet --out /tmp/x.png
 touch "$out/master.stop"; wait "$holder" || fail "kms-crtc master: $(cat "$out/master.txt")"
 
-# 2. one frame on KMS, held while the host takes the screendump
+# 2. one frame on KMS, held while the host takes the screendump; the display
+#    comes from the scene file this time (scene.display = kms:CARD)
 dump console-before
+{ cat "$scene"; printf '[scene]\ndisplay = kms:%s\n' "$card"; } > /tmp/kms-display.ini
 t0=$(up)
-"$bin" render --scene "$scene" --display kms --out "$out/guest.png" --hold-ms 8000 \
+"$bin" render --scene /tmp/kms-display.ini --out "$out/guest.png" --hold-ms 8000 \
   > "$out/render.log" 2>&1 &
 pid=$!
 wait_for "$out/render.log" "showing the frame" "$pid" 180

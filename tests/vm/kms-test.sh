@@ -33,7 +33,6 @@ cat > "$out/kms.ini" <<EOS
 name = vm-kms
 method = brute
 backend = egl-gles3
-display = kms
 [view]
 width_px = 640
 height_px = 480

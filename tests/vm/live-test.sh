@@ -19,6 +19,8 @@ fail() { echo "live-test: FAIL: $*" >&2; exit 1; }
 period_ms=200
 "$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 2000 --alt 2600 \
   --duration 12 --nan-at 3 --drop-every 10 --stall 8,9 --out "$out/flight.log" --quiet
+"$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 2000 --alt 2600 \
+  --duration 12 --iface vcan1 --out "$out/flight_backup.log" --quiet
 log_t0=$(head -n 1 "$out/flight.log" | sed 's/^(\([0-9.]*\)).*/\1/')
 scene() { # $1 period_ms
   cat <<EOS
@@ -48,10 +50,11 @@ debounce_ms = 10
 EOS
 }
 scene "$period_ms" > "$out/live.ini"
+{ scene "$period_ms"; printf 'source_line = 2\n[can]\nfailover_ms = 200\n'; } > "$out/failover.ini"
 scene 5 > "$out/replay.ini"
 
 FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} "$here/run-vm.sh" \
-  "tests/vm/guest-live.sh $build/fixterrain $out/flight.log $out/live.ini $sampler" "$out"
+  "tests/vm/guest-live.sh $build/fixterrain $out/flight.log $out/live.ini $sampler $out/flight_backup.log $out/failover.ini" "$out"
 
 "$build/fixterrain" replay --log "$out/flight.log" --scene "$out/replay.ini" \
   --poses "$out/replay.csv" --quiet || fail "host replay"
@@ -73,4 +76,17 @@ echo "live-test: heartbeat line: $changes changes in $alive_s s alive, $dead_cha
 awk -v a="$alive_s" -v c="$changes" -v d="$dead_s" -v dc="$dead_changes" -v p="$period_ms" \
   'BEGIN { rate = c / a; want = 1000 / p; exit !(rate > 0.8 * want && rate < 1.2 * want && dc == 0 && d >= 0.5) }' \
   || fail "heartbeat line: not one change per frame while running, or changes after exit"
+# phase 2: the primary's 1 s stall is bridged by the backup after
+# can.failover_ms (200 ms): at most the frames between the attitude timeout
+# (100 ms) and the failover are annunciated (<= 2 at 200 ms frames), then the
+# primary comes back; the source line forces the backup for 1 s
+switches=$(sed -n 's/.*"source_switches": \([0-9]*\).*/\1/p' "$out/live2.json")
+backup=$(sed -n 's/.*"frames_backup": \([0-9]*\).*/\1/p' "$out/live2.json")
+misses2=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$out/live2.json")
+late_ann=$(awk -F, 'NR > 1 { if ($9 == 0) good = 1; else if (good) n++ } END { print n + 0 }' "$out/live2.csv")
+echo "live-test: failover: $switches source switches, $backup frames from the backup, $late_ann annunciated frames after the first good one, $misses2 deadline misses"
+[ "$switches" -ge 4 ] || fail "expected >= 4 source switches (source line on/off, failover, failback)"
+[ "$backup" -ge 5 ] || fail "too few frames from the backup interface"
+[ "$late_ann" -le 2 ] || fail "the backup did not bridge the primary's stall ($late_ann annunciated frames)"
+[ "$misses2" -eq 0 ] || fail "phase 2: $misses2 deadline misses"
 echo "live-test: ok"

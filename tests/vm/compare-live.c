@@ -10,9 +10,10 @@
  *     emulated VM (a few ms when the host is quiet, > 100 ms when it is
  *     loaded) times the path's turn rate (1.7 deg/s: a 2 km orbit at 60 m/s),
  *     i.e. 290 ms of timing error allowed;
- *   lat/lon 1e-4 deg, alt 2 m: position is held between 10 Hz samples, so a
- *     live frame a few ms off the replay's timing may hold the neighbouring
- *     sample (the path moves < 10 m per sample);
+ *   lat/lon 3e-4 deg, alt 2 m: position is held between 10 Hz samples, so a
+ *     live frame off the replay's timing holds a neighbouring sample (the
+ *     path moves 6 m per sample; 3e-4 deg is about 5 samples, the timing
+ *     error a loaded host causes);
  *   annunciation: the first annunciated frame after the stall starts must
  *     come no later than timeout + one period + 20 ms of jitter after the
  *     last frame before it, and not before the timeout - 20 ms (the time
@@ -152,7 +153,7 @@ int main(int argc, char **argv)
         if (da > worst_att) worst_att = da;
         if (dp > worst_pos) worst_pos = dp;
         if (dz > worst_alt) worst_alt = dz;
-        if (da > 0.5 || dp > 1e-4 || dz > 2.0) {
+        if (da > 0.5 || dp > 3e-4 || dz > 2.0) {
             if (fails < 10) {
                 fprintf(stderr, "frame %d (path %.3f s): live hdg %.3f pitch %.3f roll %.3f, "
                         "replay %.3f %.3f %.3f; dpos %.2e dalt %.2f\n", i, t_path, r->hdg,

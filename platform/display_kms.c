@@ -154,8 +154,9 @@ int ft_kms_pick_connector(drmModeConnector *const *conns, uint32_t n, const char
             }
         }
         (void)snprintf(why, why_cap,
-                       "no connected connector with modes (%s): connect a display, or name "
-                       "one with display.connector", n ? list : "the card has no connectors");
+                       "no connected connector with modes: connect a display, or name one "
+                       "with display.connector; connectors: %s",
+                       n ? list : "none (the card has no connectors)");
         return -1;
     }
     char *end = NULL;
@@ -183,8 +184,8 @@ int ft_kms_pick_connector(drmModeConnector *const *conns, uint32_t n, const char
         }
         return (int)i;
     }
-    (void)snprintf(why, why_cap, "no connector '%s' (display.connector) on this card (%s)", want,
-                   n ? list : "none");
+    (void)snprintf(why, why_cap, "no connector '%s' (display.connector) on this card; "
+                   "connectors: %s", want, n ? list : "none");
     return -1;
 }
 
@@ -254,13 +255,13 @@ int ft_kms_pick_mode(const drmModeConnector *c, uint32_t view_w, uint32_t view_h
         if (m.preferred) {
             (void)snprintf(why, why_cap, "connector %s offers no modes", name);
         } else if (m.refresh_hz != 0u) {
-            (void)snprintf(why, why_cap, "connector %s offers no %ux%u@%u mode (modes: %s)", name,
+            (void)snprintf(why, why_cap, "connector %s offers no %ux%u@%u mode; modes: %s", name,
                            m.width_px, m.height_px, m.refresh_hz, modes);
         } else {
             (void)snprintf(why, why_cap,
-                           "connector %s offers no %ux%u mode for the %ux%u view (modes, * = "
-                           "preferred: %s): frames are shown 1:1, so set the view size "
-                           "(--size, view.width_px/height_px) to one of them",
+                           "connector %s offers no %ux%u mode for the %ux%u view; frames are "
+                           "shown 1:1, so set the view size (--size, view.width_px/height_px) "
+                           "to one of its modes (* = preferred): %s",
                            name, m.width_px, m.height_px, view_w, view_h, modes);
         }
         return -1;

@@ -87,6 +87,8 @@ void ft_scene_defaults(ft_scene *s)
     s->gpio_heartbeat_line = -1;
     s->gpio_active_low = 0;
     s->gpio_debounce_ms = 10;
+    s->build_inputs = FT_BUILD_INPUT_REPLAY | FT_BUILD_INPUT_CAN | FT_BUILD_INPUT_GPIO;
+    s->build_png = 1;
     /* Budgets of config/default.ini (tests/test_scene.c checks they agree). */
     s->budget_bytes[FT_POOL_HEIGHTS] = 6ull << 20;
     s->budget_bytes[FT_POOL_PYRAMIDS] = 18ull << 20;
@@ -459,6 +461,34 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "debounce_ms") == 0) {
             return RANGE(parse_u32(value, 0, 1000, &s->gpio_debounce_ms), "expected 0..1000");
         }
+    } else if (strcmp(section, "build") == 0) {
+        if (strcmp(key, "inputs") == 0) {
+            /* comma list; bounded by the value's length (< the INI line limit) */
+            unsigned bits = 0;
+            const char *p = value;
+            for (int guard = 0; guard < 16 && *p != '\0'; ++guard) {
+                size_t n = strcspn(p, ",");
+                if (n == 6 && strncmp(p, "replay", 6) == 0) bits |= FT_BUILD_INPUT_REPLAY;
+                else if (n == 3 && strncmp(p, "can", 3) == 0) bits |= FT_BUILD_INPUT_CAN;
+                else if (n == 4 && strncmp(p, "gpio", 4) == 0) bits |= FT_BUILD_INPUT_GPIO;
+                else return fail_key(c, section, key, value, "expected a comma list of replay, can, gpio");
+                p += n;
+                if (*p == ',') ++p;
+            }
+            if (bits == 0u) {
+                return fail_key(c, section, key, value, "expected a comma list of replay, can, gpio");
+            }
+            s->build_inputs = bits;
+            return 1;
+        }
+        if (strcmp(key, "png") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->build_png = (int)v;
+            return 1;
+        }
     } else if (strcmp(section, "can_map") == 0) {
         if (strcmp(key, "defaults") == 0) {
             uint32_t v;
@@ -474,6 +504,8 @@ static int on_key(void *user, const char *section, const char *key, const char *
     s->gpio_heartbeat_line = -1;
     s->gpio_active_low = 0;
     s->gpio_debounce_ms = 10;
+    s->build_inputs = FT_BUILD_INPUT_REPLAY | FT_BUILD_INPUT_CAN | FT_BUILD_INPUT_GPIO;
+    s->build_png = 1;
             } else {
                 memset(&s->can_map, 0, sizeof s->can_map);
             }

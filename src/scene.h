@@ -59,6 +59,10 @@
  *   gpio.heartbeat_line   output: toggled once per presented frame
  *   gpio.active_low       0 | 1: inputs are active low
  *   gpio.debounce_ms      [0, 1000]: an input level must hold this long
+ *   build.inputs          what the scene's pose comes from, for a lean build
+ *                         (cmake -DFIXTERRAIN_PROFILE=SCENE.ini): a comma list of
+ *                         replay, can, gpio (replay = candump logs only)
+ *   build.png             0 | 1: the build needs PNG output
  *   budget.<pool>_bytes   one per pool in mem_budget.h (heights_bytes, ...) */
 #ifndef FT_SCENE_H
 #define FT_SCENE_H
@@ -80,6 +84,10 @@
 #define FT_CAN_IFACE_NAME_MAX 16u /* IFNAMSIZ: 15 characters + NUL */
 #define FT_GPIO_CHIP_NAME_MAX 64u
 #define FT_GPIO_LINE_MAX 511
+
+#define FT_BUILD_INPUT_REPLAY 1u
+#define FT_BUILD_INPUT_CAN 2u
+#define FT_BUILD_INPUT_GPIO 4u
 
 /* Discrete inputs (gpio.<name>_line). */
 #define FT_GPIO_INPUT_LIST(X)                                             \
@@ -147,6 +155,8 @@ typedef struct ft_scene {
     int gpio_heartbeat_line;                      /* gpio.heartbeat_line, -1 = none */
     int gpio_active_low;                          /* gpio.active_low */
     uint32_t gpio_debounce_ms;                    /* gpio.debounce_ms */
+    unsigned build_inputs;                        /* build.inputs: FT_BUILD_INPUT_* bits */
+    int build_png;                                /* build.png */
     uint64_t budget_bytes[FT_POOL_COUNT];
 } ft_scene;
 

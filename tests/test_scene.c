@@ -59,6 +59,7 @@ int main(void)
     CHECK(strcmp(a.gpio_chip, b.gpio_chip) == 0 && a.gpio_heartbeat_line == -1);
     CHECK(memcmp(a.gpio_input_line, b.gpio_input_line, sizeof a.gpio_input_line) == 0);
     CHECK(a.gpio_debounce_ms == b.gpio_debounce_ms && a.gpio_active_low == b.gpio_active_low);
+    CHECK(a.build_inputs == b.build_inputs && a.build_png == b.build_png);
     CHECK(a.pyramid_textures == b.pyramid_textures);
     CHECK(a.height_format == b.height_format);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {
@@ -101,6 +102,9 @@ int main(void)
     expect_error("[can_map]\nspeed = 500,1,0,1,100\n", "unknown section or key");
     expect_error("[can]\ninterface = averyveryverylongname0\n", "longer than 15");
     expect_error("[frame]\nperiod_ms = 0\n", "frame.period_ms");
+    expect_error("[build]\ninputs = replay,usb\n", "build.inputs");
+    CHECK(parse("[build]\ninputs = replay\npng = 0\n", &a, &err) == FT_OK);
+    CHECK(a.build_inputs == FT_BUILD_INPUT_REPLAY && a.build_png == 0);
     expect_error("[gpio]\nfreeze_line = 1.5\n", "gpio.freeze_line");
     expect_error("[gpio]\nfreeze_line = 3\nheartbeat_line = 3\n", "line 3 is used twice");
     CHECK(parse("[gpio]\nchip = gpiochip1\nfreeze_line = 0\ntest_line = 2\nheartbeat_line = 7\n",

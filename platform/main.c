@@ -738,6 +738,7 @@ static uint64_t worst_triangles(const ft_app *app, const char **rule)
 {
     const ft_method *m = &app->renderer.method;
     const ft_terrain *t = &app->terrain;
+    (void)t; /* used by the brute case only */
     switch (m->kind) {
 #if FT_WITH_METHOD_BRUTE
     case FT_METHOD_BRUTE: {

@@ -49,7 +49,7 @@ expect_error() { # expect_error NAME TEXT ARGS...: fixterrain must fail saying T
   grep -q "$text" "$out/err-$name.log" || fail "$name: no '$text' in: $(cat "$out/err-$name.log")"
   echo "guest-kms: error ($name): $(grep -m 1 "$text" "$out/err-$name.log")"
 }
-echo "guest-kms: display $FT_VM_DISPLAY, $card ($(cat /sys/class/drm/card0/device/uevent 2>/dev/null | sed -n 's/^DRIVER=//p')), uptime $(up) s"
+echo "guest-kms: display $FT_VM_DISPLAY, $card ($(sed -n 's/^DRIVER=//p' /sys/class/drm/card0/device/uevent 2>/dev/null)), uptime $(up) s"
 echo "guest-kms: connector modes: $(cat /sys/class/drm/card0-*/modes | tr '\n' ' ')"
 
 # 1. first thing after boot: one frame on KMS, held while the host takes the
@@ -115,8 +115,9 @@ touch "$out/watch.stop"; wait "$watcher" || fail "kms-crtc watch: $(cat "$out/wa
 cat "$out/watch.txt"
 before=$(sed -n 's/^before: //p' "$out/watch.txt")
 after=$(sed -n 's/^after: //p' "$out/watch.txt")
-[ -n "$before" ] && [ "$before" = "$after" ] ||
+if [ -z "$before" ] || [ "$before" != "$after" ]; then
   fail "the CRTC state after SIGTERM is not the one before the run: '$before' -> '$after'"
+fi
 echo "guest-kms: CRTC restored after SIGTERM: $after"
 # paced by the monotonic clock: never more frames than periods (uptime is
 # the same clock as the loop's t_start_ns here: no suspend in the VM)

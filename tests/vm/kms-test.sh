@@ -127,7 +127,7 @@ for dev in $devices; do
   frames=$(sed -n 's/.*"frames": \([0-9]*\).*/\1/p' "$d/run.json")
   misses=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$d/run.json")
   slowest=$(sed -n 's/.*"frame_ms_max": \([0-9.]*\).*/\1/p' "$d/run.json")
-  [ -n "$frames" ] && [ -n "$misses" ] || fail "$dev: no frames/deadline_misses in run.json"
+  if [ -z "$frames" ] || [ -z "$misses" ]; then fail "$dev: no frames/deadline_misses in run.json"; fi
   [ "$frames" -gt 0 ] || fail "$dev: run drew no frames"
   # counted and reported; under TCG a frame costs about 100 ms, and the first
   # one also compiles the shaders (seconds), so a few misses are expected

@@ -7,7 +7,7 @@ if(TARGET fixterrain)
   # must build, and a minimal EGL + brute build must render.
   add_test(NAME lean_build
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_lean_build.sh ${CMAKE_SOURCE_DIR}
-                      ${CMAKE_BINARY_DIR}/lean ${CMAKE_C_COMPILER})
+                      ${CMAKE_BINARY_DIR}/lean ${CMAKE_C_COMPILER} $<TARGET_FILE:fixterrain>)
   set_tests_properties(lean_build PROPERTIES TIMEOUT 900)
 endif()
 

@@ -3,7 +3,7 @@
 # is missing) and a minimal profile (EGL + brute, no OSMesa/PNG/reference/
 # GDAL), which must render. Prints both binary sizes.
 set -eu
-src=$1; dir=$2; cc=$3
+src=$1; dir=$2; cc=$3; full=${4:-}
 rm -rf "$dir"; mkdir -p "$dir"
 off="-DFIXTERRAIN_WITH_EGL=OFF -DFIXTERRAIN_WITH_X11=OFF -DFIXTERRAIN_WITH_KMS=OFF -DFIXTERRAIN_WITH_OSMESA=OFF -DFIXTERRAIN_WITH_METHOD_BRUTE=OFF
      -DFIXTERRAIN_WITH_METHOD_BINTREE=OFF -DFIXTERRAIN_WITH_METHOD_PGM=OFF -DFIXTERRAIN_WITH_CAN=OFF -DFIXTERRAIN_WITH_GPIO=OFF
@@ -24,5 +24,34 @@ cmake --build "$dir/min" -j2 >> "$dir/min.log" 2>&1 || { cat "$dir/min.log"; exi
 "$dir/min/fixterrain" render --size 160x120 --out "$dir/min.png" > "$dir/min-run.log" 2>&1 \
   || { cat "$dir/min-run.log"; exit 1; }
 grep -q "triangles" "$dir/min-run.log" || { cat "$dir/min-run.log"; exit 1; }
-echo "binary sizes: all options off $(stat -c %s "$dir/off/fixterrain") bytes," \
-     "minimal (EGL + brute) $(stat -c %s "$dir/min/fixterrain") bytes"
+
+# The lean build sized to a scene: config/minimal.ini (bintree, EGL offscreen,
+# replay input only, no metric) must build, render its scene and replay,
+# and leave out what it does not use.
+# shellcheck disable=SC2086
+cmake -S "$src" -B "$dir/profile" -DCMAKE_C_COMPILER="$cc" -DFIXTERRAIN_BUILD_TESTS=OFF \
+      -DFIXTERRAIN_PROFILE="$src/config/minimal.ini" > "$dir/profile.log"
+cmake --build "$dir/profile" -j2 >> "$dir/profile.log" 2>&1 || { cat "$dir/profile.log"; exit 1; }
+pbin="$dir/profile/fixterrain"
+"$pbin" render --scene "$src/config/minimal.ini" --size 160x120 --out "$dir/profile.png" \
+  > "$dir/profile-run.log" 2>&1 || { cat "$dir/profile-run.log"; exit 1; }
+grep -q "bintree:" "$dir/profile-run.log" || { cat "$dir/profile-run.log"; exit 1; }
+printf '(1700000000.000000) vcan0 137#0102000040A00000\n' > "$dir/one.log"
+"$pbin" replay --scene "$src/config/minimal.ini" --size 64x48 --log "$dir/one.log" \
+  > "$dir/profile-replay.log" 2>&1 || { cat "$dir/profile-replay.log"; exit 1; }
+for left_out in "run --frames 1" "render --method brute"; do
+  # shellcheck disable=SC2086
+  if "$pbin" $left_out --out "$dir/x.png" > "$dir/left.log" 2>&1; then
+    echo "FAIL: the minimal profile has '$left_out'"; exit 1
+  fi
+done
+"$pbin" budget --scene "$src/config/minimal.ini" > "$dir/profile-budget.txt" 2>&1 \
+  || { cat "$dir/profile-budget.txt"; exit 1; }
+sizes() { size "$1" | awk 'NR == 2 { printf "text %d, data %d, bss %d bytes", $1, $2, $3 }'; }
+echo "binary sizes (text/data/bss, debug info aside):"
+echo "  all options off:            $(sizes "$dir/off/fixterrain")"
+echo "  EGL + brute:                $(sizes "$dir/min/fixterrain")"
+echo "  profile config/minimal.ini: $(sizes "$pbin")"
+[ -n "$full" ] && echo "  full build:                 $(sizes "$full")"
+echo "static memory of the minimal scene (arena, reserved once at init):"
+grep -E "^total|GPU memory" "$dir/profile-budget.txt"

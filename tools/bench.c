@@ -1,0 +1,1253 @@
+/* bench.c - `fixterrain bench`: error against run time (see bench.h).
+ *
+ * One run = one (method, setting): a fresh ft_app (terrain, GPU context,
+ * method tables), one untimed warm-up frame (shader compilation), then every
+ * path's frames. The settings of a method are the product of its axes
+ * (default: bintree template_k x tau_px, pgm grid sizes; --settings replaces
+ * an axis or adds one); each setting becomes a few INI lines parsed over the
+ * scene, so any key of the method's section can be swept.
+ *
+ * The reference (CPU ray caster) depends only on the camera, so the first
+ * run that measures a frame keeps its reference pixels and later runs only
+ * draw their position pass and compute the metric against the copy (up to
+ * --ref-cache-mb; a frame whose camera differs is recomputed). */
+#define _POSIX_C_SOURCE 200809L
+#include "bench.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app.h"
+#include "flight_path.h"
+#include "plot.h"
+
+#define BENCH_EXIT_OK 0
+#define BENCH_EXIT_ERROR 1
+#define BENCH_EXIT_USAGE 2
+
+#define BENCH_METHODS_MAX 8
+#define BENCH_AXES_MAX 6
+#define BENCH_VALUES_MAX 16
+#define BENCH_NAME_LEN 32
+#define BENCH_VALUE_LEN 32
+#define BENCH_USER_AXES_MAX 16
+#define BENCH_SETTINGS_MAX 96
+#define BENCH_ROWS_MAX 256
+#define BENCH_LABEL_LEN 96
+#define BENCH_INI_LEN 512
+#define BENCH_PATHS_MAX 8
+#define BENCH_FRAMES_MAX 1000
+#define BENCH_MEASURED_MAX BENCH_FRAMES_MAX
+#define BENCH_WAYPOINT_TEXT_MAX (FLIGHT_WAYPOINTS_MAX * FLIGHT_LINE_MAX)
+#define BENCH_PLOT_W 800u
+#define BENCH_PLOT_H 600u
+#define BENCH_FLOOR_AGL_M 20.0   /* every pose at least this far above the ground */
+#define BENCH_HOVER_AGL_M 1000.0 /* nadir hover height above the ground */
+#define BENCH_CLIMB_DURATION_S 300.0
+
+/* ---- settings ------------------------------------------------------------------ */
+
+typedef struct bench_axis {
+    char method[BENCH_NAME_LEN]; /* scene section = method name */
+    char key[BENCH_NAME_LEN];    /* key, or "grid" = grid_cols x grid_rows */
+    char values[BENCH_VALUES_MAX][BENCH_VALUE_LEN];
+    int count;
+} bench_axis;
+
+typedef struct bench_setting {
+    char label[BENCH_LABEL_LEN];       /* "template_k=3 tau_px=1", "default" */
+    char short_label[BENCH_LABEL_LEN]; /* "k3 tau1" (plot) */
+    char ini[BENCH_INI_LEN];           /* "[bintree]\ntemplate_k = 3\n..." */
+} bench_setting;
+
+typedef struct bench_method {
+    char name[BENCH_NAME_LEN];
+    ft_method_kind kind;
+    bench_axis axes[BENCH_AXES_MAX];
+    int axis_count;
+} bench_method;
+
+/* Defaults: issue 6 (tau in {0.5, 1, 2, 4}, bintree template sizes) and the
+ * projective-grid issue's grid sizes (cols x rows). */
+static const struct {
+    const char *method, *key, *values;
+} k_default_axes[] = {
+    {"bintree", "template_k", "2,3,4"},
+    {"bintree", "tau_px", "0.5,1,2,4"},
+    {"pgm", "grid", "150x600,200x800,430x430,300x900,600x600,400x1600"},
+};
+
+/* Short names for plot labels ("" = the value alone). */
+static const struct {
+    const char *key, *abbrev;
+} k_abbrev[] = {
+    {"template_k", "k"}, {"tau_px", "tau"}, {"gamma_px", "gamma"}, {"grid", ""},
+};
+
+/* ---- results ------------------------------------------------------------------- */
+
+typedef struct bench_row {
+    char method[BENCH_NAME_LEN];
+    bench_setting setting;
+    int ok;
+    char note[200]; /* why a run failed */
+    int frames, measured;
+    double init_ms;
+    double t_med_ms, t_p99_ms, t_max_ms, sel_med_ms;
+    double err_max_px, err_p999_px, err_mean_px;
+    char err_max_where[48]; /* "valley frame 12" */
+    uint32_t cov_max_px;
+    double cov_mean_px;
+    uint64_t nonfinite_px;
+    double tri_mean;
+    int budget_hits;
+} bench_row;
+
+typedef struct bench_path {
+    char name[64];
+    char desc[200];
+    int is_file, is_hover;
+    int builtin; /* flight_builtin_kind */
+    int raised;  /* poses lifted to BENCH_FLOOR_AGL_M above the ground */
+    ft_pose pose[BENCH_FRAMES_MAX];
+} bench_path;
+
+typedef struct ref_cache_entry {
+    ft_ref_pixel *ref;
+    double eye[3], fwd[3], up[3], fovy, near_m, far_m;
+} ref_cache_entry;
+
+typedef struct bench_opts {
+    const char *scene_path, *dem, *methods, *paths, *csv, *plot, *report, *size, *backend;
+    const char *centre, *plot_error;
+    int frames, every, quiet;
+    double ref_cache_mb;
+    const char *settings[BENCH_USER_AXES_MAX];
+    int settings_count;
+} bench_opts;
+
+static ft_app g_app;
+static char g_scene_text[FT_SCENE_TEXT_MAX];
+static char g_wp_text[BENCH_WAYPOINT_TEXT_MAX];
+static flight_path g_fp[BENCH_PATHS_MAX];
+static bench_path g_paths[BENCH_PATHS_MAX];
+static int g_path_count;
+static int g_poses_ready;
+static bench_method g_methods[BENCH_METHODS_MAX];
+static int g_method_count;
+static bench_axis g_user_axes[BENCH_USER_AXES_MAX];
+static int g_user_axis_count;
+static bench_setting g_settings[BENCH_SETTINGS_MAX];
+static bench_row g_rows[BENCH_ROWS_MAX];
+static int g_row_count;
+static double g_frame_ms[BENCH_PATHS_MAX * BENCH_FRAMES_MAX];
+static double g_select_ms[BENCH_PATHS_MAX * BENCH_FRAMES_MAX];
+static ref_cache_entry g_cache[BENCH_PATHS_MAX][BENCH_MEASURED_MAX];
+static size_t g_cache_bytes, g_cache_cap_bytes;
+static uint8_t g_plot_rgba[BENCH_PLOT_W * BENCH_PLOT_H * 4u];
+static char g_renderer_name[600];
+static int g_tty;
+
+/* ---- small helpers ------------------------------------------------------------- */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* q-quantile (nearest rank) of v[0..n), sorts v */
+static double quantile(double *v, int n, double q)
+{
+    if (n <= 0) return NAN;
+    qsort(v, (size_t)n, sizeof v[0], cmp_double);
+    int r = (int)ceil(q * n - 1e-9) - 1;
+    if (r < 0) r = 0;
+    if (r >= n) r = n - 1;
+    return v[r];
+}
+
+/* Copies src, cut to cap - 1 characters. */
+static void set_str(char *dst, size_t cap, const char *src)
+{
+    size_t n = strlen(src);
+    if (n >= cap) n = cap - 1u;
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
+static int copy_str(char *dst, size_t cap, const char *src, size_t len)
+{
+    if (len >= cap) return 0;
+    memcpy(dst, src, len);
+    dst[len] = '\0';
+    return 1;
+}
+
+/* Appends printf text; returns 0 when it does not fit. */
+static int append(char *buf, size_t cap, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+static int append(char *buf, size_t cap, const char *fmt, ...)
+{
+    size_t len = strlen(buf);
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(buf + len, cap - len, fmt, ap);
+    va_end(ap);
+    return n >= 0 && (size_t)n < cap - len;
+}
+
+static int method_built(ft_method_kind k)
+{
+    switch (k) {
+    case FT_METHOD_BRUTE: return FT_WITH_METHOD_BRUTE;
+    case FT_METHOD_BINTREE: return FT_WITH_METHOD_BINTREE;
+    case FT_METHOD_PGM: return FT_WITH_METHOD_PGM;
+    default: return 1; /* a newer method: ft_app_init says if it is missing */
+    }
+}
+
+static void built_methods_text(char *buf, size_t cap)
+{
+    buf[0] = '\0';
+    for (int m = 0; m < FT_METHOD_COUNT; ++m) {
+        if (method_built((ft_method_kind)m)) {
+            (void)append(buf, cap, "%s%s", buf[0] ? ", " : "", ft_method_name((ft_method_kind)m));
+        }
+    }
+}
+
+/* Splits "a,b,c" into values; 0 on an empty or too long item. */
+static int split_values(const char *text, char out[][BENCH_VALUE_LEN], int max, int *count)
+{
+    *count = 0;
+    const char *p = text;
+    for (;;) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == 0 || *count >= max || !copy_str(out[*count], BENCH_VALUE_LEN, p, len)) return 0;
+        ++*count;
+        if (e == NULL) return 1;
+        p = e + 1;
+    }
+}
+
+/* "CxR" -> cols, rows */
+static int parse_grid(const char *v, unsigned *cols, unsigned *rows)
+{
+    char tail;
+    return sscanf(v, "%ux%u%c", cols, rows, &tail) == 2;
+}
+
+/* ---- settings -------------------------------------------------------------------- */
+
+/* One --settings SPEC: "method.key=v1,v2[;method.key=...]". */
+static int parse_settings_spec(const char *spec)
+{
+    const char *p = spec;
+    while (*p != '\0') {
+        const char *e = strchr(p, ';');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        char item[BENCH_INI_LEN];
+        if (!copy_str(item, sizeof item, p, len)) {
+            fprintf(stderr, "fixterrain bench: --settings item too long\n");
+            return 0;
+        }
+        p = e ? e + 1 : p + len;
+        if (item[0] == '\0') continue;
+        char *dot = strchr(item, '.'), *eq = strchr(item, '=');
+        if (dot == NULL || eq == NULL || dot > eq) {
+            fprintf(stderr, "fixterrain bench: --settings '%s': expected METHOD.KEY=V1,V2,...\n",
+                    item);
+            return 0;
+        }
+        *dot = '\0';
+        *eq = '\0';
+        ft_method_kind k;
+        if (!ft_method_from_name(item, &k)) {
+            fprintf(stderr, "fixterrain bench: --settings: '%s' is not a method\n", item);
+            return 0;
+        }
+        if (g_user_axis_count >= BENCH_USER_AXES_MAX) {
+            fprintf(stderr, "fixterrain bench: at most %d --settings keys\n", BENCH_USER_AXES_MAX);
+            return 0;
+        }
+        bench_axis *a = &g_user_axes[g_user_axis_count];
+        memset(a, 0, sizeof *a);
+        if (!copy_str(a->method, sizeof a->method, item, strlen(item)) ||
+            !copy_str(a->key, sizeof a->key, dot + 1, strlen(dot + 1)) || a->key[0] == '\0' ||
+            !split_values(eq + 1, a->values, BENCH_VALUES_MAX, &a->count)) {
+            fprintf(stderr, "fixterrain bench: --settings %s.%s: bad key or values (at most %d "
+                            "values of %d characters)\n",
+                    item, dot + 1, BENCH_VALUES_MAX, BENCH_VALUE_LEN - 1);
+            return 0;
+        }
+        ++g_user_axis_count;
+    }
+    return 1;
+}
+
+static void add_axis(bench_method *bm, const bench_axis *a)
+{
+    for (int i = 0; i < bm->axis_count; ++i) {
+        if (strcmp(bm->axes[i].key, a->key) == 0) {
+            bm->axes[i] = *a; /* --settings narrows (replaces) a default axis */
+            return;
+        }
+    }
+    if (bm->axis_count < BENCH_AXES_MAX) bm->axes[bm->axis_count++] = *a;
+}
+
+static void method_axes(bench_method *bm)
+{
+    bm->axis_count = 0;
+    for (size_t i = 0; i < sizeof k_default_axes / sizeof k_default_axes[0]; ++i) {
+        if (strcmp(k_default_axes[i].method, bm->name) != 0) continue;
+        bench_axis a;
+        memset(&a, 0, sizeof a);
+        set_str(a.method, sizeof a.method, bm->name);
+        set_str(a.key, sizeof a.key, k_default_axes[i].key);
+        (void)split_values(k_default_axes[i].values, a.values, BENCH_VALUES_MAX, &a.count);
+        add_axis(bm, &a);
+    }
+    for (int i = 0; i < g_user_axis_count; ++i) {
+        if (strcmp(g_user_axes[i].method, bm->name) == 0) add_axis(bm, &g_user_axes[i]);
+    }
+}
+
+static const char *abbrev(const char *key)
+{
+    for (size_t i = 0; i < sizeof k_abbrev / sizeof k_abbrev[0]; ++i) {
+        if (strcmp(k_abbrev[i].key, key) == 0) return k_abbrev[i].abbrev;
+    }
+    return key;
+}
+
+/* Every setting of a method (product of its axes, the first axis slowest).
+ * Returns the count, -1 on a bad value (message printed). */
+static int method_settings(const bench_method *bm, bench_setting *out, int cap)
+{
+    int idx[BENCH_AXES_MAX] = {0};
+    int n = 0;
+    for (;;) {
+        if (n >= cap) {
+            fprintf(stderr, "fixterrain bench: %s: more than %d settings\n", bm->name, cap);
+            return -1;
+        }
+        bench_setting *s = &out[n];
+        memset(s, 0, sizeof *s);
+        (void)snprintf(s->ini, sizeof s->ini, "[%.31s]\n", bm->name);
+        for (int a = 0; a < bm->axis_count; ++a) {
+            const bench_axis *ax = &bm->axes[a];
+            const char *v = ax->values[idx[a]];
+            int fits = append(s->label, sizeof s->label, "%s%s=%s", a ? " " : "", ax->key, v) &&
+                       append(s->short_label, sizeof s->short_label, "%s%s%s", a ? " " : "",
+                              abbrev(ax->key), v);
+            if (strcmp(ax->key, "grid") == 0) {
+                unsigned c, r;
+                if (!parse_grid(v, &c, &r)) {
+                    fprintf(stderr, "fixterrain bench: %s.grid '%s': expected COLSxROWS\n",
+                            bm->name, v);
+                    return -1;
+                }
+                fits = fits && append(s->ini, sizeof s->ini, "grid_cols = %u\ngrid_rows = %u\n",
+                                      c, r);
+            } else {
+                fits = fits && append(s->ini, sizeof s->ini, "%s = %s\n", ax->key, v);
+            }
+            if (!fits) {
+                fprintf(stderr, "fixterrain bench: %s: setting text too long\n", bm->name);
+                return -1;
+            }
+        }
+        if (bm->axis_count == 0) {
+            (void)snprintf(s->label, sizeof s->label, "default");
+            s->short_label[0] = '\0';
+        }
+        ++n;
+        int a = bm->axis_count - 1;
+        while (a >= 0 && ++idx[a] >= bm->axes[a].count) {
+            idx[a] = 0;
+            --a;
+        }
+        if (a < 0) return n;
+    }
+}
+
+/* ---- paths ------------------------------------------------------------------------ */
+
+static int read_text_file(const char *path, char *buf, size_t cap, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) return 0;
+    size_t n = fread(buf, 1, cap - 1u, f);
+    int big = (n == cap - 1u && fgetc(f) != EOF);
+    fclose(f);
+    if (big) return 0;
+    buf[n] = '\0';
+    *len = n;
+    return 1;
+}
+
+/* Phase 1 (before any run): names and waypoint files are checked. */
+static int prepare_path(const char *spec, const ft_scene *base, bench_path *bp, flight_path *fp)
+{
+    memset(bp, 0, sizeof *bp);
+    set_str(bp->name, sizeof bp->name, spec);
+    if (strcmp(spec, "hover") == 0) {
+        bp->is_hover = 1;
+        (void)snprintf(bp->desc, sizeof bp->desc,
+                       "nadir hover: constant pose %g m above the ground, looking straight down",
+                       BENCH_HOVER_AGL_M);
+        return 1;
+    }
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    int k = flight_builtin_from_name(spec);
+    if (k >= 0) {
+        flight_builtin_params prm;
+        flight_builtin_defaults(&prm, (flight_builtin_kind)k);
+        prm.centre_lat_deg = base->pose.lat_deg;
+        prm.centre_lon_deg = base->pose.lon_deg;
+        /* the default climb (900 s at 130 m/s) leaves a 1 deg tile */
+        if (k == FLIGHT_CLIMB) prm.duration_s = BENCH_CLIMB_DURATION_S;
+        if (flight_path_builtin(fp, &prm, &err) != FT_OK) {
+            fprintf(stderr, "fixterrain bench: path %s: %s\n", spec, err.text);
+            return 0;
+        }
+        bp->builtin = k;
+        const flight_waypoint *w0 = &fp->wp[0];
+        (void)snprintf(bp->desc, sizeof bp->desc,
+                       "built-in %.16s, %.0f s, heading %03.0f at the start, altitudes above the "
+                       "ground at the start (%.0f m at t0)",
+                       spec, flight_path_duration_s(fp), w0->heading_deg, w0->alt_m);
+        return 1;
+    }
+    size_t len = 0;
+    if (!read_text_file(spec, g_wp_text, sizeof g_wp_text, &len)) {
+        fprintf(stderr, "fixterrain bench: --path %s: not a built-in path (valley, climb, "
+                        "turn360, dive, hover, orbit) and not a readable waypoint file of at "
+                        "most %u bytes\n",
+                spec, (unsigned)sizeof g_wp_text - 1u);
+        return 0;
+    }
+    if (flight_path_parse_waypoints(fp, g_wp_text, len, spec, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain bench: %s\n", err.text);
+        return 0;
+    }
+    bp->is_file = 1;
+    const char *slash = strrchr(spec, '/');
+    set_str(bp->name, sizeof bp->name, slash ? slash + 1 : spec);
+    (void)snprintf(bp->desc, sizeof bp->desc, "waypoint file %.100s: %u waypoints, %.1f s, altitudes "
+                   "as given (m)", spec, fp->count, flight_path_duration_s(fp));
+    return 1;
+}
+
+static double ground_m(const ft_terrain *t, double lat, double lon)
+{
+    double x, y;
+    ft_terrain_geo_to_world(t, lat, lon, &x, &y);
+    return ft_terrain_height_at(t, x, y);
+}
+
+/* Phase 2 (terrain loaded): the frames' poses. */
+static void sample_path(bench_path *bp, const flight_path *fp, const ft_scene *base,
+                        const ft_terrain *t, int frames)
+{
+    const double lat0 = base->pose.lat_deg, lon0 = base->pose.lon_deg;
+    const double g0 = ground_m(t, lat0, lon0);
+    bp->raised = 0;
+    for (int i = 0; i < frames; ++i) {
+        ft_pose *p = &bp->pose[i];
+        if (bp->is_hover) {
+            p->lat_deg = lat0;
+            p->lon_deg = lon0;
+            p->alt_m = g0 + BENCH_HOVER_AGL_M;
+            p->heading_deg = base->pose.heading_deg;
+            p->pitch_deg = -90.0;
+            p->roll_deg = 0.0;
+            continue;
+        }
+        double tt = flight_path_t0_s(fp) +
+                    flight_path_duration_s(fp) * (frames > 1 ? (double)i / (frames - 1) : 0.0);
+        flight_sample s;
+        flight_path_sample(fp, tt, &s);
+        p->lat_deg = s.lat_deg;
+        p->lon_deg = s.lon_deg;
+        p->alt_m = s.alt_m + (bp->is_file ? 0.0 : g0);
+        p->heading_deg = s.heading_deg;
+        p->pitch_deg = s.pitch_deg;
+        p->roll_deg = s.roll_deg;
+        double floor_m = ground_m(t, p->lat_deg, p->lon_deg) + BENCH_FLOOR_AGL_M;
+        if (p->alt_m < floor_m) {
+            p->alt_m = floor_m;
+            ++bp->raised;
+        }
+    }
+}
+
+/* ---- one run ----------------------------------------------------------------------- */
+
+static int cam_matches(const ref_cache_entry *c, const ft_camera *cam)
+{
+    for (int i = 0; i < 3; ++i) {
+        if (c->eye[i] != cam->eye_m[i] || c->fwd[i] != cam->forward[i] || c->up[i] != cam->up[i])
+            return 0;
+    }
+    return c->fovy == cam->fovy_rad && c->near_m == cam->near_m && c->far_m == cam->far_m;
+}
+
+static ft_status measure(int path, int slot, const ft_camera *cam, ft_error_stats *es,
+                         ft_error *err)
+{
+    const size_t px = (size_t)g_app.scene.width_px * g_app.scene.height_px;
+    ref_cache_entry *c = (slot < BENCH_MEASURED_MAX) ? &g_cache[path][slot] : NULL;
+    if (c != NULL && c->ref != NULL && cam_matches(c, cam)) {
+        ft_status s = ft_renderer_draw_positions(&g_app.renderer, cam, err);
+        if (s != FT_OK) return s;
+        return ft_metric_compute(&g_app.terrain, cam, g_app.renderer.pos, c->ref,
+                                 g_app.metric_scratch, px, es, err);
+    }
+    ft_status s = ft_app_measure(&g_app, cam, es, err);
+    if (s != FT_OK || c == NULL) return s;
+    const size_t bytes = px * sizeof(ft_ref_pixel);
+    if (c->ref == NULL && g_cache_bytes + bytes <= g_cache_cap_bytes) {
+        c->ref = malloc(bytes);
+        if (c->ref != NULL) g_cache_bytes += bytes;
+    }
+    if (c->ref != NULL) {
+        memcpy(c->ref, g_app.ref, bytes);
+        for (int i = 0; i < 3; ++i) {
+            c->eye[i] = cam->eye_m[i];
+            c->fwd[i] = cam->forward[i];
+            c->up[i] = cam->up[i];
+        }
+        c->fovy = cam->fovy_rad;
+        c->near_m = cam->near_m;
+        c->far_m = cam->far_m;
+    }
+    return FT_OK;
+}
+
+static void progress(const bench_opts *o, int run, int runs, const bench_row *row,
+                     const char *path, int i, int n)
+{
+    if (o->quiet) return;
+    if (g_tty) {
+        fprintf(stderr, "\rbench [%d/%d] %s %s: %s frame %d/%d   ", run, runs, row->method,
+                row->setting.label, path, i, n);
+    } else {
+        int q = n >= 4 ? n / 4 : 1;
+        if (i == 1 || i % q == 0 || i == n) {
+            fprintf(stderr, "bench [%d/%d] %s %s: %s frame %d/%d\n", run, runs, row->method,
+                    row->setting.label, path, i, n);
+        }
+    }
+    (void)fflush(stderr);
+}
+
+static void run_one(const bench_opts *o, const ft_scene *base, const bench_method *bm,
+                    const bench_setting *set, int run, int runs, bench_row *row)
+{
+    ft_scene s = *base;
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    memset(row, 0, sizeof *row);
+    set_str(row->method, sizeof row->method, bm->name);
+    row->setting = *set;
+    s.method = bm->kind;
+    if (ft_scene_parse(&s, set->ini, "bench setting", &err) != FT_OK) {
+        (void)snprintf(row->note, sizeof row->note, "setting: %.180s", err.text);
+        return;
+    }
+    if (ft_app_init(&g_app, &s, &err) != FT_OK) {
+        (void)snprintf(row->note, sizeof row->note, "init: %.180s", err.text);
+        ft_app_shutdown(&g_app);
+        return;
+    }
+    row->init_ms = (double)g_app.init_ns * 1e-6;
+    (void)snprintf(g_renderer_name, sizeof g_renderer_name, "%s / %s", g_app.gpu.version,
+                   g_app.gpu.renderer);
+    if (!g_poses_ready) {
+        for (int p = 0; p < g_path_count; ++p) {
+            sample_path(&g_paths[p], &g_fp[p], base, &g_app.terrain, o->frames);
+        }
+        g_poses_ready = 1;
+    }
+    ft_camera cam;
+    ft_frame_stats st;
+    int ok = ft_app_render(&g_app, &g_paths[0].pose[0], &cam, &st, &err) == FT_OK; /* warm-up */
+    double tri = 0.0, err_sum = 0.0, cov_sum = 0.0;
+    int timed = 0;
+    row->err_max_px = 0.0;
+    for (int p = 0; p < g_path_count && ok; ++p) {
+        for (int i = 0; i < o->frames && ok; ++i) {
+            progress(o, run, runs, row, g_paths[p].name, i + 1, o->frames);
+            if (ft_app_render(&g_app, &g_paths[p].pose[i], &cam, &st, &err) != FT_OK) {
+                ok = 0;
+                break;
+            }
+            g_frame_ms[timed] = st.select_ms + st.gpu_ms;
+            g_select_ms[timed] = st.select_ms;
+            ++timed;
+            tri += (double)st.triangles;
+            row->budget_hits += st.budget_hit != 0;
+            if (i % o->every != 0) continue;
+            ft_error_stats es;
+            if (measure(p, i / o->every, &cam, &es, &err) != FT_OK) {
+                ok = 0;
+                break;
+            }
+            if (row->measured == 0 || es.max_px > row->err_max_px) {
+                row->err_max_px = es.max_px;
+                (void)snprintf(row->err_max_where, sizeof row->err_max_where, "%.32s frame %d",
+                               g_paths[p].name, i);
+            }
+            if (row->measured == 0 || es.p999_px > row->err_p999_px) row->err_p999_px = es.p999_px;
+            uint32_t cov = es.only_method_px + es.only_ref_px;
+            if (cov > row->cov_max_px) row->cov_max_px = cov;
+            cov_sum += cov;
+            err_sum += es.mean_px;
+            row->nonfinite_px += es.nonfinite_px;
+            ++row->measured;
+        }
+    }
+    if (!ok) {
+        (void)snprintf(row->note, sizeof row->note, "frame: %.180s", err.text);
+    }
+    ft_app_shutdown(&g_app);
+    if (o->quiet == 0 && g_tty) fputc('\n', stderr);
+    if (!ok || timed == 0) return;
+    row->ok = 1;
+    row->frames = timed;
+    row->tri_mean = tri / timed;
+    row->t_max_ms = quantile(g_frame_ms, timed, 1.0);
+    row->t_p99_ms = quantile(g_frame_ms, timed, 0.99);
+    row->t_med_ms = quantile(g_frame_ms, timed, 0.5);
+    row->sel_med_ms = quantile(g_select_ms, timed, 0.5);
+    row->err_mean_px = row->measured ? err_sum / row->measured : NAN;
+    row->cov_mean_px = row->measured ? cov_sum / row->measured : NAN;
+    if (row->measured == 0) row->err_max_px = row->err_p999_px = NAN;
+}
+
+/* ---- outputs ----------------------------------------------------------------------- */
+
+static double brute_median(void)
+{
+    for (int r = 0; r < g_row_count; ++r) {
+        if (g_rows[r].ok && strcmp(g_rows[r].method, "brute") == 0) return g_rows[r].t_med_ms;
+    }
+    return NAN;
+}
+
+static void paths_text(char *buf, size_t cap)
+{
+    buf[0] = '\0';
+    for (int p = 0; p < g_path_count; ++p) {
+        (void)append(buf, cap, "%s%s", p ? "+" : "", g_paths[p].name);
+    }
+}
+
+static void csv_num(FILE *f, double v, int decimals)
+{
+    if (isnan(v)) fputs(",", f);
+    else if (isinf(v)) fputs(",inf", f);
+    else fprintf(f, ",%.*f", decimals, v);
+}
+
+static int write_csv(const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (f == NULL) {
+        fprintf(stderr, "fixterrain bench: cannot write %s\n", path);
+        return 0;
+    }
+    char paths[256];
+    paths_text(paths, sizeof paths);
+    const double bm = brute_median();
+    fputs("method,setting,paths,frames,time_median_ms,time_p99_ms,time_max_ms,ratio_to_brute,"
+          "select_median_ms,err_max_px,err_p999_px,err_mean_px,coverage_mismatch_px,"
+          "coverage_mismatch_mean_px,nonfinite_px,measured_frames,triangles_mean,budget_hits,"
+          "init_ms\n",
+          f);
+    for (int r = 0; r < g_row_count; ++r) {
+        const bench_row *w = &g_rows[r];
+        if (!w->ok) continue;
+        fprintf(f, "%s,%s,%s,%d", w->method, w->setting.label, paths, w->frames);
+        csv_num(f, w->t_med_ms, 3);
+        csv_num(f, w->t_p99_ms, 3);
+        csv_num(f, w->t_max_ms, 3);
+        csv_num(f, bm > 0.0 ? w->t_med_ms / bm : NAN, 4);
+        csv_num(f, w->sel_med_ms, 3);
+        csv_num(f, w->err_max_px, 4);
+        csv_num(f, w->err_p999_px, 4);
+        csv_num(f, w->err_mean_px, 5);
+        fprintf(f, ",%u", w->cov_max_px);
+        csv_num(f, w->cov_mean_px, 1);
+        fprintf(f, ",%llu,%d", (unsigned long long)w->nonfinite_px, w->measured);
+        csv_num(f, w->tri_mean, 0);
+        fprintf(f, ",%d", w->budget_hits);
+        csv_num(f, w->init_ms, 1);
+        fputc('\n', f);
+    }
+    int ok = fclose(f) == 0;
+    if (!ok) fprintf(stderr, "fixterrain bench: write failed: %s\n", path);
+    return ok;
+}
+
+static double plot_err(const bench_opts *o, const bench_row *w)
+{
+    return (o->plot_error != NULL && strcmp(o->plot_error, "p999") == 0) ? w->err_p999_px
+                                                                           : w->err_max_px;
+}
+
+static int write_plot(const bench_opts *o, const ft_scene *base, const char *path)
+{
+    static double xs[BENCH_METHODS_MAX][BENCH_ROWS_MAX], ys[BENCH_METHODS_MAX][BENCH_ROWS_MAX];
+    static const char *labels[BENCH_METHODS_MAX][BENCH_ROWS_MAX];
+    static const plot_rgba colours[] = {{31, 119, 180, 255}, {214, 39, 40, 255},
+                                        {44, 160, 44, 255},  {255, 127, 14, 255},
+                                        {148, 103, 189, 255}, {140, 86, 75, 255},
+                                        {227, 119, 194, 255}, {23, 190, 207, 255}};
+    plot_chart ch;
+    memset(&ch, 0, sizeof ch);
+    char title[200], paths[256];
+    paths_text(paths, sizeof paths);
+    (void)snprintf(title, sizeof title, "%s %ux%u: %s", base->name, base->width_px,
+                   base->height_px, paths);
+    ch.title = title;
+    ch.x_label = "median frame time, ms (LOD selection + draw + readback)";
+    ch.y_label = (o->plot_error != NULL && strcmp(o->plot_error, "p999") == 0)
+                     ? "error p99.9, px (worst measured frame)"
+                     : "max error, px (worst measured frame)";
+    ch.y_log = 1;
+    ch.y_floor = 1e-3;
+    ch.hline[0] = 1.0;
+    ch.hline[1] = 2.0;
+    ch.hline_count = 2;
+    double tmin = INFINITY, tmax = 0.0;
+    for (int m = 0; m < g_method_count && ch.series_count < PLOT_SERIES_MAX; ++m) {
+        plot_series *se = &ch.series[ch.series_count];
+        size_t n = 0;
+        for (int r = 0; r < g_row_count; ++r) {
+            const bench_row *w = &g_rows[r];
+            if (!w->ok || strcmp(w->method, g_methods[m].name) != 0) continue;
+            xs[m][n] = w->t_med_ms;
+            ys[m][n] = plot_err(o, w);
+            labels[m][n] = w->setting.short_label;
+            tmin = fmin(tmin, w->t_med_ms);
+            tmax = fmax(tmax, w->t_med_ms);
+            ++n;
+        }
+        if (n == 0) continue;
+        se->name = g_methods[m].name;
+        se->colour = colours[ch.series_count % (int)(sizeof colours / sizeof colours[0])];
+        se->marker = (plot_marker_kind)(ch.series_count % PLOT_MARKER_COUNT);
+        se->x = xs[m];
+        se->y = ys[m];
+        se->labels = labels[m];
+        se->n = n;
+        ++ch.series_count;
+    }
+    ch.x_log = tmin > 0.0 && tmax / tmin > 20.0;
+    plot_image im = {g_plot_rgba, BENCH_PLOT_W, BENCH_PLOT_H};
+    (void)plot_chart_draw(&im, &ch, NULL, NULL);
+    char err[256];
+    if (plot_write_png(path, &im, err, sizeof err) != 0) {
+        fprintf(stderr, "fixterrain bench: %s\n", err);
+        return 0;
+    }
+    return 1;
+}
+
+/* Fastest (median) setting of method m with max error <= bound; -1 if none. */
+static int fastest_within(const char *method, double bound)
+{
+    int best = -1;
+    for (int r = 0; r < g_row_count; ++r) {
+        const bench_row *w = &g_rows[r];
+        if (!w->ok || strcmp(w->method, method) != 0 || !(w->err_max_px <= bound)) continue;
+        if (best < 0 || w->t_med_ms < g_rows[best].t_med_ms) best = r;
+    }
+    return best;
+}
+
+static void bound_cell(FILE *f, int r, double bm)
+{
+    if (r < 0) {
+        fputs(" none |", f);
+        return;
+    }
+    const bench_row *w = &g_rows[r];
+    fprintf(f, " %s: %.2f ms", w->setting.label, w->t_med_ms);
+    if (bm > 0.0) fprintf(f, " (%.2fx brute)", w->t_med_ms / bm);
+    fprintf(f, ", max %.3f px |", w->err_max_px);
+}
+
+static int write_report(const bench_opts *o, const ft_scene *base, const char *path,
+                        double run_s)
+{
+    FILE *f = fopen(path, "w");
+    if (f == NULL) {
+        fprintf(stderr, "fixterrain bench: cannot write %s\n", path);
+        return 0;
+    }
+    const double bm = brute_median();
+    fprintf(f, "# fixterrain bench: %s\n\n", base->name);
+    fprintf(f, "- scene `%s`, terrain `%s`, %ux%u, fovy %.0f deg\n",
+            o->scene_path ? o->scene_path : "(embedded default)",
+            base->dem_path[0] ? base->dem_path : "(synthetic)", base->width_px, base->height_px,
+            base->fovy_deg);
+    fprintf(f, "- renderer: %s\n", g_renderer_name);
+    fprintf(f, "- %d frames per path, error against the reference on every %d%s frame "
+               "(frames 0, %d, ...), one untimed warm-up frame per run\n",
+            o->frames, o->every, o->every == 1 ? "st" : o->every == 2 ? "nd" : o->every == 3 ? "rd" : "th",
+            o->every);
+    fprintf(f, "- frame time = LOD selection + draw + readback (until the GPU is done); "
+               "error = worst measured frame (max, p99.9), mean of the frames' means; coverage "
+               "= pixels terrain in one image and sky in the other (worst frame)\n");
+    fprintf(f, "- bench run time: %.1f s\n\nPaths (centre %.4f, %.4f; every pose at least "
+               "%.0f m above the ground):\n\n",
+            run_s, base->pose.lat_deg, base->pose.lon_deg, BENCH_FLOOR_AGL_M);
+    for (int p = 0; p < g_path_count; ++p) {
+        fprintf(f, "- `%s`: %s; %d of %d poses raised to the floor\n", g_paths[p].name,
+                g_paths[p].desc, g_paths[p].raised, o->frames);
+    }
+    fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | max px | "
+               "p99.9 px | mean px | coverage px | triangles | worst frame |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (int r = 0; r < g_row_count; ++r) {
+        const bench_row *w = &g_rows[r];
+        if (!w->ok) continue;
+        fprintf(f, "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.4f | %u | %.0f | %s |\n",
+                w->method, w->setting.label, w->t_med_ms, w->t_p99_ms, w->t_max_ms,
+                bm > 0.0 ? w->t_med_ms / bm : NAN, w->err_max_px, w->err_p999_px, w->err_mean_px,
+                w->cov_max_px, w->tri_mean, w->err_max_where);
+    }
+    fprintf(f, "\n## Fastest setting by error bound (median frame time, max error)\n\n"
+               "| method | max error <= 1 px | max error <= 2 px |\n|---|---|---|\n");
+    for (int m = 0; m < g_method_count; ++m) {
+        fprintf(f, "| %s |", g_methods[m].name);
+        bound_cell(f, fastest_within(g_methods[m].name, 1.0), bm);
+        bound_cell(f, fastest_within(g_methods[m].name, 2.0), bm);
+        fputc('\n', f);
+    }
+    int failed = 0;
+    for (int r = 0; r < g_row_count; ++r) failed += !g_rows[r].ok;
+    if (failed) {
+        fprintf(f, "\n## Runs that failed\n\n");
+        for (int r = 0; r < g_row_count; ++r) {
+            if (!g_rows[r].ok) {
+                fprintf(f, "- %s %s: %s\n", g_rows[r].method, g_rows[r].setting.label,
+                        g_rows[r].note);
+            }
+        }
+    }
+    int ok = fclose(f) == 0;
+    if (!ok) fprintf(stderr, "fixterrain bench: write failed: %s\n", path);
+    return ok;
+}
+
+/* ---- command line ------------------------------------------------------------------- */
+
+static void print_help(void)
+{
+    char built[128];
+    built_methods_text(built, sizeof built);
+    printf(
+        "usage: fixterrain bench [--scene FILE] [--dem FILE] [--methods LIST] [--path P[,P...]]\n"
+        "                        [--csv OUT.csv] [--plot OUT.png] [--report OUT.md]\n"
+        "                        [--size WxH] [--frames N] [--metric-every N]\n"
+        "                        [--settings SPEC]... [--centre LAT,LON] [--backend NAME]\n"
+        "                        [--plot-error max|p999] [--ref-cache-mb N] [--quiet]\n"
+        "Error against run time: flies the same camera paths over the scene's DEM with\n"
+        "every method and setting; per frame the time (LOD selection + draw + readback),\n"
+        "on every Nth frame the error against the CPU reference (max, p99.9, mean px,\n"
+        "coverage mismatch). Writes a CSV row per (method, setting), a plot of error\n"
+        "against median frame time (Pareto front per method) and a markdown report.\n\n"
+        "  --scene FILE       scene file (default: the embedded default scene)\n"
+        "  --dem FILE         terrain instead of the scene's terrain.dem\n"
+        "  --methods LIST     comma-separated (default: every built method: %s);\n"
+        "                     a method not built is skipped with a message\n"
+        "  --path P,...       valley | climb | turn360 | dive | hover | orbit | a waypoint\n"
+        "                     file (tools/flight_path.h), or 'all' (valley, climb, turn360,\n"
+        "                     dive, hover); default valley. Built-in paths start at the\n"
+        "                     scene pose's lat/lon (--centre), their altitudes are above\n"
+        "                     the ground there; waypoint altitudes are absolute. Every pose\n"
+        "                     is kept %.0f m above the ground under it. hover: %.0f m above\n"
+        "                     the ground, pitch -90.\n"
+        "  --size WxH         view size (default 640x480)\n"
+        "  --frames N         frames per path (default 60, at most %d)\n"
+        "  --metric-every N   error on frames 0, N, 2N, ... (default 5)\n"
+        "  --settings SPEC    METHOD.KEY=V1,V2[;...]: replaces (narrows) or adds a sweep\n"
+        "                     axis; settings are the product of a method's axes. Defaults:\n"
+        "                     bintree.template_k=2,3,4 bintree.tau_px=0.5,1,2,4\n"
+        "                     pgm.grid=150x600,200x800,430x430,300x900,600x600,400x1600\n"
+        "                     (grid = COLSxROWS: pgm.grid_cols, pgm.grid_rows). Any key of\n"
+        "                     the method's scene section can be swept. Repeatable.\n"
+        "  --csv, --plot, --report   outputs (default bench.csv, bench.png; no report)\n"
+        "  --plot-error KIND  max (default) or p999 on the plot's y axis (log scale)\n"
+        "  --ref-cache-mb N   keep reference images for reuse across runs (default 2048)\n"
+        "  --quiet            no progress on stderr\n"
+        "Exit status: 0 when every run succeeded, 1 when a run failed (its row is left\n"
+        "out; the outputs are still written) or on an error, 2 for a usage error.\n",
+        built, BENCH_FLOOR_AGL_M, BENCH_HOVER_AGL_M, BENCH_FRAMES_MAX);
+}
+
+static int parse_size(const char *text, uint32_t *w, uint32_t *h)
+{
+    unsigned a, b;
+    char tail;
+    if (sscanf(text, "%ux%u%c", &a, &b, &tail) != 2 || a < 16 || b < 16 || a > 8192 ||
+        b > 8192) {
+        return 0;
+    }
+    *w = a;
+    *h = b;
+    return 1;
+}
+
+static int parse_int(const char *v, int lo, int hi, int *out)
+{
+    char *end = NULL;
+    long x = strtol(v, &end, 10);
+    if (end == v || *end != '\0' || x < lo || x > hi) return 0;
+    *out = (int)x;
+    return 1;
+}
+
+static int resolve_scene(const bench_opts *o, ft_scene *s)
+{
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    ft_scene_defaults(s);
+    if (o->scene_path != NULL) {
+        size_t len = 0;
+        if (ft_plat_file_read_text(o->scene_path, g_scene_text, sizeof g_scene_text, &len,
+                                   &err) != FT_OK ||
+            ft_scene_parse(s, g_scene_text, o->scene_path, &err) != FT_OK) {
+            fprintf(stderr, "fixterrain bench: scene: %s\n", err.text);
+            return BENCH_EXIT_ERROR;
+        }
+        if (o->dem == NULL && s->dem_path[0] != '\0' && s->dem_path[0] != '/') {
+            const char *slash = strrchr(o->scene_path, '/');
+            if (slash != NULL) {
+                char joined[sizeof s->dem_path];
+                int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - o->scene_path),
+                                 o->scene_path, s->dem_path);
+                if (n < 0 || (size_t)n >= sizeof joined) {
+                    fprintf(stderr, "fixterrain bench: terrain.dem path too long\n");
+                    return BENCH_EXIT_ERROR;
+                }
+                memcpy(s->dem_path, joined, (size_t)n + 1u);
+            }
+        }
+    } else if (ft_scene_parse(s, ft_default_scene_text, "embedded default scene", &err) !=
+               FT_OK) {
+        fprintf(stderr, "fixterrain bench: embedded scene: %s\n", err.text);
+        return BENCH_EXIT_ERROR;
+    }
+    if (o->dem != NULL) {
+        if (strlen(o->dem) >= sizeof s->dem_path) {
+            fprintf(stderr, "fixterrain bench: --dem path too long\n");
+            return BENCH_EXIT_USAGE;
+        }
+        (void)snprintf(s->dem_path, sizeof s->dem_path, "%s", o->dem);
+    }
+    if (o->backend != NULL && !ft_backend_from_name(o->backend, &s->backend)) {
+        fprintf(stderr, "fixterrain bench: unknown backend '%s'\n", o->backend);
+        return BENCH_EXIT_USAGE;
+    }
+    s->width_px = 640;
+    s->height_px = 480;
+    if (o->size != NULL && !parse_size(o->size, &s->width_px, &s->height_px)) {
+        fprintf(stderr, "fixterrain bench: --size wants WxH, each 16..8192\n");
+        return BENCH_EXIT_USAGE;
+    }
+    if (o->centre != NULL) {
+        double lat, lon;
+        char tail;
+        if (sscanf(o->centre, "%lf,%lf%c", &lat, &lon, &tail) != 2 || !(fabs(lat) <= 85.0) ||
+            !(fabs(lon) <= 180.0)) {
+            fprintf(stderr, "fixterrain bench: --centre wants LAT,LON (|lat| <= 85)\n");
+            return BENCH_EXIT_USAGE;
+        }
+        s->pose.lat_deg = lat;
+        s->pose.lon_deg = lon;
+    }
+    s->display = FT_DISPLAY_NONE; /* offscreen: present is not part of the timing */
+    s->metric_enabled = 1;
+    if (ft_scene_validate(s, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain bench: scene: %s\n", err.text);
+        return BENCH_EXIT_ERROR;
+    }
+    return BENCH_EXIT_OK;
+}
+
+static int parse_args(int argc, char **argv, bench_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->frames = 60;
+    o->every = 5;
+    o->ref_cache_mb = 2048.0;
+    o->csv = "bench.csv";
+    o->plot = "bench.png";
+    o->paths = "valley";
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_help();
+            return -1;
+        }
+        if (strcmp(a, "--quiet") == 0) {
+            o->quiet = 1;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "fixterrain bench: %s needs a value (or unknown option)\n", a);
+            return BENCH_EXIT_USAGE;
+        }
+        ++i;
+        if (strcmp(a, "--scene") == 0) o->scene_path = v;
+        else if (strcmp(a, "--dem") == 0) o->dem = v;
+        else if (strcmp(a, "--methods") == 0) o->methods = v;
+        else if (strcmp(a, "--path") == 0) o->paths = v;
+        else if (strcmp(a, "--csv") == 0) o->csv = v;
+        else if (strcmp(a, "--plot") == 0) o->plot = v;
+        else if (strcmp(a, "--report") == 0) o->report = v;
+        else if (strcmp(a, "--size") == 0) o->size = v;
+        else if (strcmp(a, "--backend") == 0) o->backend = v;
+        else if (strcmp(a, "--centre") == 0) o->centre = v;
+        else if (strcmp(a, "--plot-error") == 0) {
+            if (strcmp(v, "max") != 0 && strcmp(v, "p999") != 0) {
+                fprintf(stderr, "fixterrain bench: --plot-error wants max or p999\n");
+                return BENCH_EXIT_USAGE;
+            }
+            o->plot_error = v;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (!parse_int(v, 1, BENCH_FRAMES_MAX, &o->frames)) {
+                fprintf(stderr, "fixterrain bench: --frames wants 1..%d\n", BENCH_FRAMES_MAX);
+                return BENCH_EXIT_USAGE;
+            }
+        } else if (strcmp(a, "--metric-every") == 0) {
+            if (!parse_int(v, 1, BENCH_FRAMES_MAX, &o->every)) {
+                fprintf(stderr, "fixterrain bench: --metric-every wants 1..%d\n",
+                        BENCH_FRAMES_MAX);
+                return BENCH_EXIT_USAGE;
+            }
+        } else if (strcmp(a, "--ref-cache-mb") == 0) {
+            int mb;
+            if (!parse_int(v, 0, 1 << 20, &mb)) {
+                fprintf(stderr, "fixterrain bench: --ref-cache-mb wants 0..1048576\n");
+                return BENCH_EXIT_USAGE;
+            }
+            o->ref_cache_mb = mb;
+        } else if (strcmp(a, "--settings") == 0) {
+            if (o->settings_count >= BENCH_USER_AXES_MAX) {
+                fprintf(stderr, "fixterrain bench: too many --settings\n");
+                return BENCH_EXIT_USAGE;
+            }
+            o->settings[o->settings_count++] = v;
+        } else {
+            fprintf(stderr, "fixterrain bench: unknown option %s (see --help)\n", a);
+            return BENCH_EXIT_USAGE;
+        }
+    }
+    return BENCH_EXIT_OK;
+}
+
+static int setup_methods(const bench_opts *o)
+{
+    char list[512];
+    if (o->methods == NULL || strcmp(o->methods, "all") == 0) {
+        list[0] = '\0';
+        for (int m = 0; m < FT_METHOD_COUNT; ++m) {
+            (void)append(list, sizeof list, "%s%s", list[0] ? "," : "",
+                         ft_method_name((ft_method_kind)m));
+        }
+    } else if (!copy_str(list, sizeof list, o->methods, strlen(o->methods))) {
+        fprintf(stderr, "fixterrain bench: --methods too long\n");
+        return 0;
+    }
+    char names[BENCH_METHODS_MAX][BENCH_VALUE_LEN];
+    int n = 0;
+    if (!split_values(list, names, BENCH_METHODS_MAX, &n)) {
+        fprintf(stderr, "fixterrain bench: --methods: empty name or more than %d methods\n",
+                BENCH_METHODS_MAX);
+        return 0;
+    }
+    char built[128];
+    built_methods_text(built, sizeof built);
+    g_method_count = 0;
+    for (int i = 0; i < n; ++i) {
+        ft_method_kind k;
+        if (!ft_method_from_name(names[i], &k) || !method_built(k)) {
+            fprintf(stderr, "fixterrain bench: method '%s' is not built in this binary (built: "
+                            "%s): skipped\n",
+                    names[i], built);
+            continue;
+        }
+        int dup = 0;
+        for (int m = 0; m < g_method_count; ++m) dup |= g_methods[m].kind == k;
+        if (dup) continue;
+        bench_method *bm = &g_methods[g_method_count++];
+        memset(bm, 0, sizeof *bm);
+        set_str(bm->name, sizeof bm->name, names[i]);
+        bm->kind = k;
+        method_axes(bm);
+    }
+    for (int i = 0; i < g_user_axis_count; ++i) {
+        int used = 0;
+        for (int m = 0; m < g_method_count; ++m) used |= strcmp(g_methods[m].name, g_user_axes[i].method) == 0;
+        if (!used) {
+            fprintf(stderr, "fixterrain bench: --settings %s.%s: method %s is not benchmarked: "
+                            "ignored\n",
+                    g_user_axes[i].method, g_user_axes[i].key, g_user_axes[i].method);
+        }
+    }
+    if (g_method_count == 0) {
+        fprintf(stderr, "fixterrain bench: no method to run\n");
+        return 0;
+    }
+    return 1;
+}
+
+static int setup_paths(const bench_opts *o, const ft_scene *base)
+{
+    char list[1024];
+    const char *text = strcmp(o->paths, "all") == 0 ? "valley,climb,turn360,dive,hover" : o->paths;
+    if (!copy_str(list, sizeof list, text, strlen(text))) {
+        fprintf(stderr, "fixterrain bench: --path too long\n");
+        return 0;
+    }
+    g_path_count = 0;
+    char *p = list;
+    for (;;) {
+        char *e = strchr(p, ',');
+        if (e != NULL) *e = '\0';
+        if (*p == '\0' || g_path_count >= BENCH_PATHS_MAX) {
+            fprintf(stderr, "fixterrain bench: --path: empty name or more than %d paths\n",
+                    BENCH_PATHS_MAX);
+            return 0;
+        }
+        if (!prepare_path(p, base, &g_paths[g_path_count], &g_fp[g_path_count])) return 0;
+        ++g_path_count;
+        if (e == NULL) break;
+        p = e + 1;
+    }
+    return 1;
+}
+
+static void free_cache(void)
+{
+    for (int p = 0; p < BENCH_PATHS_MAX; ++p) {
+        for (int i = 0; i < BENCH_MEASURED_MAX; ++i) {
+            free(g_cache[p][i].ref);
+            g_cache[p][i].ref = NULL;
+        }
+    }
+    g_cache_bytes = 0;
+}
+
+int ft_cmd_bench(int argc, char **argv)
+{
+    bench_opts o;
+    int rc = parse_args(argc, argv, &o);
+    if (rc != BENCH_EXIT_OK) return rc < 0 ? BENCH_EXIT_OK : rc;
+    g_user_axis_count = 0;
+    for (int i = 0; i < o.settings_count; ++i) {
+        if (!parse_settings_spec(o.settings[i])) return BENCH_EXIT_USAGE;
+    }
+    static ft_scene base;
+    rc = resolve_scene(&o, &base);
+    if (rc != BENCH_EXIT_OK) return rc;
+    if (!setup_methods(&o)) return BENCH_EXIT_USAGE;
+    if (!setup_paths(&o, &base)) return BENCH_EXIT_USAGE;
+
+    /* every setting must parse before anything runs */
+    static int first_setting[BENCH_METHODS_MAX + 1];
+    int total = 0;
+    for (int m = 0; m < g_method_count; ++m) {
+        first_setting[m] = total;
+        int n = method_settings(&g_methods[m], &g_settings[total], BENCH_SETTINGS_MAX - total);
+        if (n < 0) return BENCH_EXIT_USAGE;
+        for (int k = 0; k < n; ++k) {
+            static ft_scene check;
+            ft_error err;
+            memset(&err, 0, sizeof err);
+            check = base;
+            check.method = g_methods[m].kind;
+            if (ft_scene_parse(&check, g_settings[total + k].ini, "bench setting", &err) != FT_OK) {
+                fprintf(stderr, "fixterrain bench: %s %s: %s\n", g_methods[m].name,
+                            g_settings[total + k].label, err.text);
+                return BENCH_EXIT_USAGE;
+            }
+        }
+        total += n;
+    }
+    first_setting[g_method_count] = total;
+    if (total > BENCH_ROWS_MAX) {
+        fprintf(stderr, "fixterrain bench: more than %d runs\n", BENCH_ROWS_MAX);
+        return BENCH_EXIT_USAGE;
+    }
+
+    g_tty = isatty(2);
+    g_cache_cap_bytes = (size_t)(o.ref_cache_mb * 1048576.0);
+    g_poses_ready = 0;
+    g_row_count = 0;
+    if (!o.quiet) {
+        char paths[256];
+        paths_text(paths, sizeof paths);
+        fprintf(stderr, "bench: %s, %ux%u, %d runs x %d paths (%s) x %d frames, error every %d "
+                        "frames\n",
+                base.name, base.width_px, base.height_px, total, g_path_count, paths, o.frames,
+                o.every);
+    }
+    const uint64_t t_start = ft_plat_monotonic_ns();
+    int failed = 0;
+    for (int m = 0; m < g_method_count; ++m) {
+        for (int k = first_setting[m]; k < first_setting[m + 1]; ++k) {
+            bench_row *row = &g_rows[g_row_count++];
+            run_one(&o, &base, &g_methods[m], &g_settings[k], g_row_count, total, row);
+            if (!row->ok) {
+                ++failed;
+                fprintf(stderr, "bench [%d/%d] %s %s FAILED: %s\n", g_row_count, total,
+                        row->method, row->setting.label, row->note);
+            } else if (!o.quiet) {
+                fprintf(stderr, "bench [%d/%d] %s %s: median %.2f ms, p99 %.2f ms, max error "
+                                "%.3f px, p99.9 %.3f px\n",
+                        g_row_count, total, row->method, row->setting.label, row->t_med_ms,
+                        row->t_p99_ms, row->err_max_px, row->err_p999_px);
+            }
+        }
+    }
+    free_cache();
+    const double run_s = (double)(ft_plat_monotonic_ns() - t_start) * 1e-9;
+
+    int ok = 1;
+    if (o.csv != NULL && o.csv[0] != '\0') ok &= write_csv(o.csv);
+    if (o.plot != NULL && o.plot[0] != '\0') ok &= write_plot(&o, &base, o.plot);
+    if (o.report != NULL) ok &= write_report(&o, &base, o.report, run_s);
+
+    /* summary on stdout */
+    const double bm = brute_median();
+    printf("bench: %d runs in %.1f s; %d failed\n", g_row_count, run_s, failed);
+    for (int m = 0; m < g_method_count; ++m) {
+        int r1 = fastest_within(g_methods[m].name, 1.0), r2 = fastest_within(g_methods[m].name, 2.0);
+        printf("  %-8s max error <= 1 px: ", g_methods[m].name);
+        if (r1 < 0) printf("none");
+        else printf("%s %.2f ms (%.2fx brute)", g_rows[r1].setting.label, g_rows[r1].t_med_ms,
+                    bm > 0.0 ? g_rows[r1].t_med_ms / bm : NAN);
+        printf(";  <= 2 px: ");
+        if (r2 < 0) printf("none\n");
+        else printf("%s %.2f ms (%.2fx brute)\n", g_rows[r2].setting.label, g_rows[r2].t_med_ms,
+                    bm > 0.0 ? g_rows[r2].t_med_ms / bm : NAN);
+    }
+    if (!ok) return BENCH_EXIT_ERROR;
+    return failed ? BENCH_EXIT_ERROR : BENCH_EXIT_OK;
+}

@@ -129,10 +129,20 @@ for dev in $devices; do
   slowest=$(sed -n 's/.*"frame_ms_max": \([0-9.]*\).*/\1/p' "$d/run.json")
   if [ -z "$frames" ] || [ -z "$misses" ]; then fail "$dev: no frames/deadline_misses in run.json"; fi
   [ "$frames" -gt 0 ] || fail "$dev: run drew no frames"
-  # counted and reported; under TCG a frame costs about 100 ms, and the first
-  # one also compiles the shaders (seconds), so a few misses are expected
-  [ $((misses * 2)) -le "$frames" ] || fail "$dev: $misses deadline misses in $frames frames"
+  # Misses are counted and reported, not required to be 0: under TCG a frame
+  # costs 100-200 ms (more when the host is busy) and the first frames also
+  # compile shaders. What the display path owes: at least one frame on time,
+  # one flip per frame, and flips that take a small part of the period.
+  [ "$misses" -lt "$frames" ] || fail "$dev: every frame missed its deadline ($misses of $frames)"
   flips=$(sed -n 's/^kms: restored CRTC.*; \([0-9]*\) flips, flip time mean \([0-9.]*\) ms, max \([0-9.]*\) ms.*/\1 flips, mean \2 ms, max \3 ms/p' "$d/run.log")
+  flip_n=${flips%% *}; flip_mean=$(echo "$flips" | sed 's/.*mean \([0-9.]*\) ms.*/\1/')
+  # one flip per presented frame: the loop's frames plus its warm-up frame
+  # (live.c presents a lamp-test frame before the schedule starts)
+  if [ -z "$flip_n" ] || [ "$flip_n" -lt "$frames" ] || [ "$flip_n" -gt $((frames + 2)) ]; then
+    fail "$dev: $flip_n flips for $frames frames"
+  fi
+  awk -v m="$flip_mean" -v p="$period_ms" 'BEGIN { exit !(m < p / 5) }' ||
+    fail "$dev: mean flip time $flip_mean ms is not small against the $period_ms ms period"
   first=$(sed -n 's/^kms: first frame on screen \([0-9.]*\) ms after open.*/\1/p' "$d/render.log")
   boot=$(sed -n 's/^guest-kms: render: start at [0-9.]* s, frame shown by \([0-9.]*\) s.*/\1/p' "$d/vm.txt")
   {

@@ -492,7 +492,7 @@ int plot_chart_draw(plot_image *im, const plot_chart *ch, plot_axis *xa_out, plo
                            k_black);
     }
 
-    /* legend: top right inside the plot area */
+    /* legend inside the plot area */
     int lw = 0;
     for (int s = 0; s < ch->series_count; ++s) {
         int w = plot_text_width(ch->series[s].name != NULL ? ch->series[s].name : "", 1);
@@ -500,8 +500,28 @@ int plot_chart_draw(plot_image *im, const plot_chart *ch, plot_axis *xa_out, plo
     }
     const char *front_text = "line: Pareto front";
     lw = plot_text_width(front_text, 1) > lw + 34 ? plot_text_width(front_text, 1) : lw + 34;
-    int lx1 = R - 8, lx0 = lx1 - lw - 16, ly0 = T + 8,
-        ly1 = ly0 + 12 + 16 * ch->series_count + 12;
+    const int box_w = lw + 16, box_h = 12 + 16 * ch->series_count + 12;
+    /* the corner of the plot area that hides the fewest points */
+    int best_corner = 0, best_count = -1;
+    for (int corner = 0; corner < 4; ++corner) {
+        int bx0 = (corner & 1) ? L + 8 : R - 8 - box_w, by0 = (corner & 2) ? B - 8 - box_h : T + 8;
+        int count = 0;
+        for (int s = 0; s < ch->series_count; ++s) {
+            const plot_series *se = &ch->series[s];
+            for (size_t i = 0; i < se->n; ++i) {
+                if (!point_ok(ch, se->x[i], se->y[i])) continue;
+                double px = plot_axis_map(&xa, se->x[i]), py = plot_axis_map(&ya, chart_y(ch, se->y[i]));
+                count += px >= bx0 - 16 && px <= bx0 + box_w + 16 && py >= by0 - 16 &&
+                         py <= by0 + box_h + 16;
+            }
+        }
+        if (best_count < 0 || count < best_count) {
+            best_count = count;
+            best_corner = corner;
+        }
+    }
+    int lx0 = (best_corner & 1) ? L + 8 : R - 8 - box_w, lx1 = lx0 + box_w;
+    int ly0 = (best_corner & 2) ? B - 8 - box_h : T + 8, ly1 = ly0 + box_h;
     plot_fill_rect(im, lx0, ly0, lx1, ly1, k_white);
     plot_line(im, lx0, ly0, lx1, ly0, k_black);
     plot_line(im, lx0, ly1, lx1, ly1, k_black);

@@ -1,0 +1,29 @@
+# fixterrain bench (issue 6): the plot rasteriser and Pareto front (unit
+# test), and a smoke run of `fixterrain bench` on a real DEM whose CSV and
+# PNG are checked by test_plot --check-bench (skipped without ../shared/data).
+ft_add_test(test_plot SOURCES test_plot.c ${CMAKE_SOURCE_DIR}/tools/plot.c LIBS m)
+target_include_directories(test_plot PRIVATE ${CMAKE_SOURCE_DIR}/tools)
+
+if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BRUTE
+   AND FIXTERRAIN_WITH_METHOD_BINTREE)
+  # brute + 2 bintree settings (+ 1 pgm grid when pgm is built), 6 frames of
+  # the valley path at 160x120, the error on frames 0 and 5.
+  set(FT_BENCH_METHODS brute,bintree)
+  set(FT_BENCH_ROWS "brute:default" "bintree:template_k=3 tau_px=1" "bintree:template_k=3 tau_px=4")
+  if(FIXTERRAIN_WITH_METHOD_PGM)
+    set(FT_BENCH_METHODS brute,bintree,pgm)
+    list(APPEND FT_BENCH_ROWS "pgm:grid=64x128")
+  endif()
+  add_test(NAME bench_smoke
+    COMMAND sh -c "test -f \"$1/N42E001.hgt\" || { echo 'no ../shared/data: skipped'; exit 77; }; out=\"$2/bench\"; rm -rf \"$out\"; mkdir -p \"$out\" && \"$0\" bench --scene \"$3/config/pyrenees.ini\" --dem \"$1/N42E001.hgt\" --methods $4 --path valley --size 160x120 --frames 6 --settings 'bintree.tau_px=1,4;bintree.template_k=3' --settings pgm.grid=64x128 --csv \"$out/bench.csv\" --plot \"$out/bench.png\" --report \"$out/bench.md\" && cat \"$out/bench.csv\" && grep -q '^| bintree | template_k=3 tau_px=1 |' \"$out/bench.md\" && grep -q 'max error <= 1 px' \"$out/bench.md\" && head -c 8 \"$out/bench.png\" | od -An -c | grep -q 'P   N   G' && tp=\"$5\" && shift 5 && exec \"$tp\" --check-bench \"$out/bench.csv\" \"$out/bench.png\" 6 2 \"$@\""
+            $<TARGET_FILE:fixterrain> ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out
+            ${CMAKE_SOURCE_DIR} ${FT_BENCH_METHODS} $<TARGET_FILE:test_plot> ${FT_BENCH_ROWS})
+  set_tests_properties(bench_smoke PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
+
+  # usage errors: exit 2 with the reason, before anything runs
+  add_test(NAME bench_cli_errors
+    COMMAND sh -c "\"$0\" bench --settings 'bintree.tau_px=' 2>&1; echo rc=$?; \"$0\" bench --path nowhere.wp 2>&1; echo rc=$?; \"$0\" bench --settings 'gpu.x=1' 2>&1; echo rc=$?; \"$0\" bench --settings 'pgm.grid=12' --methods pgm 2>&1; echo rc=$?; \"$0\" bench --help | head -1"
+            $<TARGET_FILE:fixterrain>)
+  set_tests_properties(bench_cli_errors PROPERTIES TIMEOUT 60
+    PASS_REGULAR_EXPRESSION "bad key or values[^\n]*\nrc=2\n[^\n]*nowhere.wp: not a built-in path[^\n]*\nrc=2\n[^\n]*'gpu' is not a method\nrc=2\n[^\n]*expected COLSxROWS\nrc=2\nusage: fixterrain bench")
+endif()

@@ -101,9 +101,9 @@ wait_for "$out/watch.txt" "kms-crtc: ready" "$watcher" 10
 "$bin" run --scene "$scene" --display kms --stats "$out/run.json" > "$out/run.log" 2>&1 &
 pid=$!
 wait_for "$out/run.log" "kms: first frame on screen" "$pid" 180
-sleep 1
+sleep 2   # past the loop's warm-up (lamp test) frame: the live frames
 dump run
-sleep 4
+sleep 3
 t_term=$(up)
 kill -TERM "$pid"
 wait "$pid"; rc=$?

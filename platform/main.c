@@ -447,13 +447,17 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         "  \"messages_lost\": %llu,\n  \"rejects\": {%s},\n"
         "  \"frames\": %u,\n  \"frames_annunciated\": %u,\n  \"first_annunciated\": %lld,\n"
         "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
-        "  \"draw_ms_max\": %.3f\n}\n",
+        "  \"draw_ms_max\": %.3f,\n  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
+        "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
+        "  \"tau_max_px\": %.4f\n}\n",
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
         (unsigned long long)f->frames_in, (unsigned long long)f->values_applied,
         (unsigned long long)f->dec.lost, rejects, r->frames, r->frames_annunciated,
         r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
-        r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max);
+        r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
+        r->degrade.over_budget, r->degrade.enabled, r->degrade.raises, r->degrade.lowers,
+        r->degrade_scale_max, r->tau_max_px);
     if (len < 0 || (size_t)len >= sizeof g_stats_text) {
         return ft_fail(err, FT_ERR_OVERSIZED, "replay stats longer than %u bytes",
                        FT_STATS_TEXT_MAX);
@@ -560,6 +564,11 @@ static int cmd_replay(int argc, char **argv)
         if (r.last_view.annunciate) {
             printf("replay: the last frame is annunciated: %s\n", r.last_view.reason);
         }
+        printf("replay: budget %.3f ms: %u frames over it (slowest %.1f ms); degradation %s "
+               "(%u raises, %u lowers, LOD scale up to %.2f, error bound up to %.3f px)\n",
+               r.degrade.budget_ms, r.degrade.over_budget, r.draw_ms_max,
+               r.degrade.enabled ? "on" : "off", r.degrade.raises, r.degrade.lowers,
+               r.degrade_scale_max, r.tau_max_px);
     }
     ft_app_shutdown(&g_app);
     return rc;
@@ -604,7 +613,12 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         "  \"can_frames\": [%llu, %llu],\n  \"can_dropped\": [%llu, %llu],\n"
         "  \"decoder_rejects\": %llu,\n  \"messages_lost\": %llu,\n"
         "  \"gpio_edges\": %llu,\n  \"gpio_changes\": %llu,\n  \"heartbeat_toggles\": %llu,\n"
-        "  \"t_start_ns\": %llu,\n  \"t_first_rx_ns\": %llu\n}\n",
+        "  \"t_start_ns\": %llu,\n  \"t_first_rx_ns\": %llu,\n"
+        "  \"stage_ms_mean\": {\"poll\": %.3f, \"select\": %.3f, \"draw\": %.3f, \"gpu\": %.3f},\n"
+        "  \"stage_ms_max\": {\"poll\": %.3f, \"select\": %.3f, \"draw\": %.3f, \"gpu\": %.3f},\n"
+        "  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
+        "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
+        "  \"tau_max_px\": %.4f\n}\n",
         r->frames, r->deadline_misses, r->frame_ms_max, r->frames_annunciated, r->frames_frozen,
         r->frames_test, r->frames_backup, r->source_switches,
         (unsigned long long)r->can_frames[0], (unsigned long long)r->can_frames[1],
@@ -612,7 +626,12 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         (unsigned long long)ft_pose_feed_rejected(f), (unsigned long long)f->dec.lost,
         (unsigned long long)r->gpio_edges, (unsigned long long)r->gpio_changes,
         (unsigned long long)r->heartbeat_toggles, (unsigned long long)r->t_start_ns,
-        (unsigned long long)r->t_first_rx_ns);
+        (unsigned long long)r->t_first_rx_ns, r->poll_ms_sum / (r->frames ? r->frames : 1u),
+        r->select_ms_sum / (r->frames ? r->frames : 1u), r->draw_ms_sum / (r->frames ? r->frames : 1u),
+        r->gpu_ms_sum / (r->frames ? r->frames : 1u), r->poll_ms_max, r->select_ms_max,
+        r->draw_ms_max, r->gpu_ms_max, r->degrade.budget_ms, r->degrade.over_budget,
+        r->degrade.enabled, r->degrade.raises, r->degrade.lowers, r->degrade_scale_max,
+        r->tau_max_px);
     if (len < 0 || (size_t)len >= sizeof g_stats_text) {
         return ft_fail(err, FT_ERR_OVERSIZED, "run stats too long");
     }

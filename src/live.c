@@ -162,6 +162,10 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         st = ft_app_render_annunciated(app, &s->pose, FT_LIVE_TEST_REASON, &cam, &fs, err);
     }
     const uint64_t period_ns = (uint64_t)(s->frame_period_ms * 1e6 + 0.5);
+    ft_degrade_init(&r->degrade, s->frame_degrade,
+                    s->frame_budget_ms > 0.0 ? s->frame_budget_ms : s->frame_period_ms,
+                    s->frame_degrade_max_scale);
+    (void)ft_method_set_lod_scale(&app->renderer.method, 1.0);
     const uint64_t failover_ns = (uint64_t)s->can_failover_ms * 1000000u;
     int source = 0, frozen = 0, heartbeat = 0;
     ft_pose frozen_pose = s->pose;
@@ -174,6 +178,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         }
         const uint64_t t_due = t_base + (k - k_base) * period_ns;
         uint64_t now = ft_plat_monotonic_ns();
+        const uint64_t t_poll0 = now;
         for (int p = 0; p < 2 && st == FT_OK; ++p) {
             if (lv->can_open[p]) {
                 st = drain_can(lv, p, p == source, feed, r, err);
@@ -198,6 +203,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         }
         ft_pose_view v;
         now = ft_plat_monotonic_ns();
+        const double poll_ms = (double)(now - t_poll0) * 1e-6;
         ft_pose_feed_view(feed, now, &v);
         const int freeze = input_active(lv, FT_GPIO_FREEZE);
         if (freeze && !frozen) {
@@ -213,6 +219,21 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         if (st != FT_OK) {
             break;
         }
+        const double scale_drawn = r->degrade.scale;
+        const double render_ms = fs.select_ms + fs.gpu_ms;
+        if (ft_degrade_frame(&r->degrade, render_ms)) {
+            (void)ft_method_set_lod_scale(&app->renderer.method, r->degrade.scale);
+        }
+        if (r->degrade.scale > r->degrade_scale_max) r->degrade_scale_max = r->degrade.scale;
+        if (fs.tau_achieved_px > r->tau_max_px) r->tau_max_px = fs.tau_achieved_px;
+        r->poll_ms_sum += poll_ms;
+        r->select_ms_sum += fs.select_ms;
+        r->draw_ms_sum += fs.cpu_ms;
+        r->gpu_ms_sum += fs.gpu_ms;
+        if (poll_ms > r->poll_ms_max) r->poll_ms_max = poll_ms;
+        if (fs.select_ms > r->select_ms_max) r->select_ms_max = fs.select_ms;
+        if (fs.cpu_ms > r->draw_ms_max) r->draw_ms_max = fs.cpu_ms;
+        if (fs.gpu_ms > r->gpu_ms_max) r->gpu_ms_max = fs.gpu_ms;
         if (lv->gpio_open && s->gpio_heartbeat_line >= 0) {
             heartbeat = !heartbeat;
             st = ft_plat_gpio_set_output(&lv->gpio, heartbeat, err);
@@ -231,7 +252,8 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
             if (test) {
                 (void)snprintf(shown.reason, sizeof shown.reason, "%s", FT_LIVE_TEST_REASON);
             }
-            size_t n = ft_pose_row_format(row, sizeof row, k, now, &shown, frozen, source);
+            size_t n = ft_pose_row_format(row, sizeof row, k, now, &shown, frozen, source,
+                                          scale_drawn, fs.tau_achieved_px);
             st = (n > 0u) ? pose_file.writer.write(pose_file.writer.ctx, row, n)
                           : ft_fail(err, FT_ERR_OVERSIZED, "pose row too long");
         }

@@ -16,7 +16,14 @@
  *   4. render and present, then toggle the heartbeat line (once per
  *      presented frame: a monitor that sees it stop knows the display hung);
  *   5. a frame that ends after its period is a deadline miss; the loop then
- *      re-bases its schedule instead of bursting to catch up.
+ *      re-bases its schedule instead of bursting to catch up;
+ *   6. the degradation policy (frame.degrade, src/degrade.h) sees the
+ *      frame's render time against frame.budget_ms and coarsens or refines
+ *      the LOD for the next frame; the pose record gives the scale and the
+ *      error bound each frame met.
+ * Per-stage CPU times (input poll, LOD selection, draw submission, GPU
+ * finish) are accumulated in the result (the GPU time is measured with
+ * glFinish: the frame's readback waits for the GPU anyway).
  * The loop ends when *stop becomes non-zero (a signal handler sets it) or
  * after frames_max frames. Nothing is allocated: the ports' buffers are in
  * the structs below, sized by FT_CAN_FILTERS_MAX / FT_LIVE_CAN_BATCH. */
@@ -27,6 +34,7 @@
 
 #include "app.h"
 #include "debounce.h"
+#include "degrade.h"
 #include "platform_api.h"
 #include "pose_feed.h"
 
@@ -49,6 +57,10 @@ typedef struct ft_live_result {
     uint64_t gpio_edges, gpio_changes, heartbeat_toggles;
     uint64_t t_start_ns, t_first_rx_ns; /* monotonic; first rx 0 if none */
     double frame_ms_max;
+    double poll_ms_max, select_ms_max, draw_ms_max, gpu_ms_max; /* per stage, worst frame */
+    double poll_ms_sum, select_ms_sum, draw_ms_sum, gpu_ms_sum;
+    ft_degrade degrade;
+    double degrade_scale_max, tau_max_px;
 } ft_live_result;
 
 typedef struct ft_live {

@@ -102,6 +102,23 @@ void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_progr
     (void)cam;
 }
 
+int ft_method_set_lod_scale(ft_method *m, double scale)
+{
+    switch (m->kind) {
+    case FT_METHOD_BINTREE:
+#if FT_WITH_METHOD_BINTREE
+        ft_bintree_method_set_lod_scale(&m->u.bintree, scale);
+        return 1;
+#else
+        break;
+#endif
+    default:
+        break;
+    }
+    (void)scale;
+    return 0;
+}
+
 void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     switch (m->kind) {

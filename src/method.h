@@ -43,7 +43,8 @@ typedef struct ft_bintree_method {
     GLuint vbo, ibo, inst_vbo, err_tex;
     uint32_t index_count, triangles_per_tile;
     float *inst; /* tiles_max * 6 corner coordinates (FT_POOL_METHOD) */
-    double tau_px;
+    double tau_px;    /* bintree.tau_px */
+    double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
     int morph, es3;
     ft_scalar_format err_fmt;
     uint64_t gpu_bytes;
@@ -97,6 +98,10 @@ void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_progr
 /* Per-frame LOD selection for the camera (no-op when the view is unchanged
  * or the method selects nothing); ft_method_draw calls it too. */
 void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam);
+/* Coarsens the LOD by scale >= 1 (the degradation policy, src/degrade.h):
+ * bintree draws to tau_px * scale. Returns 0 when the method has no LOD
+ * knob (brute, pgm: the scale is then ignored). */
+int ft_method_set_lod_scale(ft_method *m, double scale);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);
 
@@ -114,6 +119,7 @@ void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
                                  const ft_terrain *t, ft_arena *a, ft_error *err);
 void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam);
+void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale);
 void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
                             const struct ft_terrain_program *p, const ft_terrain *t,
                             const ft_camera *cam, ft_method_draw_stats *st);

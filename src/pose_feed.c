@@ -66,13 +66,14 @@ uint64_t ft_pose_feed_rejected(const ft_pose_feed *f)
 }
 
 size_t ft_pose_row_format(char *buf, size_t cap, uint32_t frame, uint64_t t_ns,
-                          const ft_pose_view *v, int frozen, int source)
+                          const ft_pose_view *v, int frozen, int source, double lod_scale,
+                          double tau_px)
 {
     const ft_pose *p = &v->pose;
-    int n = snprintf(buf, cap, "%u,%llu.%09llu,%.9f,%.9f,%.4f,%.6f,%.6f,%.6f,%d,%u,%d,%d,%d,\"%s\"\n",
+    int n = snprintf(buf, cap, "%u,%llu.%09llu,%.9f,%.9f,%.4f,%.6f,%.6f,%.6f,%d,%u,%d,%d,%d,%.4f,%.4f,\"%s\"\n",
                      frame, (unsigned long long)(t_ns / 1000000000u),
                      (unsigned long long)(t_ns % 1000000000u), p->lat_deg, p->lon_deg, p->alt_m,
                      p->heading_deg, p->pitch_deg, p->roll_deg, v->annunciate, v->stale_mask,
-                     v->predicted, frozen, source, v->reason);
+                     v->predicted, frozen, source, lod_scale, tau_px, v->reason);
     return (n < 0 || (size_t)n >= cap) ? 0u : (size_t)n;
 }

@@ -54,14 +54,17 @@ void ft_pose_feed_view(const ft_pose_feed *f, uint64_t t_ns, ft_pose_view *out);
 
 /* One row of a pose record (replay and run write the same CSV):
  *   frame,t_s,lat_deg,lon_deg,alt_m,heading_deg,pitch_deg,roll_deg,
- *   annunciate,stale_mask,predicted,frozen,source,reason
+ *   annunciate,stale_mask,predicted,frozen,source,lod_scale,tau_px,reason
+ * (lod_scale: the degradation policy's scale; tau_px: the error bound the
+ * LOD met, 0 for methods without one)
  * Returns the length, or 0 if it does not fit in cap. */
 #define FT_POSE_ROW_HEADER                                                              \
     "frame,t_s,lat_deg,lon_deg,alt_m,heading_deg,pitch_deg,roll_deg,annunciate,stale_mask," \
-    "predicted,frozen,source,reason\n"
+    "predicted,frozen,source,lod_scale,tau_px,reason\n"
 #define FT_POSE_ROW_MAX 512u
 size_t ft_pose_row_format(char *buf, size_t cap, uint32_t frame, uint64_t t_ns,
-                          const ft_pose_view *v, int frozen, int source);
+                          const ft_pose_view *v, int frozen, int source, double lod_scale,
+                          double tau_px);
 
 /* Frames rejected for any reason (sum of f->dec.rejects). */
 uint64_t ft_pose_feed_rejected(const ft_pose_feed *f);

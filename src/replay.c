@@ -57,10 +57,10 @@ static ft_status next_record(ft_line_reader *lr, const char *log, ft_replay_resu
 }
 
 static ft_status write_row(ft_writer *w, uint32_t frame, uint64_t t_ns, const ft_pose_view *v,
-                           ft_error *err)
+                           double lod_scale, double tau_px, ft_error *err)
 {
     char row[FT_POSE_ROW_MAX];
-    size_t n = ft_pose_row_format(row, sizeof row, frame, t_ns, v, 0, 0);
+    size_t n = ft_pose_row_format(row, sizeof row, frame, t_ns, v, 0, 0, lod_scale, tau_px);
     if (n == 0u) {
         return ft_fail(err, FT_ERR_OVERSIZED, "pose record row longer than %u bytes",
                        FT_POSE_ROW_MAX);
@@ -83,6 +83,10 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         return st;
     }
     const uint64_t period_ns = (uint64_t)(s->frame_period_ms * 1e6 + 0.5);
+    ft_degrade_init(&r->degrade, s->frame_degrade,
+                    s->frame_budget_ms > 0.0 ? s->frame_budget_ms : s->frame_period_ms,
+                    s->frame_degrade_max_scale);
+    (void)ft_method_set_lod_scale(&app->renderer.method, 1.0);
     const uint64_t gap_ns = (uint64_t)(FT_REPLAY_GAP_MAX_S * 1e9);
     static ft_file log_file, pose_file; /* static: ft_file holds a path buffer */
     static ft_line_reader lr;           /* 5 KiB of buffers: not on the stack */
@@ -146,6 +150,12 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         }
         double ms = fs.select_ms + fs.gpu_ms;
         if (ms > r->draw_ms_max) r->draw_ms_max = ms;
+        const double scale_drawn = r->degrade.scale;
+        if (ft_degrade_frame(&r->degrade, ms)) {
+            (void)ft_method_set_lod_scale(&app->renderer.method, r->degrade.scale);
+        }
+        if (r->degrade.scale > r->degrade_scale_max) r->degrade_scale_max = r->degrade.scale;
+        if (fs.tau_achieved_px > r->tau_max_px) r->tau_max_px = fs.tau_achieved_px;
         r->frames += 1u;
         r->frames_predicted += (uint32_t)v.predicted;
         if (v.annunciate) {
@@ -154,7 +164,8 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         }
         r->last_view = v;
         if (poses) {
-            st = write_row(&pose_file.writer, k, t_display, &v, err);
+            st = write_row(&pose_file.writer, k, t_display, &v, scale_drawn, fs.tau_achieved_px,
+                           err);
         }
         if (st == FT_OK && d->frames_dir != NULL) {
             char path[FT_PATH_MAX];

@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #include "app.h"
+#include "degrade.h"
 #include "pose_feed.h"
 
 #define FT_REPLAY_ERRORS_KEPT 8u
@@ -49,6 +50,9 @@ typedef struct ft_replay_result {
     uint32_t frames_predicted;  /* frames whose attitude was predicted from the rates */
     double log_first_s, log_last_s;
     double draw_ms_max;      /* slowest frame (select + draw + readback), information only */
+    ft_degrade degrade;      /* frame.budget_ms: frames over it, LOD scale steps */
+    double degrade_scale_max;
+    double tau_max_px;       /* worst error bound a frame's LOD met (bintree) */
     ft_pose_view last_view;
 } ft_replay_result;
 

@@ -75,6 +75,9 @@ void ft_scene_defaults(ft_scene *s)
     s->pgm_grid_rows = 430;
     s->metric_enabled = 0;
     s->frame_period_ms = 16.667;
+    s->frame_budget_ms = 0.0;
+    s->frame_degrade = 0;
+    s->frame_degrade_max_scale = 8.0;
     s->pose_horizon_ms = FT_POSE_HORIZON_DEFAULT_MS;
     (void)snprintf(s->can_iface, sizeof s->can_iface, "%s", "vcan0");
     s->can_backup_iface[0] = '\0';
@@ -407,6 +410,21 @@ static int on_key(void *user, const char *section, const char *key, const char *
     } else if (strcmp(section, "frame") == 0) {
         if (strcmp(key, "period_ms") == 0) {
             return RANGE(parse_f64(value, 1.0, 1000.0, &s->frame_period_ms), "expected 1..1000");
+        }
+        if (strcmp(key, "budget_ms") == 0) {
+            return RANGE(parse_f64(value, 0.0, 1000.0, &s->frame_budget_ms), "expected 0..1000");
+        }
+        if (strcmp(key, "degrade") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->frame_degrade = (int)v;
+            return 1;
+        }
+        if (strcmp(key, "degrade_max_scale") == 0) {
+            return RANGE(parse_f64(value, 1.0, 64.0, &s->frame_degrade_max_scale),
+                         "expected 1..64");
         }
     } else if (strcmp(section, "pose_input") == 0) {
         if (strcmp(key, "horizon_ms") == 0) {

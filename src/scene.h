@@ -39,6 +39,10 @@
  *   metric.enabled        0 | 1: measure screen-space error against the reference
  *   frame.period_ms       display frame period [1, 1000] (16.667 = 60 Hz); replay
  *                         renders one frame per period of log time
+ *   frame.budget_ms       the frame's time budget [0, 1000]; 0 = the period
+ *   frame.degrade         0 | 1: coarsen the LOD when frames exceed the budget
+ *                         (src/degrade.h; off keeps replay deterministic)
+ *   frame.degrade_max_scale  [1, 64]: most the LOD may be coarsened (tau x scale)
  *   pose_input.horizon_ms attitude prediction horizon from the body rates [0, 1000]
  *                         (0 = no prediction)
  *   can.interface, can.backup_interface   SocketCAN interfaces (live input;
@@ -145,6 +149,9 @@ typedef struct ft_scene {
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
     double frame_period_ms;   /* frame.period_ms */
+    double frame_budget_ms;   /* frame.budget_ms, 0 = the period */
+    int frame_degrade;        /* frame.degrade */
+    double frame_degrade_max_scale; /* frame.degrade_max_scale */
     uint32_t pose_horizon_ms; /* pose_input.horizon_ms */
     char can_iface[FT_CAN_IFACE_NAME_MAX];        /* can.interface */
     char can_backup_iface[FT_CAN_IFACE_NAME_MAX]; /* can.backup_interface */

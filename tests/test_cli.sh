@@ -85,6 +85,23 @@ if [ -f "$data/N42E001.hgt" ]; then
     --pose 42.30,1.50,3800,0,-14,0 --size 320x240 --out "$out/bt64.png" --stats "$out/bt64.json"
   cmake -DJSON="$out/bt64.json" -DMETHOD=bintree -DTAU=1.0 -DBUDGET_HIT=1 \
     -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "bintree budget stats JSON check"
+  # degradation policy: a budget no frame can meet raises the LOD scale to
+  # its maximum (tau 1 px x 4), and the stats say so; without it, nothing moves
+  i=0; : > "$out/deg.log"
+  while [ $i -lt 20 ]; do
+    printf '(1700000000.%06d) vcan0 137#0102%02X00C1200000\n' $((i * 10000)) $i >> "$out/deg.log"
+    i=$((i + 1))
+  done
+  printf '[scene]\nmethod = bintree\n[frame]\nbudget_ms = 0.001\ndegrade = 1\ndegrade_max_scale = 4\n' > "$out/deg.ini"
+  "$bin" replay --scene "$out/deg.ini" --dem "$data/N42E001.hgt" --size 160x120 --log "$out/deg.log" \
+    --stats "$out/deg.json" --quiet || fail "replay with the degradation policy"
+  grep -q '"scale_max": 4.000' "$out/deg.json" || fail "degradation did not reach its maximum: $(cat "$out/deg.json")"
+  grep -q '"tau_max_px": 4.0000' "$out/deg.json" || fail "bintree did not report tau 4: $(cat "$out/deg.json")"
+  sed 's/degrade = 1/degrade = 0/' "$out/deg.ini" > "$out/deg0.ini"
+  "$bin" replay --scene "$out/deg0.ini" --dem "$data/N42E001.hgt" --size 160x120 --log "$out/deg.log" \
+    --stats "$out/deg0.json" --quiet || fail "replay without the degradation policy"
+  grep -q '"raises": 0' "$out/deg0.json" || fail "the policy moved while off"
+  grep -q '"frames_over_budget": 0,' "$out/deg0.json" && fail "no frame over a 1 us budget?"
   printf '[scene]\nmethod = bintree\n[budget]\nmethod_bytes = 64K\n' > "$out/btmem.ini"
   expect 1 "method_bytes" -- "$bin" render --scene "$out/btmem.ini" --dem "$data/N42E001.hgt" \
     --out "$out/x.png"

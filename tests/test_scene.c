@@ -52,6 +52,9 @@ int main(void)
     CHECK(a.bintree_morph == b.bintree_morph);
     CHECK(a.pgm_grid_cols == b.pgm_grid_cols && a.pgm_grid_rows == b.pgm_grid_rows);
     CHECK_NEAR(a.frame_period_ms, b.frame_period_ms, 0.0);
+    CHECK_NEAR(a.frame_budget_ms, b.frame_budget_ms, 0.0);
+    CHECK(a.frame_degrade == b.frame_degrade);
+    CHECK_NEAR(a.frame_degrade_max_scale, b.frame_degrade_max_scale, 0.0);
     CHECK(a.pose_horizon_ms == b.pose_horizon_ms && a.can_failover_ms == b.can_failover_ms);
     CHECK(strcmp(a.can_iface, b.can_iface) == 0 && strcmp(a.can_backup_iface, "") == 0);
     CHECK(a.can_map.count == b.can_map.count && a.can_map.count == 10u);
@@ -102,6 +105,7 @@ int main(void)
     expect_error("[can_map]\nspeed = 500,1,0,1,100\n", "unknown section or key");
     expect_error("[can]\ninterface = averyveryverylongname0\n", "longer than 15");
     expect_error("[frame]\nperiod_ms = 0\n", "frame.period_ms");
+    expect_error("[frame]\ndegrade_max_scale = 0.5\n", "frame.degrade_max_scale");
     expect_error("[build]\ninputs = replay,usb\n", "build.inputs");
     CHECK(parse("[build]\ninputs = replay\npng = 0\n", &a, &err) == FT_OK);
     CHECK(a.build_inputs == FT_BUILD_INPUT_REPLAY && a.build_png == 0);

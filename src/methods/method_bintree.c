@@ -40,6 +40,7 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     const uint32_t k = s->bintree_template_k;
     memset(m, 0, sizeof *m);
     m->tau_px = s->bintree_tau_px;
+    m->lod_scale = 1.0;
     m->morph = s->bintree_morph;
     m->es3 = (gl->api == FT_GL_API_ES3);
     ft_status st = ft_bintree_init(&m->bt, t, k, s->bintree_tiles_max, a, err);
@@ -118,7 +119,7 @@ void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const f
     }
     ft_bt_view v;
     ft_bt_view_from_camera(cam, t, 1, m->morph, &v);
-    ft_bintree_select(&m->bt, &v, m->tau_px, &m->sel);
+    ft_bintree_select(&m->bt, &v, m->tau_px * m->lod_scale, &m->sel);
     for (uint32_t i = 0; i < m->sel.tiles; ++i) {
         const ft_bt_tile *tile = &m->bt.tiles[i];
         float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
@@ -137,6 +138,15 @@ void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const f
     m->sel_h = cam->height_px;
     m->have_selection = 1;
     m->uploaded = 0;
+}
+
+void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale)
+{
+    const double s = scale < 1.0 ? 1.0 : scale;
+    if (s != m->lod_scale) {
+        m->lod_scale = s;
+        m->have_selection = 0; /* select again for the same view */
+    }
 }
 
 void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,

@@ -53,9 +53,10 @@ static int load(const char *path, row *rows)
         row *r = &rows[n];
         unsigned k, mask;
         int used = 0;
-        if (sscanf(line, "%u,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%u,%d,%d,%d,%n", &k, &r->t_s, &r->lat,
-                   &r->lon, &r->alt, &r->hdg, &r->pitch, &r->roll, &r->ann, &mask, &r->pred,
-                   &r->frozen, &r->source, &used) < 13) {
+        double scale, tau;
+        if (sscanf(line, "%u,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%u,%d,%d,%d,%lf,%lf,%n", &k, &r->t_s,
+                   &r->lat, &r->lon, &r->alt, &r->hdg, &r->pitch, &r->roll, &r->ann, &mask,
+                   &r->pred, &r->frozen, &r->source, &scale, &tau, &used) < 15) {
             fprintf(stderr, "%s: bad row %d: %s", path, n + 2, line);
             exit(2);
         }

@@ -131,7 +131,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
         " \"tau_achieved_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
-        " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"median_gpu_ms\": %.3f},\n"
+        " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f},\n"
         "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
         "  \"error\": %s,\n  \"pools\": [%s\n  ]\n}\n",
         app->scene.name, ft_method_name(app->scene.method), ft_backend_name(app->scene.backend),
@@ -140,7 +140,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, last->tau_achieved_px, last->budget_hit, last->select_ms,
-        last->cpu_ms, last->gpu_ms, median_ms,
+        last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms,
         (unsigned long long)app->renderer.gpu_bytes,
         (unsigned long long)app->scene.gpu_texture_bytes, error_json, pools);
     if (n < 0 || (size_t)n >= sizeof g_stats_text) {
@@ -616,6 +616,7 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         "  \"t_start_ns\": %llu,\n  \"t_first_rx_ns\": %llu,\n"
         "  \"stage_ms_mean\": {\"poll\": %.3f, \"select\": %.3f, \"draw\": %.3f, \"gpu\": %.3f},\n"
         "  \"stage_ms_max\": {\"poll\": %.3f, \"select\": %.3f, \"draw\": %.3f, \"gpu\": %.3f},\n"
+        "  \"gpu_timer_ms\": {\"frames\": %u, \"mean\": %.3f, \"max\": %.3f},\n"
         "  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
         "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
         "  \"tau_max_px\": %.4f\n}\n",
@@ -629,7 +630,9 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         (unsigned long long)r->t_first_rx_ns, r->poll_ms_sum / (r->frames ? r->frames : 1u),
         r->select_ms_sum / (r->frames ? r->frames : 1u), r->draw_ms_sum / (r->frames ? r->frames : 1u),
         r->gpu_ms_sum / (r->frames ? r->frames : 1u), r->poll_ms_max, r->select_ms_max,
-        r->draw_ms_max, r->gpu_ms_max, r->degrade.budget_ms, r->degrade.over_budget,
+        r->draw_ms_max, r->gpu_ms_max, r->gpu_timer_frames,
+        r->gpu_timer_ms_sum / (r->gpu_timer_frames ? r->gpu_timer_frames : 1u),
+        r->gpu_timer_ms_max, r->degrade.budget_ms, r->degrade.over_budget,
         r->degrade.enabled, r->degrade.raises, r->degrade.lowers, r->degrade_scale_max,
         r->tau_max_px);
     if (len < 0 || (size_t)len >= sizeof g_stats_text) {

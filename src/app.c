@@ -230,6 +230,7 @@ ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char
     }
     s = ft_renderer_read_rgba(&app->renderer, err); /* waits for the GPU */
     uint64_t t2 = ft_plat_monotonic_ns();
+    st->gpu_timer_ms = (s == FT_OK) ? ft_renderer_gpu_timer_ms(&app->renderer) : -1.0;
     if (s == FT_OK && app->scene.display != FT_DISPLAY_NONE) {
         s = ft_renderer_present(&app->renderer, err);
         if (s == FT_OK) {

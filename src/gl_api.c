@@ -1,5 +1,6 @@
 #include "gl_api.h"
 
+#include <stdio.h>
 #include <string.h>
 
 static ft_status load_one(ft_gl_get_proc_fn get_proc, const char *name, ft_gl_proc *out,
@@ -80,6 +81,31 @@ ft_status ft_gl_load(ft_gl *gl, ft_gl_api api, int desktop_core, ft_gl_get_proc_
         c->has_float_textures = ft_gl_has_extension(gl, "GL_OES_texture_float");
         c->has_depth24 = ft_gl_has_extension(gl, "GL_OES_depth24");
         c->has_float_color_buffer = 0; /* ES2: no position target; metric unavailable */
+    }
+    /* Timer queries are optional: load them as a set or not at all. */
+    const int core = desktop_core != 0;
+    if (core || ft_gl_has_extension(gl, "GL_EXT_disjoint_timer_query")) {
+        const char *sfx = core ? "" : "EXT";
+        char name[64];
+        ft_gl_proc p[6];
+        static const char *const base[6] = {"glGenQueries", "glDeleteQueries", "glBeginQuery",
+                                            "glEndQuery", "glGetQueryObjectuiv",
+                                            "glGetQueryObjectui64v"};
+        int all = 1;
+        for (int i = 0; i < 6; ++i) {
+            (void)snprintf(name, sizeof name, "%s%s", base[i], sfx);
+            p[i] = get_proc(name);
+            all &= p[i] != NULL;
+        }
+        if (all) {
+            gl->GenQueries = (ft_pfn_gen_queries)p[0];
+            gl->DeleteQueries = (ft_pfn_delete_queries)p[1];
+            gl->BeginQuery = (ft_pfn_begin_query)p[2];
+            gl->EndQuery = (ft_pfn_end_query)p[3];
+            gl->GetQueryObjectuiv = (ft_pfn_get_query_object_uiv)p[4];
+            gl->GetQueryObjectui64v = (ft_pfn_get_query_object_ui64v)p[5];
+            c->has_timer_query = 1;
+        }
     }
     return ft_gl_check(gl, "ft_gl_load", err);
 }

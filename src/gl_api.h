@@ -11,6 +11,7 @@
 #define GL_GLES_PROTOTYPES 0
 #include <GLES3/gl3.h>
 #include <GLES2/gl2ext.h>
+#include <stdint.h>
 
 #include "ft_status.h"
 
@@ -115,7 +116,30 @@ typedef struct ft_gl_caps {
     int has_vao;                 /* BindVertexArray is usable (ES3/core) */
     int has_depth24;
     int desktop_core;            /* OSMesa core profile: a VAO must be bound */
+    int has_timer_query;         /* GPU time per frame (see the timer entry points) */
 } ft_gl_caps;
+
+/* GPU timer queries: GL_EXT_disjoint_timer_query on GLES (2 or 3), core
+ * glBeginQuery(GL_TIME_ELAPSED) on OSMesa's desktop profile. Optional: all
+ * NULL (caps.has_timer_query = 0) where the context has neither. */
+#ifndef GL_TIME_ELAPSED_EXT
+#define GL_TIME_ELAPSED_EXT 0x88BF
+#endif
+#ifndef GL_QUERY_RESULT_EXT
+#define GL_QUERY_RESULT_EXT 0x8866
+#endif
+#ifndef GL_QUERY_RESULT_AVAILABLE_EXT
+#define GL_QUERY_RESULT_AVAILABLE_EXT 0x8867
+#endif
+#ifndef GL_GPU_DISJOINT_EXT
+#define GL_GPU_DISJOINT_EXT 0x8FBB
+#endif
+typedef void (*ft_pfn_gen_queries)(GLsizei n, GLuint *ids);
+typedef void (*ft_pfn_delete_queries)(GLsizei n, const GLuint *ids);
+typedef void (*ft_pfn_begin_query)(GLenum target, GLuint id);
+typedef void (*ft_pfn_end_query)(GLenum target);
+typedef void (*ft_pfn_get_query_object_uiv)(GLuint id, GLenum pname, GLuint *params);
+typedef void (*ft_pfn_get_query_object_ui64v)(GLuint id, GLenum pname, uint64_t *params);
 
 typedef void (*ft_gl_proc)(void);
 typedef ft_gl_proc (*ft_gl_get_proc_fn)(const char *name);
@@ -127,6 +151,13 @@ typedef struct ft_gl {
 #undef FT_GL_MEMBER
     ft_gl_api api;
     ft_gl_caps caps;
+    /* optional: GPU timer queries */
+    ft_pfn_gen_queries GenQueries;
+    ft_pfn_delete_queries DeleteQueries;
+    ft_pfn_begin_query BeginQuery;
+    ft_pfn_end_query EndQuery;
+    ft_pfn_get_query_object_uiv GetQueryObjectuiv;
+    ft_pfn_get_query_object_ui64v GetQueryObjectui64v;
 } ft_gl;
 
 /* Loads the table for `api` (ES3 entry points only when api is ES3) and

@@ -234,6 +234,11 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         if (fs.select_ms > r->select_ms_max) r->select_ms_max = fs.select_ms;
         if (fs.cpu_ms > r->draw_ms_max) r->draw_ms_max = fs.cpu_ms;
         if (fs.gpu_ms > r->gpu_ms_max) r->gpu_ms_max = fs.gpu_ms;
+        if (fs.gpu_timer_ms >= 0.0) {
+            r->gpu_timer_frames += 1u;
+            r->gpu_timer_ms_sum += fs.gpu_timer_ms;
+            if (fs.gpu_timer_ms > r->gpu_timer_ms_max) r->gpu_timer_ms_max = fs.gpu_timer_ms;
+        }
         if (lv->gpio_open && s->gpio_heartbeat_line >= 0) {
             heartbeat = !heartbeat;
             st = ft_plat_gpio_set_output(&lv->gpio, heartbeat, err);

@@ -22,8 +22,9 @@
  *      the LOD for the next frame; the pose record gives the scale and the
  *      error bound each frame met.
  * Per-stage CPU times (input poll, LOD selection, draw submission, GPU
- * finish) are accumulated in the result (the GPU time is measured with
- * glFinish: the frame's readback waits for the GPU anyway).
+ * finish) are accumulated in the result; the GPU's own time comes from a
+ * timer query where the context has them (GL_EXT_disjoint_timer_query),
+ * and the finish time (the readback waits for the GPU) is kept too.
  * The loop ends when *stop becomes non-zero (a signal handler sets it) or
  * after frames_max frames. Nothing is allocated: the ports' buffers are in
  * the structs below, sized by FT_CAN_FILTERS_MAX / FT_LIVE_CAN_BATCH. */
@@ -59,6 +60,8 @@ typedef struct ft_live_result {
     double frame_ms_max;
     double poll_ms_max, select_ms_max, draw_ms_max, gpu_ms_max; /* per stage, worst frame */
     double poll_ms_sum, select_ms_sum, draw_ms_sum, gpu_ms_sum;
+    double gpu_timer_ms_max, gpu_timer_ms_sum; /* timer queries (0 frames: none) */
+    uint32_t gpu_timer_frames;
     ft_degrade degrade;
     double degrade_scale_max, tau_max_px;
 } ft_live_result;

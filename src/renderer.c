@@ -363,6 +363,9 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return st;
     }
     r->gpu_bytes += ft_method_gpu_bytes(&r->method);
+    if (gl->caps.has_timer_query) {
+        gl->GenQueries(1, &r->timer_query);
+    }
     st = ft_overlay_init(&r->overlay, gl, err);
     if (st != FT_OK) {
         return st;
@@ -476,7 +479,13 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
     gl->ClearColor(r->clear_rgb[0], r->clear_rgb[1], r->clear_rgb[2], 1.0f);
+    if (r->timer_query != 0u) {
+        gl->BeginQuery(GL_TIME_ELAPSED_EXT, r->timer_query);
+    }
     draw_pass(r, &r->prog_color, cam, &ms);
+    if (r->timer_query != 0u) {
+        gl->EndQuery(GL_TIME_ELAPSED_EXT);
+    }
     st->triangles = ms.triangles;
     st->draw_calls = ms.draw_calls;
     st->tiles = ms.tiles;
@@ -498,6 +507,26 @@ static void flip_rows(uint8_t *data, size_t row_bytes, uint32_t rows)
             b[i] = tmp;
         }
     }
+}
+
+double ft_renderer_gpu_timer_ms(ft_renderer *r)
+{
+    const ft_gl *gl = r->gl;
+    if (r->timer_query == 0u) {
+        return -1.0;
+    }
+    GLuint ready = 0;
+    gl->GetQueryObjectuiv(r->timer_query, GL_QUERY_RESULT_AVAILABLE_EXT, &ready);
+    if (!ready) {
+        return -1.0;
+    }
+    uint64_t ns = 0;
+    gl->GetQueryObjectui64v(r->timer_query, GL_QUERY_RESULT_EXT, &ns);
+    GLint disjoint = 0;
+    if (!gl->caps.desktop_core) {
+        gl->GetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint); /* also clears the flag */
+    }
+    return disjoint ? -1.0 : (double)ns * 1e-6;
 }
 
 ft_status ft_renderer_draw_annunciation(ft_renderer *r, const char *reason, ft_error *err)
@@ -567,6 +596,7 @@ void ft_renderer_shutdown(ft_renderer *r)
     }
     ft_method_shutdown(&r->method, gl);
     ft_overlay_shutdown(&r->overlay, gl);
+    if (r->timer_query) gl->DeleteQueries(1, &r->timer_query);
     if (r->prog_color.program) gl->DeleteProgram(r->prog_color.program);
     if (r->present_program) gl->DeleteProgram(r->present_program);
     if (r->present_vbo) gl->DeleteBuffers(1, &r->present_vbo);

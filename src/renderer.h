@@ -59,6 +59,7 @@ typedef struct ft_frame_stats {
     double select_ms; /* LOD selection on the CPU (0 when the view did not change) */
     double cpu_ms;   /* frame submission on the CPU */
     double gpu_ms;   /* submission + glFinish (measurement mode) */
+    double gpu_timer_ms; /* GPU time of the draw from a timer query; -1 if none */
 } ft_frame_stats;
 
 typedef struct ft_renderer {
@@ -78,6 +79,7 @@ typedef struct ft_renderer {
     uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */
     float *pos;     /* FT_POOL_FRAME_POS, width*height*4 (NULL if no float target) */
     ft_overlay overlay; /* the failure annunciation (red cross + reason) */
+    GLuint timer_query; /* GL_TIME_ELAPSED around the frame's draw (0: none) */
     float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
     uint64_t gpu_bytes;
     uint64_t frames;
@@ -113,6 +115,11 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
 /* Draws the failure annunciation (red cross, reason text) over the colour
  * target's current frame. */
 ft_status ft_renderer_draw_annunciation(ft_renderer *r, const char *reason, ft_error *err);
+
+/* GPU time of the last ft_renderer_draw from the timer query, once the GPU
+ * is done (after ft_renderer_read_rgba); -1 when the context has no timer
+ * queries or the measurement was disjoint (GL_GPU_DISJOINT_EXT). */
+double ft_renderer_gpu_timer_ms(ft_renderer *r);
 
 /* Reads the colour target into r->rgba (row 0 = top). */
 ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err);

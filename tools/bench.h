@@ -3,7 +3,8 @@
  *   fixterrain bench [--scene FILE] [--dem FILE] [--methods LIST] [--path NAME|FILE[,...]]
  *                    [--csv OUT.csv] [--plot OUT.png] [--report OUT.md] [--size WxH]
  *                    [--frames N] [--metric-every N] [--settings SPEC]... [--centre LAT,LON]
- *                    [--backend NAME] [--plot-error max|p999] [--ref-cache-mb N] [--quiet]
+ *                    [--backend NAME] [--clearance M] [--plot-error max|p999]
+ *                    [--ref-cache-mb N] [--quiet]
  *
  * Flies the same camera paths over the scene's DEM with every method and
  * setting, times every frame (LOD selection + draw + readback, i.e. until

@@ -791,7 +791,7 @@ static int cmd_budget(int argc, char **argv)
 {
     scene_opts o;
     memset(&o, 0, sizeof o);
-    for (int i = 1; i < argc; ++i) {
+    for (int i = 1; i < argc; i += 2) { /* every option takes a value */
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -811,7 +811,6 @@ static int cmd_budget(int argc, char **argv)
             fprintf(stderr, "fixterrain budget: unknown option %s (see --help)\n", a);
             return FT_EXIT_USAGE;
         }
-        ++i;
     }
     static ft_scene scene;
     int rc = resolve_scene("budget", &o, &scene);

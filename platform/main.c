@@ -619,7 +619,8 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         "  \"gpu_timer_ms\": {\"frames\": %u, \"mean\": %.3f, \"max\": %.3f},\n"
         "  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
         "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
-        "  \"tau_max_px\": %.4f\n}\n",
+        "  \"tau_max_px\": %.4f,\n"
+        "  \"jobs\": {\"run\": %llu, \"deferred_frames\": %llu, \"refused\": %llu, \"high_water\": %u}\n}\n",
         r->frames, r->deadline_misses, r->frame_ms_max, r->frames_annunciated, r->frames_frozen,
         r->frames_test, r->frames_backup, r->source_switches,
         (unsigned long long)r->can_frames[0], (unsigned long long)r->can_frames[1],
@@ -634,7 +635,9 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         r->gpu_timer_ms_sum / (r->gpu_timer_frames ? r->gpu_timer_frames : 1u),
         r->gpu_timer_ms_max, r->degrade.budget_ms, r->degrade.over_budget,
         r->degrade.enabled, r->degrade.raises, r->degrade.lowers, r->degrade_scale_max,
-        r->tau_max_px);
+        r->tau_max_px, (unsigned long long)r->jobs_run,
+        (unsigned long long)r->jobs_deferred_frames, (unsigned long long)r->jobs_refused,
+        r->jobs_high_water);
     if (len < 0 || (size_t)len >= sizeof g_stats_text) {
         return ft_fail(err, FT_ERR_OVERSIZED, "run stats too long");
     }

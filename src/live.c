@@ -4,6 +4,12 @@
 #include <stdio.h>
 #include <string.h>
 
+static ft_status write_pose_row(void *ctx, const void *row, size_t bytes)
+{
+    const ft_writer *w = (const ft_writer *)ctx;
+    return w->write(w->ctx, row, bytes);
+}
+
 static ft_status open_inputs(ft_live *lv, const ft_scene *s, ft_error *err)
 {
     uint16_t ids[FT_CAN_MAP_MAX];
@@ -137,6 +143,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
 {
     memset(r, 0, sizeof *r);
     memset(lv, 0, sizeof *lv);
+    ft_jobs_init(&lv->jobs);
     const ft_scene *s = &app->scene;
     ft_status st = ft_pose_feed_init(feed, &s->can_map, s->pose_horizon_ms, &s->pose, err);
     if (st == FT_OK) {
@@ -259,8 +266,16 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
             }
             size_t n = ft_pose_row_format(row, sizeof row, k, now, &shown, frozen, source,
                                           scale_drawn, fs.tau_achieved_px);
-            st = (n > 0u) ? pose_file.writer.write(pose_file.writer.ctx, row, n)
-                          : ft_fail(err, FT_ERR_OVERSIZED, "pose row too long");
+            if (n == 0u) {
+                st = ft_fail(err, FT_ERR_OVERSIZED, "pose row too long");
+            } else if (ft_jobs_push(&lv->jobs, write_pose_row, &pose_file.writer,
+                                    FT_LIVE_JOB_COST_NS, row, n, NULL) != FT_OK) {
+                /* the queue is full: write now rather than lose the row */
+                st = pose_file.writer.write(pose_file.writer.ctx, row, n);
+            }
+        }
+        if (st == FT_OK) {
+            st = ft_jobs_run(&lv->jobs, ft_plat_monotonic_ns, t_due + period_ns, 0, err);
         }
         const uint64_t t_end = ft_plat_monotonic_ns();
         const double ms = (double)(t_end - t_due) * 1e-6;
@@ -276,6 +291,13 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
             ft_plat_sleep_ns(wait_ns);
         }
     }
+    if (st == FT_OK) {
+        st = ft_jobs_run(&lv->jobs, ft_plat_monotonic_ns, 0, 1, err); /* the rest, now */
+    }
+    r->jobs_run = lv->jobs.run;
+    r->jobs_deferred_frames = lv->jobs.deferred_frames;
+    r->jobs_refused = lv->jobs.refused;
+    r->jobs_high_water = lv->jobs.high_water;
     if (poses) {
         if (st == FT_OK) {
             st = ft_plat_file_finish_write(&pose_file, err);

@@ -15,6 +15,9 @@
  *      ("ANNUNCIATION TEST");
  *   4. render and present, then toggle the heartbeat line (once per
  *      presented frame: a monitor that sees it stop knows the display hung);
+ *      then deferred jobs (jobs.h: the pose record's file writes) run in
+ *      the time left before the next frame is due, at most FT_LIVE_JOB_COST_NS
+ *      each, and all of them at the end of the run (none is lost);
  *   5. a frame that ends after its period is a deadline miss; the loop then
  *      re-bases its schedule instead of bursting to catch up;
  *   6. the degradation policy (frame.degrade, src/degrade.h) sees the
@@ -36,12 +39,14 @@
 #include "app.h"
 #include "debounce.h"
 #include "degrade.h"
+#include "jobs.h"
 #include "platform_api.h"
 #include "pose_feed.h"
 
 #define FT_LIVE_CAN_BATCH 64u      /* frames read per call */
 #define FT_LIVE_CAN_BATCHES_MAX 64u /* calls per frame and port: 4096 frames */
 #define FT_LIVE_TEST_REASON "ANNUNCIATION TEST"
+#define FT_LIVE_JOB_COST_NS 200000u /* declared cost of one pose-record write */
 
 typedef struct ft_live_desc {
     const char *poses_path;  /* NULL: no pose record */
@@ -64,6 +69,8 @@ typedef struct ft_live_result {
     uint32_t gpu_timer_frames;
     ft_degrade degrade;
     double degrade_scale_max, tau_max_px;
+    uint64_t jobs_run, jobs_deferred_frames, jobs_refused;
+    uint32_t jobs_high_water;
 } ft_live_result;
 
 typedef struct ft_live {
@@ -76,6 +83,7 @@ typedef struct ft_live {
     int slot_fn[FT_GPIO_LINES_MAX]; /* ft_gpio_input per slot */
     ft_debounce deb;
     ft_can_frame batch[FT_LIVE_CAN_BATCH];
+    ft_jobs jobs;
     ft_gpio_edge edges[FT_GPIO_EVENTS_MAX];
 } ft_live;
 

@@ -69,6 +69,11 @@ echo "live-test: $frames frames, $misses deadline misses, $toggles heartbeat tog
 [ "$misses" -eq 0 ] || fail "$misses deadline misses at ${period_ms} ms frames"
 [ "$toggles" -eq "$frames" ] || fail "heartbeat toggled $toggles times for $frames frames"
 grep -q '"can_dropped": \[0, 0\]' "$out/live.json" || fail "the kernel dropped CAN frames"
+# every frame's pose row was written (by the deferred jobs, or at the end)
+rows=$(($(wc -l < "$out/live.csv") - 1))
+jobs=$(sed -n 's/.*"jobs": {"run": \([0-9]*\).*/\1/p' "$out/live.json")
+[ "$rows" -eq "$frames" ] || fail "$rows pose rows for $frames frames"
+[ "$jobs" -eq "$frames" ] || fail "$jobs deferred row writes for $frames frames"
 # the line itself, sampled every 2 ms in the guest: it changes once per
 # frame while the renderer runs and stays put after it exits
 read -r alive_s changes dead_s dead_changes < "$out/hb.txt"

@@ -584,8 +584,7 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     }
     if (ft_app_init(&g_app, &s, &err) != FT_OK) {
         (void)snprintf(row->note, sizeof row->note, "init: %.180s", err.text);
-        ft_app_shutdown(&g_app);
-        return;
+        return; /* a failed init has released what it took */
     }
     row->init_ms = (double)g_app.init_ns * 1e-6;
     (void)snprintf(g_renderer_name, sizeof g_renderer_name, "%s / %s", g_app.gpu.version,

@@ -62,7 +62,7 @@ FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} "$here/run-vm.sh" \
   "$period_ms" 100 || fail "live poses against the replay"
 
 # no missed frames; every presented frame toggled the heartbeat
-frames=$(sed -n 's/.*"frames": \([0-9]*\).*/\1/p' "$out/live.json")
+frames=$(sed -n 's/^  "frames": \([0-9]*\).*/\1/p' "$out/live.json")
 misses=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$out/live.json")
 toggles=$(sed -n 's/.*"heartbeat_toggles": \([0-9]*\).*/\1/p' "$out/live.json")
 echo "live-test: $frames frames, $misses deadline misses, $toggles heartbeat toggles"

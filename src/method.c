@@ -9,6 +9,8 @@ const char *ft_method_vertex_shader(ft_method_kind m)
         return "bintree.vert.glsl";
     case FT_METHOD_PGM:
         return "pgm.vert.glsl";
+    case FT_METHOD_PGRID:
+        return "pgrid.vert.glsl";
     default:
         return "terrain.vert.glsl";
     }
@@ -31,6 +33,11 @@ void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     case FT_METHOD_PGM:
 #if FT_WITH_METHOD_PGM
         ft_pgm_method_plan(s, t, a);
+#endif
+        break;
+    case FT_METHOD_PGRID:
+#if FT_WITH_METHOD_PGRID
+        ft_pgrid_method_plan(s, t, a);
 #endif
         break;
     default:
@@ -59,6 +66,12 @@ ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const
     case FT_METHOD_PGM:
 #if FT_WITH_METHOD_PGM
         return ft_pgm_method_init(&m->u.pgm, gl, s, t, a, err);
+#else
+        break;
+#endif
+    case FT_METHOD_PGRID:
+#if FT_WITH_METHOD_PGRID
+        return ft_pgrid_method_init(&m->u.pgrid, gl, s, t, a, err);
 #else
         break;
 #endif
@@ -91,6 +104,11 @@ void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_progr
     case FT_METHOD_PGM:
 #if FT_WITH_METHOD_PGM
         ft_pgm_method_draw(&m->u.pgm, gl, p, t, cam, st);
+#endif
+        break;
+    case FT_METHOD_PGRID:
+#if FT_WITH_METHOD_PGRID
+        ft_pgrid_method_draw(&m->u.pgrid, gl, p, t, cam, st);
 #endif
         break;
     default:
@@ -132,6 +150,11 @@ void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
         ft_pgm_method_select(&m->u.pgm, t, cam);
 #endif
         break;
+    case FT_METHOD_PGRID:
+#if FT_WITH_METHOD_PGRID
+        ft_pgrid_method_select(&m->u.pgrid, t, cam);
+#endif
+        break;
     default:
         break;
     }
@@ -148,6 +171,8 @@ uint64_t ft_method_gpu_bytes(const ft_method *m)
         return m->u.bintree.gpu_bytes;
     case FT_METHOD_PGM:
         return m->u.pgm.gpu_bytes;
+    case FT_METHOD_PGRID:
+        return m->u.pgrid.gpu_bytes + m->u.pgrid.pgm.gpu_bytes;
     default:
         return 0;
     }
@@ -169,6 +194,11 @@ void ft_method_shutdown(ft_method *m, const ft_gl *gl)
     case FT_METHOD_PGM:
 #if FT_WITH_METHOD_PGM
         ft_pgm_method_shutdown(&m->u.pgm, gl);
+#endif
+        break;
+    case FT_METHOD_PGRID:
+#if FT_WITH_METHOD_PGRID
+        ft_pgrid_method_shutdown(&m->u.pgrid, gl);
 #endif
         break;
     default:

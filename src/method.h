@@ -12,6 +12,7 @@
 #include "gl_api.h"
 #include "mem_budget.h"
 #include "pgm.h"
+#include "pgrid.h"
 #include "scene.h"
 #include "terrain.h"
 
@@ -25,9 +26,12 @@ struct ft_terrain_program;
 typedef struct ft_method_draw_stats {
     uint64_t triangles;
     uint32_t draw_calls;
-    uint32_t tiles;          /* bintree: tiles drawn */
-    double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet */
-    int budget_hit;          /* bintree: tau was raised to fit the tile budget */
+    uint32_t tiles;          /* bintree: tiles drawn; pgrid: pixels ray cast */
+    double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet;
+                                pgrid: the bound met (gamma, or raised by the
+                                budget, or the mesh's own without ray casting) */
+    int budget_hit;          /* bintree: tau was raised to fit the tile budget;
+                                pgrid: the ray-casting budget raised gamma */
 } ft_method_draw_stats;
 
 typedef struct ft_brute {
@@ -76,12 +80,43 @@ typedef struct ft_pgm_method {
     uint32_t sel_w, sel_h;
 } ft_pgm_method;
 
+/* Error-bounded projective grid (src/pgrid.h): the pgm grid (reused: its
+ * band buffers and avg atlas, its draw) with the pgrid vertex shader, plus a
+ * min/max atlas, the error buffer (RGBA8 texture + depth, drawn with
+ * err_prog) and the ray-cast pass (rc_prog, GLES 3). */
+typedef struct ft_pgrid_method {
+    ft_pgm_method pgm;
+    GLuint mm_tex;                 /* min | max atlas (levels >= FT_PGRID_ATLAS_L0) */
+    uint32_t mm_half_w, mm_h, mm_levels;
+    float mm_level_px[FT_PYRAMID_LEVELS_MAX][4];
+    ft_scalar_format mm_fmt;
+    GLuint err_tex, err_depth, err_fbo, rc_prog, quad_vbo;
+    struct ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
+    int err_prog_built;
+    uint32_t w_px, h_px;
+    int distribution, ray_casting, es3;
+    double gamma_px;
+    uint64_t raycast_max_px;
+    uint8_t *readback;              /* w * h * 4, FT_POOL_METHOD */
+    uint8_t *work;                  /* w * h */
+    uint32_t hist[256];
+    /* the last frame's decision (colour pass; the position pass reuses it) */
+    double dec_eye_m[3], dec_fwd[3], dec_up[3];
+    uint32_t thr;                   /* code threshold, 256 = none */
+    uint64_t rc_px;                 /* pixels ray cast */
+    double achieved_px;
+    int budget_hit;
+    int have_decision;
+    uint64_t gpu_bytes;
+} ft_pgrid_method;
+
 typedef struct ft_method {
     ft_method_kind kind;
     union {
         ft_brute brute;
         ft_bintree_method bintree;
         ft_pgm_method pgm;
+        ft_pgrid_method pgrid;
     } u;
 } ft_method;
 
@@ -126,7 +161,7 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
 void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl);
 #endif
 
-#if FT_WITH_METHOD_PGM
+#if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID /* pgrid draws with the pgm grid */
 void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
 ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
                              const ft_terrain *t, ft_arena *a, ft_error *err);
@@ -136,6 +171,17 @@ uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
 void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                         const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);
+#endif
+
+#if FT_WITH_METHOD_PGRID
+void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                               const ft_terrain *t, ft_arena *a, ft_error *err);
+void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam);
+void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl,
+                          const struct ft_terrain_program *p, const ft_terrain *t,
+                          const ft_camera *cam, ft_method_draw_stats *st);
+void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl);
 #endif
 
 #endif

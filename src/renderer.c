@@ -615,3 +615,23 @@ void ft_renderer_shutdown(ft_renderer *r)
     if (r->vao && gl->DeleteVertexArrays) gl->DeleteVertexArrays(1, &r->vao);
     r->gl = NULL;
 }
+
+/* ---- for methods with programs of their own (pgrid) ---------------------------- */
+
+ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                                   const char *attr0, GLuint *out, ft_error *err)
+{
+    return link_program(gl, vert_name, frag_name, attr0, out, err);
+}
+
+ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
+                                            const ft_gpu_terrain *gt, const char *vert_name,
+                                            const char *frag_name, ft_terrain_program *p,
+                                            ft_error *err)
+{
+    ft_status st = build_program(gl, vert_name, frag_name, p, err);
+    if (st == FT_OK) {
+        set_static_uniforms(gl, p, t, gt);
+    }
+    return st;
+}

@@ -133,4 +133,14 @@ ft_status ft_renderer_present(ft_renderer *r, ft_error *err);
 
 void ft_renderer_shutdown(ft_renderer *r);
 
+/* For methods that build programs of their own at init (pgrid): links
+ * embedded shaders vert + frag (attribute 0 = attr0), and builds a terrain
+ * program (the renderer's uniform set, static uniforms set from gt). */
+ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                                   const char *attr0, GLuint *out, ft_error *err);
+ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
+                                            const ft_gpu_terrain *gt, const char *vert_name,
+                                            const char *frag_name, ft_terrain_program *p,
+                                            ft_error *err);
+
 #endif

@@ -73,6 +73,12 @@ void ft_scene_defaults(ft_scene *s)
     s->bintree_morph = 1;
     s->pgm_grid_cols = 430;
     s->pgm_grid_rows = 430;
+    s->pgrid_grid_cols = 200;
+    s->pgrid_grid_rows = 800;
+    s->pgrid_view_distribution = 1;
+    s->pgrid_ray_casting = 1;
+    s->pgrid_gamma_px = 1.0;
+    s->pgrid_raycast_max_px = 262144;
     s->metric_enabled = 0;
     s->frame_period_ms = 16.667;
     s->frame_budget_ms = 0.0;
@@ -407,6 +413,35 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "grid_rows") == 0) {
             return RANGE(parse_u32(value, 2, 8192, &s->pgm_grid_rows), "expected 2..8192");
         }
+    } else if (strcmp(section, "pgrid") == 0) {
+        if (strcmp(key, "grid_cols") == 0) {
+            return RANGE(parse_u32(value, 2, 8192, &s->pgrid_grid_cols), "expected 2..8192");
+        }
+        if (strcmp(key, "grid_rows") == 0) {
+            return RANGE(parse_u32(value, 2, 8192, &s->pgrid_grid_rows), "expected 2..8192");
+        }
+        if (strcmp(key, "distribution") == 0) {
+            if (strcmp(value, "uniform") == 0 || strcmp(value, "view") == 0) {
+                s->pgrid_view_distribution = (strcmp(value, "view") == 0);
+                return 1;
+            }
+            return fail_key(c, section, key, value, "expected uniform or view");
+        }
+        if (strcmp(key, "ray_casting") == 0) {
+            uint32_t v;
+            if (!parse_u32(value, 0, 1, &v)) {
+                return fail_key(c, section, key, value, "expected 0 or 1");
+            }
+            s->pgrid_ray_casting = (int)v;
+            return 1;
+        }
+        if (strcmp(key, "gamma_px") == 0) {
+            return RANGE(parse_f64(value, 0.1, 100.0, &s->pgrid_gamma_px), "expected 0.1..100");
+        }
+        if (strcmp(key, "raycast_max_px") == 0) {
+            return RANGE(parse_u32(value, 0, 67108864, &s->pgrid_raycast_max_px),
+                         "expected 0..67108864");
+        }
     } else if (strcmp(section, "frame") == 0) {
         if (strcmp(key, "period_ms") == 0) {
             return RANGE(parse_f64(value, 1.0, 1000.0, &s->frame_period_ms), "expected 1..1000");
@@ -632,6 +667,13 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
                        "bintree: template_k %u (1..6), tiles_max %u (2..1048576), tau_px %g "
                        "(0..1000) out of range",
                        s->bintree_template_k, s->bintree_tiles_max, s->bintree_tau_px);
+    }
+    if (s->pgrid_grid_cols < 2 || s->pgrid_grid_cols > 8192 || s->pgrid_grid_rows < 2 ||
+        s->pgrid_grid_rows > 8192 || !(s->pgrid_gamma_px >= 0.1 && s->pgrid_gamma_px <= 100.0)) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "pgrid: grid %u x %u outside 2..8192 per side or gamma_px %g outside "
+                       "0.1..100",
+                       s->pgrid_grid_cols, s->pgrid_grid_rows, s->pgrid_gamma_px);
     }
     if (s->pgm_grid_cols < 2 || s->pgm_grid_cols > 8192 || s->pgm_grid_rows < 2 ||
         s->pgm_grid_rows > 8192) {

@@ -6,7 +6,7 @@
  *
  * Keys (section.key = meaning [range]):
  *   scene.name            text (<= 63 chars)
- *   scene.method          brute | bintree | pgm      (methods built in)
+ *   scene.method          brute | bintree | pgm | pgrid     (methods built in)
  *   scene.backend         egl-gles3 | egl-gles2 | osmesa
  *   scene.display         none | x11 | kms | kms:/dev/dri/cardN   (where frames are
  *                         shown; none = offscreen; kms = full screen on DRM/KMS)
@@ -36,6 +36,16 @@
  *   pgm.grid_rows         persistent grid rows (vertices from near to far) [2, 8192]
  *                         (pgm uploads its own avg-pyramid atlas: gpu.pyramid_textures
  *                         is not needed; see src/pgm.h)
+ *   pgrid.grid_cols, pgrid.grid_rows   the error-bounded projective grid (method pgrid)
+ *                         [2, 8192] each (src/pgrid.h)
+ *   pgrid.distribution    uniform | view: grid rows evenly on the sampling image plane,
+ *                         or evenly in asinh(ground distance / height) (cells close to
+ *                         square on the ground)
+ *   pgrid.ray_casting     0 | 1: ray cast the pixels whose error exceeds gamma_px
+ *                         (GLES 3 only; on GLES 2 pgrid runs without it and says so)
+ *   pgrid.gamma_px        screen-space error bound in pixels [0.1, 100]
+ *   pgrid.raycast_max_px  most pixels ray cast per frame [0, 67108864]; above it
+ *                         gamma is raised for that frame and the error achieved reported
  *   metric.enabled        0 | 1: measure screen-space error against the reference
  *   frame.period_ms       display frame period [1, 1000] (16.667 = 60 Hz); replay
  *                         renders one frame per period of log time
@@ -111,7 +121,8 @@ const char *ft_gpio_input_name(ft_gpio_input i); /* "freeze" */
 #define FT_METHOD_LIST(X)                                                                     \
     X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                             \
     X(FT_METHOD_BINTREE, "bintree", "crack-free bintree of triangular tiles, error-bounded")  \
-    X(FT_METHOD_PGM, "pgm", "persistent grid mapping: a view-plane grid laid on the terrain")
+    X(FT_METHOD_PGM, "pgm", "persistent grid mapping: a view-plane grid laid on the terrain")  \
+    X(FT_METHOD_PGRID, "pgrid", "error-bounded projective grid, ray casting over gamma")
 
 typedef enum ft_method_kind {
 #define FT_METHOD_ENUM(id, name, what) id,
@@ -147,6 +158,12 @@ typedef struct ft_scene {
     int bintree_morph;           /* bintree.morph */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
+    uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */
+    uint32_t pgrid_grid_rows;    /* pgrid.grid_rows */
+    int pgrid_view_distribution; /* pgrid.distribution: 0 uniform, 1 view */
+    int pgrid_ray_casting;       /* pgrid.ray_casting */
+    double pgrid_gamma_px;       /* pgrid.gamma_px */
+    uint32_t pgrid_raycast_max_px; /* pgrid.raycast_max_px */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
     double frame_period_ms;   /* frame.period_ms */
     double frame_budget_ms;   /* frame.budget_ms, 0 = the period */

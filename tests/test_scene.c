@@ -51,6 +51,11 @@ int main(void)
     CHECK_NEAR(a.bintree_tau_px, b.bintree_tau_px, 0.0);
     CHECK(a.bintree_morph == b.bintree_morph);
     CHECK(a.pgm_grid_cols == b.pgm_grid_cols && a.pgm_grid_rows == b.pgm_grid_rows);
+    CHECK(a.pgrid_grid_cols == b.pgrid_grid_cols && a.pgrid_grid_rows == b.pgrid_grid_rows);
+    CHECK(a.pgrid_view_distribution == b.pgrid_view_distribution);
+    CHECK(a.pgrid_ray_casting == b.pgrid_ray_casting);
+    CHECK_NEAR(a.pgrid_gamma_px, b.pgrid_gamma_px, 0.0);
+    CHECK(a.pgrid_raycast_max_px == b.pgrid_raycast_max_px);
     CHECK_NEAR(a.frame_period_ms, b.frame_period_ms, 0.0);
     CHECK_NEAR(a.frame_budget_ms, b.frame_budget_ms, 0.0);
     CHECK(a.frame_degrade == b.frame_degrade);
@@ -141,6 +146,13 @@ int main(void)
     expect_error("[pgm]\ngrid_cols = 1\n", "pgm.grid_cols");
     expect_error("[pgm]\ngrid_rows = 8193\n", "expected 2..8192");
     expect_error("[pgm]\ngrid_size = 100\n", "unknown section or key");
+    expect_error("[pgrid]\ndistribution = log\n", "expected uniform or view");
+    expect_error("[pgrid]\ngamma_px = 0\n", "expected 0.1..100");
+    expect_error("[pgrid]\nray_casting = 2\n", "expected 0 or 1");
+    CHECK(parse("[scene]\nmethod = pgrid\n[pgrid]\ndistribution = uniform\ngrid_cols = 150\n"
+                "raycast_max_px = 1000\n", &a, &err) == FT_OK);
+    CHECK(a.method == FT_METHOD_PGRID && a.pgrid_view_distribution == 0 &&
+          a.pgrid_grid_cols == 150u && a.pgrid_raycast_max_px == 1000u);
     CHECK(parse("[scene]\nmethod = pgm\n[pgm]\ngrid_cols = 200\ngrid_rows = 800\n", &a, &err) ==
           FT_OK);
     CHECK(a.method == FT_METHOD_PGM && a.pgm_grid_cols == 200u && a.pgm_grid_rows == 800u);

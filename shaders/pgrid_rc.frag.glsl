@@ -1,0 +1,243 @@
+/* pgrid_rc.frag.glsl - method 'pgrid': ray casting of the pixels whose
+ * (3 x 3 dilated) error code reaches u_rc_thr (src/pgrid.h 4), GLES 3 only.
+ *
+ * The ray through the pixel centre is cast against the bilinear height
+ * field in grid coordinates (x, y in cells from sample (0, 0), z metres),
+ * the same surface src/reference.c intersects: a max-mip traversal of the
+ * max pyramid (levels >= 2 from the min/max atlas, level 1 = max of 3 x 3
+ * samples, level 0 = the cell's 4 samples) skips every texel box the ray
+ * passes above; at level 0 the ray's height minus the bilinear patch along
+ * it is a quadratic in t, solved in closed form for its first root in the
+ * cell. Output: colour (ramp x Lambert, as terrain.frag.glsl) or the
+ * position (xyz rel. eye, w 1) and gl_FragDepth of the hit; a miss writes
+ * the sky (u_rc_sky, depth 1). Pixels under the threshold are discarded, so
+ * the mesh stays there. Bounded loop (FT_RC_STEPS visits). */
+#ifdef GL_FRAGMENT_PRECISION_HIGH
+precision highp float;
+#else
+precision mediump float;
+#endif
+
+#if FT_ES3
+out vec4 o_color;
+
+#define FT_RC_STEPS 4096
+#define FT_RAMP_STOPS 6
+#define FT_LEVELS 16
+
+uniform sampler2D u_err;          /* the error buffer (G = code) */
+uniform float u_rc_thr;           /* code threshold (0..255) */
+uniform sampler2D u_heights;
+uniform vec2 u_pack;
+uniform vec2 u_grid_size;
+uniform sampler2D u_pgrid_mm;
+uniform vec4 u_pgrid_mm_info;     /* (half width, height, pack min, pack range or 0) */
+uniform vec4 u_pgrid_mm_level[FT_LEVELS];
+uniform float u_pgrid_mm_levels;
+uniform vec3 u_rc_eye_g;          /* eye in grid coordinates (x, y cells, z m) */
+uniform vec2 u_cell_m;
+uniform vec3 u_rc_fwd, u_rc_right, u_rc_up; /* camera frame (world) */
+uniform vec3 u_rc_tan;            /* (tan half fov x, tan half fov y, 0) */
+uniform vec2 u_rc_size;           /* viewport px */
+uniform mat4 u_view_proj;
+uniform float u_rc_mode;          /* 0 colour, 1 position */
+uniform vec4 u_rc_sky;
+uniform float u_ramp_height_m[FT_RAMP_STOPS];
+uniform vec3 u_ramp_rgb[FT_RAMP_STOPS];
+uniform vec3 u_sun_dir;
+uniform vec2 u_light;
+
+float ft_decode(vec4 t, vec2 pack)
+{
+    if (pack.y > 0.0) {
+        float q = dot(floor(t.rgb * 255.0 + 0.5), vec3(65536.0, 256.0, 1.0));
+        return pack.x + pack.y * (q / 16777215.0);
+    }
+    return t.r;
+}
+
+float hs(vec2 ij)
+{
+    ivec2 q = ivec2(clamp(ij, vec2(0.0), u_grid_size - 1.0));
+    return ft_decode(texelFetch(u_heights, q, 0), u_pack);
+}
+
+/* max of level L texel (i, j) (L >= 0) */
+float texmax(float level, vec2 ij)
+{
+    if (level < 0.5) {
+        return max(max(hs(ij), hs(ij + vec2(1.0, 0.0))), max(hs(ij + vec2(0.0, 1.0)), hs(ij + 1.0)));
+    }
+    if (level < 1.5) {
+        float m = -1e30;
+        for (int y = 0; y < 3; ++y) {
+            for (int x = 0; x < 3; ++x) {
+                m = max(m, hs(2.0 * ij + vec2(float(x), float(y))));
+            }
+        }
+        return m;
+    }
+    vec4 lv = u_pgrid_mm_level[int(level)];
+    vec2 o = lv.xy + clamp(ij, vec2(0.0), lv.zw - 1.0) + vec2(u_pgrid_mm_info.x, 0.0);
+    return ft_decode(texelFetch(u_pgrid_mm, ivec2(o), 0), u_pgrid_mm_info.zw);
+}
+
+/* first t in [ta, tb] where o + t d meets cell (i, j)'s bilinear patch */
+bool solve_cell(vec2 ij, vec3 o, vec3 d, float ta, float tb, out float th)
+{
+    float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
+    float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
+    /* local u = o.x - i + t d.x, v likewise; H = h00 + a u + b v + c u v */
+    float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
+    float u0 = o.x - ij.x, v0 = o.y - ij.y;
+    /* f(t) = o.z + t d.z - H(u0 + t dx, v0 + t dy) = A t^2 + B t + C */
+    float A = -c * d.x * d.y;
+    float B = d.z - a * d.x - b * d.y - c * (u0 * d.y + v0 * d.x);
+    float C = o.z - (h00 + a * u0 + b * v0 + c * u0 * v0);
+    float fa = (A * ta + B) * ta + C;
+    float fb = (A * tb + B) * tb + C;
+    float best = 1e30;
+    if (abs(A) < 1e-12 * max(abs(B), 1e-30)) {
+        if (B != 0.0) {
+            float t = -C / B;
+            if (t >= ta && t <= tb) best = t;
+        }
+    } else {
+        float disc = B * B - 4.0 * A * C;
+        if (disc >= 0.0) {
+            float sq = sqrt(disc);
+            float q = -0.5 * (B + (B >= 0.0 ? sq : -sq));
+            float t1 = q / A;
+            float t2 = (q != 0.0) ? C / q : t1;
+            if (t1 >= ta && t1 <= tb) best = min(best, t1);
+            if (t2 >= ta && t2 <= tb) best = min(best, t2);
+        }
+    }
+    if (best > 1e29 && fa * fb <= 0.0) {
+        best = (fa == 0.0) ? ta : tb; /* float round-off at an end */
+    }
+    th = best;
+    return best < 1e29;
+}
+
+vec3 shade(float h, vec3 n)
+{
+    vec3 rgb = u_ramp_rgb[FT_RAMP_STOPS - 1];
+    for (int i = 0; i < FT_RAMP_STOPS - 1; ++i) {
+        if (h <= u_ramp_height_m[i + 1] || i == FT_RAMP_STOPS - 2) {
+            float t = clamp((h - u_ramp_height_m[i]) / (u_ramp_height_m[i + 1] - u_ramp_height_m[i]),
+                            0.0, 1.0);
+            rgb = mix(u_ramp_rgb[i], u_ramp_rgb[i + 1], t);
+            break;
+        }
+    }
+    float light = u_light.x + u_light.y * max(0.0, dot(normalize(n), u_sun_dir));
+    return clamp(rgb * light, 0.0, 1.0);
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    ivec2 lim = ivec2(u_rc_size) - 1;
+    float code = 0.0;
+    for (int y = -1; y <= 1; ++y) {
+        for (int x = -1; x <= 1; ++x) {
+            ivec2 q = clamp(px + ivec2(x, y), ivec2(0), lim);
+            code = max(code, floor(texelFetch(u_err, q, 0).g * 255.0 + 0.5));
+        }
+    }
+    if (code < u_rc_thr) {
+        discard;
+    }
+    vec2 ndc = gl_FragCoord.xy / u_rc_size * 2.0 - 1.0;
+    vec3 dw = normalize(u_rc_fwd + ndc.x * u_rc_tan.x * u_rc_right + ndc.y * u_rc_tan.y * u_rc_up);
+    /* grid frame: x, y in cells, z metres; t stays metres along dw */
+    vec3 d = vec3(dw.x / u_cell_m.x, dw.y / u_cell_m.y, dw.z);
+    vec3 o = u_rc_eye_g;
+    vec2 gmax = u_grid_size - 1.0;
+    /* clip to the grid's box [0, gmax] */
+    float t0 = 0.0, t1 = 1e30;
+    for (int k = 0; k < 2; ++k) {
+        float dk = d[k], ok = o[k], hi = gmax[k];
+        if (abs(dk) < 1e-30) {
+            if (ok < 0.0 || ok > hi) t1 = -1.0;
+        } else {
+            float ta = (0.0 - ok) / dk, tb = (hi - ok) / dk;
+            t0 = max(t0, min(ta, tb));
+            t1 = min(t1, max(ta, tb));
+        }
+    }
+    float top = u_pgrid_mm_levels - 1.0;
+    bool hit = false;
+    float th = 0.0;
+    if (t0 <= t1) {
+        float t = t0;
+        float level = top;
+        for (int step = 0; step < FT_RC_STEPS; ++step) {
+            if (t > t1) break;
+            float sc = exp2(level);
+            vec3 p = o + t * d;
+            /* the texel containing p, entered along d */
+            vec2 g = clamp(p.xy, vec2(0.0), gmax);
+            vec2 c = floor(g / sc);
+            if (d.x < 0.0 && g.x == c.x * sc && c.x > 0.0) c.x -= 1.0;
+            if (d.y < 0.0 && g.y == c.y * sc && c.y > 0.0) c.y -= 1.0;
+            vec2 cellmax = vec2(floor((gmax.x - 1.0) / sc), floor((gmax.y - 1.0) / sc));
+            c = clamp(c, vec2(0.0), max(cellmax, vec2(0.0)));
+            vec2 lo = c * sc, hi = min((c + 1.0) * sc, gmax);
+            /* exit of the texel box */
+            float tx = d.x > 0.0 ? (hi.x - o.x) / d.x : (d.x < 0.0 ? (lo.x - o.x) / d.x : 1e30);
+            float ty = d.y > 0.0 ? (hi.y - o.y) / d.y : (d.y < 0.0 ? (lo.y - o.y) / d.y : 1e30);
+            float te = min(min(tx, ty), t1);
+            te = max(te, t);
+            float zmax = texmax(level, c);
+            float zlo = min(p.z, o.z + te * d.z);
+            if (zlo > zmax) {
+                /* above the whole box: skip it, and go up a level */
+                t = te + max(abs(te), 1.0) * 1e-7;
+                level = min(level + 1.0, top);
+                continue;
+            }
+            if (level > 0.5) {
+                level -= 1.0;
+                continue;
+            }
+            float tt;
+            if (solve_cell(c, o, d, t, te, tt)) {
+                th = tt;
+                hit = true;
+                break;
+            }
+            t = te + max(abs(te), 1.0) * 1e-7;
+        }
+    }
+    if (!hit) {
+        o_color = (u_rc_mode > 0.5) ? vec4(0.0) : u_rc_sky;
+        gl_FragDepth = 1.0;
+        return;
+    }
+    vec3 pg = o + th * d;
+    vec3 rel = th * dw; /* hit - eye, world axes, metres */
+    vec4 clip = u_view_proj * vec4(rel, 1.0);
+    gl_FragDepth = clamp((clip.z / clip.w) * 0.5 + 0.5, 0.0, 1.0);
+    if (u_rc_mode > 0.5) {
+        o_color = vec4(rel, 1.0);
+        return;
+    }
+    vec2 ij = clamp(floor(pg.xy), vec2(0.0), max(gmax - 1.0, vec2(0.0)));
+    vec2 f = pg.xy - ij;
+    float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
+    float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
+    float dhx = mix(h10 - h00, h11 - h01, f.y) / u_cell_m.x;
+    float dhy = mix(h01 - h00, h11 - h10, f.x) / u_cell_m.y;
+    float h = mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+    o_color = vec4(shade(h, vec3(-dhx, -dhy, 1.0)), 1.0);
+}
+#else
+/* GLSL ES 1.00 has no gl_FragDepth or texelFetch: pgrid never ray casts on
+ * GLES 2 (the program is not built there); this variant only validates. */
+void main()
+{
+    gl_FragColor = vec4(0.0);
+}
+#endif

@@ -1,0 +1,406 @@
+/* method_pgrid.c - the error-bounded projective grid (src/pgrid.h).
+ *
+ * Per frame, in each pass (colour and position) with the pass's program p:
+ *  1. the grid is drawn as pgm draws it (ft_pgm_method_draw: bands, avg
+ *     atlas, sampling camera) with shaders/pgrid.vert.glsl (row distribution,
+ *     per-vertex delta);
+ *  2. the error buffer: the same grid with pgrid_err.frag.glsl into an RGBA8
+ *     texture with its own depth buffer (R = normalised error, G = code);
+ *  3. colour pass only (the position pass reuses the decision of the same
+ *     view): the error buffer is read back, the dilated-code histogram gives
+ *     the ray-cast threshold inside raycast_max_px (src/pgrid.h 5);
+ *  4. GLES 3 with ray_casting = 1: a full-screen pass (pgrid_rc.frag.glsl)
+ *     ray casts the pixels over the threshold and writes their colour (or
+ *     position) and gl_FragDepth over the mesh (DepthFunc ALWAYS).
+ * GLES 2 (no gl_FragDepth, no texelFetch): steps 1-3 only; init says so
+ * on stderr and the stats report the mesh's error bound (tau_achieved_px)
+ * instead of gamma. All GL objects and CPU buffers are made at init. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "gpu_texture.h"
+#include "method.h"
+#include "renderer.h"
+#include "shade.h"
+
+static void pgm_scene(const ft_scene *s, ft_scene *out)
+{
+    *out = *s;
+    out->pgm_grid_cols = s->pgrid_grid_cols;
+    out->pgm_grid_rows = s->pgrid_grid_rows;
+}
+
+void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    static ft_scene ps; /* init-time only; too large for a small stack */
+    pgm_scene(s, &ps);
+    ft_pgm_method_plan(&ps, t, a);
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], hw = 1u, h = 1u;
+    if (t->pyr.minmax_levels > 0u) {
+        ft_pgrid_minmax_layout(t, origin, &hw, &h);
+    }
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)hw * 2u * h * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)s->width_px * s->height_px * 5u +
+                                         sizeof(ft_terrain_program) + 64u);
+}
+
+static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                               const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    uint32_t hw = 1u, h = 1u;
+    const ft_pyramid *p = &t->pyr;
+    memset(m->mm_level_px, 0, sizeof m->mm_level_px);
+    ft_pgrid_minmax_layout(t, origin, &hw, &h);
+    m->mm_half_w = hw;
+    m->mm_h = h;
+    m->mm_levels = p->minmax_levels;
+    if (2u * hw > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid: the min/max atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", 2u * hw, h,
+                       gl->caps.max_texture_size);
+    }
+    ft_height_format f = s->height_format;
+    if (f == FT_HEIGHT_FORMAT_AUTO) {
+        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
+    }
+    m->mm_fmt.format = f;
+    m->mm_fmt.pack_min = t->min_height_m;
+    m->mm_fmt.pack_range = t->max_height_m - t->min_height_m;
+    if (!(m->mm_fmt.pack_range > 0.0f)) {
+        m->mm_fmt.pack_range = 1.0f;
+    }
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *img = NULL;
+    const size_t n = (size_t)hw * 2u * h;
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, n * sizeof(float), (void **)&img, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        img[i] = t->min_height_m;
+    }
+    for (uint32_t l = FT_PGRID_ATLAS_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        const ft_pyramid_level *lv = &p->minmax[l];
+        for (uint32_t y = 0; y < lv->height; ++y) {
+            float *row = img + (size_t)(origin[l][1] + y) * hw * 2u + origin[l][0];
+            memcpy(row, lv->min_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
+            memcpy(row + hw, lv->max_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
+        }
+        m->mm_level_px[l][0] = (float)origin[l][0];
+        m->mm_level_px[l][1] = (float)origin[l][1];
+        m->mm_level_px[l][2] = (float)lv->width;
+        m->mm_level_px[l][3] = (float)lv->height;
+    }
+    for (uint32_t l = 0; l < FT_PGRID_ATLAS_L0 && l < p->minmax_levels; ++l) {
+        m->mm_level_px[l][2] = (float)p->minmax[l].width;
+        m->mm_level_px[l][3] = (float)p->minmax[l].height;
+    }
+    st = ft_gpu_upload_scalar(gl, &m->mm_fmt, img, hw * 2u, h, GL_TEXTURE2, a, &m->mm_tex,
+                              &m->gpu_bytes, err);
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    return st;
+}
+
+static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error *err)
+{
+    const GLsizei w = (GLsizei)m->w_px, h = (GLsizei)m->h_px;
+    gl->GenRenderbuffers(1, &m->err_depth);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, m->err_depth);
+    gl->RenderbufferStorage(GL_RENDERBUFFER,
+                            gl->caps.has_depth24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT16,
+                            w, h);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->GenTextures(1, &m->err_tex);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, m->es3 ? GL_RGBA8 : GL_RGBA, w, h, 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, NULL);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->GenFramebuffers(1, &m->err_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m->err_tex, 0);
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                m->err_depth);
+    GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        return ft_fail(err, FT_ERR_GPU, "pgrid: error buffer %ux%u incomplete: 0x%04x", m->w_px,
+                       m->h_px, (unsigned)st);
+    }
+    m->gpu_bytes += (uint64_t)w * (uint64_t)h * 8u;
+    return FT_OK;
+}
+
+ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                               const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    static ft_scene ps;
+    memset(m, 0, sizeof *m);
+    if (t->pyr.minmax_levels < 1u) {
+        return ft_fail(err, FT_ERR_ARG, "pgrid needs the terrain's min/max pyramid in memory");
+    }
+    if (gl->caps.max_vertex_texture_units < 3) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid samples heights, avg and min/max atlases in the vertex shader: "
+                       "it needs 3 vertex texture units, this device has %d",
+                       gl->caps.max_vertex_texture_units);
+    }
+    pgm_scene(s, &ps);
+    ft_status st = ft_pgm_method_init(&m->pgm, gl, &ps, t, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->w_px = s->width_px;
+    m->h_px = s->height_px;
+    m->distribution = s->pgrid_view_distribution ? FT_PGRID_DIST_VIEW : FT_PGRID_DIST_UNIFORM;
+    m->gamma_px = s->pgrid_gamma_px;
+    m->raycast_max_px = s->pgrid_raycast_max_px;
+    m->es3 = (gl->api == FT_GL_API_ES3);
+    m->ray_casting = s->pgrid_ray_casting && m->es3;
+    if (s->pgrid_ray_casting && !m->es3) {
+        (void)fprintf(stderr,
+                      "pgrid: GLES 2 context (no gl_FragDepth, no texelFetch): running WITHOUT "
+                      "ray casting; the error is the mesh's (reported as tau_achieved_px), "
+                      "gamma_px = %g is not guaranteed\n",
+                      s->pgrid_gamma_px);
+    }
+    st = upload_minmax(m, gl, s, t, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    st = make_error_target(m, gl, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const size_t px = (size_t)m->w_px * m->h_px;
+    st = ft_arena_take(a, FT_POOL_METHOD, px * 4u, (void **)&m->readback, err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, px, (void **)&m->work, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program), (void **)&m->err_prog,
+                           err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    memset(m->err_prog, 0, sizeof *m->err_prog);
+    ft_gpu_terrain gt;
+    memset(&gt, 0, sizeof gt);
+    gt.format = m->mm_fmt.format;
+    gt.pack_min_m = m->mm_fmt.pack_min;
+    gt.pack_range_m = m->mm_fmt.pack_range;
+    st = ft_renderer_build_terrain_program(gl, t, &gt, "pgrid.vert.glsl", "pgrid_err.frag.glsl",
+                                           m->err_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->err_prog_built = 1;
+    if (m->ray_casting) {
+        static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
+        st = ft_renderer_link_program(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl", "a_corner",
+                                      &m->rc_prog, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        gl->GenBuffers(1, &m->quad_vbo);
+        gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
+        m->gpu_bytes += sizeof corners;
+    }
+    m->thr = FT_PGRID_CODES;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
+}
+
+void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    ft_pgm_method_select(&m->pgm, t, cam);
+}
+
+/* Uniforms of pgrid.vert.glsl beyond pgm's, on program prog. */
+static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, GLuint prog)
+{
+    const ft_pgm_sampling *s = &m->pgm.sampling;
+    float s0 = 0.0f, s1 = 0.0f;
+    if (m->distribution == FT_PGRID_DIST_VIEW) {
+        s0 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[1]);
+        s1 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[3]);
+    }
+    gl->Uniform4f(gl->GetUniformLocation(prog, "u_pgrid_dist"), (float)m->distribution, s0, s1,
+                  (float)s->depression_rad);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_pgrid_mm"), 2);
+    gl->Uniform4f(gl->GetUniformLocation(prog, "u_pgrid_mm_info"), (float)m->mm_half_w,
+                  (float)m->mm_h, m->mm_fmt.pack_min,
+                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_pgrid_mm_levels"), (float)m->mm_levels);
+    for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
+        gl->Uniform4f(gl->GetUniformLocation(prog, name), m->mm_level_px[l][0],
+                      m->mm_level_px[l][1], m->mm_level_px[l][2], m->mm_level_px[l][3]);
+    }
+}
+
+static int same_decision_view(const ft_pgrid_method *m, const ft_camera *cam)
+{
+    return m->have_decision && memcmp(m->dec_eye_m, cam->eye_m, sizeof m->dec_eye_m) == 0 &&
+           memcmp(m->dec_fwd, cam->forward, sizeof m->dec_fwd) == 0 &&
+           memcmp(m->dec_up, cam->up, sizeof m->dec_up) == 0;
+}
+
+static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+{
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
+                   m->readback);
+    ft_pgrid_histogram(m->readback, m->w_px, m->h_px, m->work, m->hist);
+    uint32_t top = 0u; /* largest dilated code present */
+    for (uint32_t c = 1; c < FT_PGRID_CODES; ++c) {
+        if (m->hist[c] != 0u) top = c;
+    }
+    if (m->ray_casting) {
+        m->thr = ft_pgrid_budget_threshold(m->hist, m->gamma_px, m->raycast_max_px, &m->rc_px,
+                                           &m->budget_hit);
+        /* pixels under the threshold have codes <= thr - 1 */
+        const uint32_t below = (m->thr < top + 1u) ? m->thr - 1u : top;
+        const double hi = (below >= 1u) ? ft_pgrid_code_rho_hi(below) : 0.0;
+        m->achieved_px = m->budget_hit ? hi : ((hi < m->gamma_px) ? hi : m->gamma_px);
+    } else {
+        m->thr = FT_PGRID_CODES;
+        m->rc_px = 0u;
+        m->budget_hit = 0;
+        m->achieved_px = (top >= 1u) ? ft_pgrid_code_rho_hi(top) : 0.0;
+    }
+    memcpy(m->dec_eye_m, cam->eye_m, sizeof m->dec_eye_m);
+    memcpy(m->dec_fwd, cam->forward, sizeof m->dec_fwd);
+    memcpy(m->dec_up, cam->up, sizeof m->dec_up);
+    m->have_decision = 1;
+}
+
+static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p,
+                     const ft_terrain *t, const ft_camera *cam)
+{
+    const GLuint prog = m->rc_prog;
+    const int pos_pass = (p->u_ramp_height_m < 0);
+    gl->UseProgram(prog);
+#define U(name) gl->GetUniformLocation(prog, name)
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    gl->ActiveTexture(GL_TEXTURE2);
+    gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform1i(U("u_err"), 3);
+    gl->Uniform1i(U("u_heights"), 0);
+    gl->Uniform1i(U("u_pgrid_mm"), 2);
+    gl->Uniform1f(U("u_rc_thr"), (float)m->thr);
+    gl->Uniform2f(U("u_pack"), m->mm_fmt.pack_min,
+                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+    gl->Uniform2f(U("u_grid_size"), (float)t->width, (float)t->height);
+    gl->Uniform4f(U("u_pgrid_mm_info"), (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
+                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+    gl->Uniform1f(U("u_pgrid_mm_levels"), (float)m->mm_levels);
+    for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
+        gl->Uniform4f(U(name), m->mm_level_px[l][0], m->mm_level_px[l][1], m->mm_level_px[l][2],
+                      m->mm_level_px[l][3]);
+    }
+    gl->Uniform3f(U("u_rc_eye_g"), (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
+                  (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
+                  (float)cam->eye_m[2]);
+    gl->Uniform2f(U("u_cell_m"), (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform3f(U("u_rc_fwd"), (float)cam->forward[0], (float)cam->forward[1],
+                  (float)cam->forward[2]);
+    gl->Uniform3f(U("u_rc_right"), (float)cam->right[0], (float)cam->right[1],
+                  (float)cam->right[2]);
+    gl->Uniform3f(U("u_rc_up"), (float)cam->up[0], (float)cam->up[1], (float)cam->up[2]);
+    const double ty = tan(0.5 * cam->fovy_rad);
+    gl->Uniform3f(U("u_rc_tan"), (float)(ty * (double)cam->width_px / (double)cam->height_px),
+                  (float)ty, 0.0f);
+    gl->Uniform2f(U("u_rc_size"), (float)m->w_px, (float)m->h_px);
+    gl->UniformMatrix4fv(U("u_view_proj"), 1, GL_FALSE, cam->view_proj);
+    gl->Uniform1f(U("u_rc_mode"), pos_pass ? 1.0f : 0.0f);
+    gl->Uniform4f(U("u_rc_sky"), FT_SKY_R, FT_SKY_G, FT_SKY_B, 1.0f);
+    if (!pos_pass) {
+        gl->Uniform1fv(U("u_ramp_height_m"), FT_RAMP_STOPS, ft_ramp_height_m);
+        gl->Uniform3fv(U("u_ramp_rgb"), FT_RAMP_STOPS, &ft_ramp_rgb[0][0]);
+        const float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
+                              FT_SUN_DIR_Z * FT_SUN_DIR_Z);
+        gl->Uniform3f(U("u_sun_dir"), FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
+        gl->Uniform2f(U("u_light"), FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+    }
+#undef U
+    gl->DepthFunc(GL_ALWAYS);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->DepthFunc(GL_LESS);
+}
+
+void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                          const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    GLint fb = 0;
+    gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
+    ft_pgm_method_select(&m->pgm, t, cam);
+    /* 1. the mesh, with the pass's program (already in use) */
+    gl->ActiveTexture(GL_TEXTURE2);
+    gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    set_grid_uniforms(m, gl, p->program);
+    ft_pgm_method_draw(&m->pgm, gl, p, t, cam, st);
+    const int pos_pass = (p->u_ramp_height_m < 0);
+    /* 2. the error buffer (the position pass reuses the colour pass's) */
+    {
+        const ft_terrain_program *e = m->err_prog;
+        gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
+        gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        gl->UseProgram(e->program);
+        gl->UniformMatrix4fv(e->u_view_proj, 1, GL_FALSE, cam->view_proj);
+        gl->Uniform3f(e->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
+                      (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+        gl->Uniform2f(gl->GetUniformLocation(e->program, "u_pgrid_err"), (float)cam->px_per_rad_k,
+                      (float)m->gamma_px);
+        set_grid_uniforms(m, gl, e->program);
+        ft_method_draw_stats dummy;
+        memset(&dummy, 0, sizeof dummy);
+        ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
+        st->draw_calls += dummy.draw_calls;
+        /* 3. the decision (colour pass, or a view the colour pass did not see) */
+        if (!pos_pass || !same_decision_view(m, cam)) {
+            decide(m, gl, cam);
+        }
+        gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    }
+    /* 4. ray casting */
+    if (m->ray_casting && m->thr < FT_PGRID_CODES && m->rc_px > 0u) {
+        ray_cast(m, gl, p, t, cam);
+        st->draw_calls += 1u;
+    }
+    gl->UseProgram(p->program);
+    st->tiles = (uint32_t)m->rc_px;
+    st->tau_achieved_px = m->achieved_px;
+    st->budget_hit = m->budget_hit;
+}
+
+void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
+{
+    ft_pgm_method_shutdown(&m->pgm, gl);
+    if (m->mm_tex) gl->DeleteTextures(1, &m->mm_tex);
+    if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
+    if (m->err_depth) gl->DeleteRenderbuffers(1, &m->err_depth);
+    if (m->err_fbo) gl->DeleteFramebuffers(1, &m->err_fbo);
+    if (m->rc_prog) gl->DeleteProgram(m->rc_prog);
+    if (m->quad_vbo) gl->DeleteBuffers(1, &m->quad_vbo);
+    if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
+    m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;
+    m->err_prog_built = 0;
+}

@@ -1,0 +1,177 @@
+/* pgrid.c - the error-bounded projective grid's CPU arithmetic (pgrid.h). */
+#include "pgrid.h"
+
+#include <math.h>
+
+double ft_pgrid_delta(double hmin_m, double hmax_m, double h_m)
+{
+    const double a = hmax_m - h_m, b = h_m - hmin_m;
+    return (a > b) ? a : b;
+}
+
+double ft_pgrid_rho(double k_px, double delta_m, double dist_m)
+{
+    return k_px * delta_m / ((dist_m > 1e-6) ? dist_m : 1e-6);
+}
+
+double ft_pgrid_norm_error(double rho_px, double gamma_px)
+{
+    return (rho_px > gamma_px) ? 1.0 - gamma_px / rho_px : 0.0;
+}
+
+uint32_t ft_pgrid_code(double rho_px)
+{
+    if (!(rho_px > 0.0)) {
+        return 1u;
+    }
+    const double c =
+        ceil((log2(rho_px) - FT_PGRID_CODE_LOG2_MIN) * 255.0 / FT_PGRID_CODE_LOG2_SPAN);
+    if (!(c >= 1.0)) {
+        return 1u;
+    }
+    return (c >= 255.0) ? 255u : (uint32_t)c;
+}
+
+double ft_pgrid_code_rho_hi(uint32_t code)
+{
+    if (code >= 255u) {
+        return INFINITY; /* saturated: anything above 2^8 px */
+    }
+    return exp2((double)code * FT_PGRID_CODE_LOG2_SPAN / 255.0 + FT_PGRID_CODE_LOG2_MIN);
+}
+
+double ft_pgrid_row_s(double depression_rad, double y)
+{
+    const double beta = depression_rad - atan(y);
+    /* cot(beta) = cos / sin; beta in (0, pi) for every ray that meets the plane */
+    return asinh(cos(beta) / sin(beta));
+}
+
+double ft_pgrid_row_y(int distribution, double depression_rad, double y0, double y1,
+                      uint32_t rows, double j)
+{
+    const double t = j / (double)(rows - 1u);
+    if (distribution != FT_PGRID_DIST_VIEW) {
+        return y0 + (y1 - y0) * t;
+    }
+    const double s0 = ft_pgrid_row_s(depression_rad, y0);
+    const double s1 = ft_pgrid_row_s(depression_rad, y1);
+    const double s = s0 + (s1 - s0) * t;
+    const double beta = atan2(1.0, sinh(s));
+    return tan(depression_rad - beta);
+}
+
+static double clampd(double v, double lo, double hi)
+{
+    return (v < lo) ? lo : ((v > hi) ? hi : v);
+}
+
+void ft_pgrid_region_minmax(const ft_terrain *t, double x0_m, double y0_m, double x1_m,
+                            double y1_m, double *hmin_m, double *hmax_m)
+{
+    const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
+    double gx0 = clampd((x0_m - t->origin_world_x_m) / t->cell_x_m, 0.0, wx);
+    double gx1 = clampd((x1_m - t->origin_world_x_m) / t->cell_x_m, 0.0, wx);
+    double gy0 = clampd((y0_m - t->origin_world_y_m) / t->cell_y_m, 0.0, wy);
+    double gy1 = clampd((y1_m - t->origin_world_y_m) / t->cell_y_m, 0.0, wy);
+    if (gx1 < gx0) { double s = gx0; gx0 = gx1; gx1 = s; }
+    if (gy1 < gy0) { double s = gy0; gy0 = gy1; gy1 = s; }
+    const double side = fmax(fmax(gx1 - gx0, gy1 - gy0), 1.0);
+    uint32_t level = (uint32_t)fmax(0.0, ceil(log2(side)));
+    const ft_pyramid *p = &t->pyr;
+    if (level >= p->minmax_levels) {
+        level = p->minmax_levels - 1u;
+    }
+    const ft_pyramid_level *lv = &p->minmax[level];
+    const double scale = exp2((double)level);
+    /* texel i covers grid x in [i 2^L, (i + 1) 2^L]; x = 2^L k touches two */
+    uint32_t i0 = (uint32_t)fmin(floor(gx0 / scale), (double)(lv->width - 1u));
+    uint32_t i1 = (uint32_t)fmin(floor(gx1 / scale), (double)(lv->width - 1u));
+    uint32_t j0 = (uint32_t)fmin(floor(gy0 / scale), (double)(lv->height - 1u));
+    uint32_t j1 = (uint32_t)fmin(floor(gy1 / scale), (double)(lv->height - 1u));
+    if (i0 > 0u && gx0 == (double)i0 * scale) i0 -= 1u;
+    if (j0 > 0u && gy0 == (double)j0 * scale) j0 -= 1u;
+    if (i1 > i0 + 1u) i1 = i0 + 1u; /* side <= 2^L: never more than 2 texels */
+    if (j1 > j0 + 1u) j1 = j0 + 1u;
+    double lo = INFINITY, hi = -INFINITY;
+    for (uint32_t j = j0; j <= j1; ++j) {
+        for (uint32_t i = i0; i <= i1; ++i) {
+            const size_t k = (size_t)j * lv->width + i;
+            lo = fmin(lo, (double)lv->min_m[k]);
+            hi = fmax(hi, (double)lv->max_m[k]);
+        }
+    }
+    *hmin_m = lo;
+    *hmax_m = hi;
+}
+
+uint32_t ft_pgrid_budget_threshold(const uint32_t hist[FT_PGRID_CODES], double gamma_px,
+                                   uint64_t max_px, uint64_t *count, int *budget_hit)
+{
+    const uint32_t c0 = ft_pgrid_code(gamma_px);
+    uint64_t above[FT_PGRID_CODES + 1u];
+    above[FT_PGRID_CODES] = 0u;
+    for (uint32_t c = FT_PGRID_CODES; c-- > 0u;) {
+        above[c] = above[c + 1u] + hist[c];
+    }
+    uint32_t thr = c0;
+    while (thr < FT_PGRID_CODES && above[thr] > max_px) {
+        ++thr;
+    }
+    *count = above[thr];
+    *budget_hit = (thr > c0);
+    return thr;
+}
+
+void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *work,
+                        uint32_t hist[FT_PGRID_CODES])
+{
+    for (uint32_t c = 0; c < FT_PGRID_CODES; ++c) {
+        hist[c] = 0u;
+    }
+    for (uint32_t y = 0; y < h; ++y) {
+        const uint8_t *row = rgba + (size_t)y * w * 4u + 1u;
+        uint8_t *out = work + (size_t)y * w;
+        for (uint32_t x = 0; x < w; ++x) {
+            uint8_t m = row[(size_t)x * 4u];
+            if (x > 0u && row[(size_t)(x - 1u) * 4u] > m) m = row[(size_t)(x - 1u) * 4u];
+            if (x + 1u < w && row[(size_t)(x + 1u) * 4u] > m) m = row[(size_t)(x + 1u) * 4u];
+            out[x] = m;
+        }
+    }
+    for (uint32_t y = 0; y < h; ++y) {
+        const uint8_t *a = work + (size_t)(y > 0u ? y - 1u : y) * w;
+        const uint8_t *b = work + (size_t)y * w;
+        const uint8_t *c = work + (size_t)(y + 1u < h ? y + 1u : y) * w;
+        for (uint32_t x = 0; x < w; ++x) {
+            uint8_t m = b[x];
+            if (a[x] > m) m = a[x];
+            if (c[x] > m) m = c[x];
+            hist[m] += 1u;
+        }
+    }
+}
+
+void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
+                            uint32_t *height_px)
+{
+    const ft_pyramid *p = &t->pyr;
+    const uint32_t l0 = FT_PGRID_ATLAS_L0;
+    *half_w = *height_px = 1u;
+    if (p->minmax_levels <= l0) {
+        return; /* levels 0 and 1 come from the heights: nothing to lay out */
+    }
+    /* level l0 at (0, 0); levels l0 + 1.. stacked in a column right of it */
+    const uint32_t w0 = p->minmax[l0].width, h0 = p->minmax[l0].height;
+    uint32_t col_w = 0u, y = 0u;
+    origin_px[l0][0] = 0u;
+    origin_px[l0][1] = 0u;
+    for (uint32_t l = l0 + 1u; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        origin_px[l][0] = w0;
+        origin_px[l][1] = y;
+        y += p->minmax[l].height;
+        col_w = (p->minmax[l].width > col_w) ? p->minmax[l].width : col_w;
+    }
+    *half_w = w0 + col_w;
+    *height_px = (y > h0) ? y : h0;
+}

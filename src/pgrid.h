@@ -1,0 +1,115 @@
+/* pgrid.h - the error-bounded projective grid (method 'pgrid'): the CPU half
+ * of the arithmetic, the mirror the tests hold shaders/pgrid*.glsl to.
+ *
+ * pgrid is pgm (src/pgm.h: sampling camera, viewport extension, per-vertex
+ * avg-pyramid LOD; its C functions are reused here) plus:
+ *
+ * 1. Row distribution. Row j of rows (t = j / (rows - 1)) sits at image-plane
+ *    height y_j of the sampling camera (depression dep_s, eye h above the
+ *    base plane). uniform: y_j = mix(y0, y1, t) (pgm). view: the centre ray at
+ *    image height y has depression beta = dep_s - atan(y) and meets the base
+ *    plane at the signed ground distance d = h cot(beta). Rows are evenly
+ *    spaced in
+ *        s = asinh(d / h)
+ *    so s_j = mix(s(y0), s(y1), t), beta_j = atan2(1, sinh(s_j)),
+ *    y_j = tan(dep_s - beta_j) (closed form, monotone in j). For d >> h,
+ *    s ~ ln(2 d / h): rows are spaced uniformly in log ground distance, so
+ *    a cell's depth on the ground (d ds) grows like its width (prop. to d) and
+ *    cells stay close to square; near the nadir (d ~ 0) asinh is linear and
+ *    the rows are ~h apart, and a bottom edge past the nadir (d < 0) is fine.
+ *    The columns stay uniform in x (cells are already d-proportional across).
+ *
+ * 2. Per-vertex object-space error. Region of influence of vertex (i, j):
+ *    the axis-aligned box of the ground points of grid points (i +- 1, j +- 1)
+ *    (clamped into the grid): every triangle touching the vertex lies in it.
+ *    hmin, hmax: min/max pyramid over the box, read at the level L_b where the
+ *    box spans at most 2 x 2 texels, L_b = max(0, ceil(log2(box side in
+ *    cells))). With h_v the vertex's (avg-pyramid, morphed) height,
+ *        delta = max(hmax - h_v, h_v - hmin)   (>= 0 always; h_v may lie outside)
+ *    and |h_v - H(x)| <= delta for every x of the box. A mesh point P is a
+ *    convex combination of its triangle's vertices, so |P.z - H(P.xy)| <=
+ *    the same combination of the deltas: the interpolated delta. Per fragment
+ *        rho = K * delta / |P - eye|,  K = height_px / (2 tan(fovy / 2))
+ *    bounds the metric's e (src/metric.h) at that pixel.
+ *
+ * 3. Error buffer (RGBA8, drawn with the grid): R = 1 - gamma / rho where
+ *    rho > gamma, else 0 (the normalised error), G = code(rho), an 8-bit
+ *    log code rounded UP: code(rho) = ceil((log2(rho) + 8) * 255 / 16) clamped
+ *    to [1, 255] for terrain, 0 for sky (clear). rho > g implies code(rho) >=
+ *    code(g), so thresholding codes is conservative.
+ *
+ * 4. Ray-cast set: pixel p is ray cast iff max(code over p's 3 x 3
+ *    neighbourhood) >= code_thr. The one-pixel dilation is the silhouette
+ *    rule: a sky pixel next to a terrain pixel over gamma is ray cast too
+ *    (the mesh edge there may be off by up to rho px); sky next to terrain
+ *    under gamma is within gamma (<= 1 px for gamma <= 1). code_thr =
+ *    code(gamma_px) unless the budget says otherwise (5).
+ *
+ * 5. Budget: the frame's error buffer is read back; the histogram of dilated
+ *    codes gives the count for every threshold. The smallest threshold
+ *    >= code(gamma) whose count fits raycast_max_px is used; if it is above
+ *    code(gamma) the budget was hit, and the error reported is rho_hi(thr -
+ *    1) (the largest rho a code below the threshold stands for). Without ray
+ *    casting, the reported error is rho_hi(largest code present). */
+#ifndef FT_PGRID_H
+#define FT_PGRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pgm.h"
+#include "terrain.h"
+
+#define FT_PGRID_DIST_UNIFORM 0
+#define FT_PGRID_DIST_VIEW 1
+#define FT_PGRID_CODE_LOG2_MIN (-8.0)
+#define FT_PGRID_CODE_LOG2_SPAN 16.0
+#define FT_PGRID_CODES 256u
+
+/* delta = max(hmax - h, h - hmin) (>= 0 for h in or out of [hmin, hmax]). */
+double ft_pgrid_delta(double hmin_m, double hmax_m, double h_m);
+/* rho = K * delta / dist (dist floored at 1e-6 m). */
+double ft_pgrid_rho(double k_px, double delta_m, double dist_m);
+/* 0 where rho <= gamma, else 1 - gamma / rho (in [0, 1)). */
+double ft_pgrid_norm_error(double rho_px, double gamma_px);
+
+/* 8-bit error code (rounded up; >= 1 for any rho, 0 is reserved for sky). */
+uint32_t ft_pgrid_code(double rho_px);
+/* The largest rho code c stands for: 2^((c * 16 / 255) - 8). */
+double ft_pgrid_code_rho_hi(uint32_t code);
+
+/* s(y) = asinh(cot(dep - atan(y))) for the sampling depression dep. */
+double ft_pgrid_row_s(double depression_rad, double y);
+/* Image-plane height of row j (0 bottom) of rows, for rect y in [y0, y1]. */
+double ft_pgrid_row_y(int distribution, double depression_rad, double y0, double y1,
+                      uint32_t rows, double j);
+
+/* Min and max of the surface over the world box [x0,x1] x [y0,y1] (metres),
+ * clamped into the grid, read from the min/max pyramid at the level where
+ * the box spans at most 2 x 2 texels (the shader's rule). */
+void ft_pgrid_region_minmax(const ft_terrain *t, double x0_m, double y0_m, double x1_m,
+                            double y1_m, double *hmin_m, double *hmax_m);
+
+/* The ray-cast threshold for a histogram of dilated codes (hist[c] pixels
+ * with dilated code c; hist[0] is sky away from terrain over gamma): the
+ * smallest code >= code(gamma) with count(code >= thr) <= max_px (256 =
+ * nothing ray cast). *count: pixels ray cast at the threshold;
+ * *budget_hit: thr > code(gamma). */
+uint32_t ft_pgrid_budget_threshold(const uint32_t hist[FT_PGRID_CODES], double gamma_px,
+                                   uint64_t max_px, uint64_t *count, int *budget_hit);
+
+/* Dilated-code histogram from an RGBA8 error-buffer readback (G = code),
+ * w x h; work: w * h bytes scratch (may alias rgba's last 3/4: see .c). */
+void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *work,
+                        uint32_t hist[FT_PGRID_CODES]);
+
+/* Atlas of the min and max pyramids' levels FT_PGRID_ATLAS_L0.. (levels 0
+ * and 1 are computed from the heights texture in the shaders: 2 x 2 and
+ * 3 x 3 samples; that keeps the atlas at 1/16 of the grid): level L at
+ * origin_px[L] for min and origin_px[L] + (half_w, 0) for max. 1 x 1 when
+ * there are no such levels. */
+#define FT_PGRID_ATLAS_L0 2u
+void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
+                            uint32_t *height_px);
+
+#endif

@@ -57,6 +57,10 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
     if(FIXTERRAIN_WITH_METHOD_BINTREE)
       add_test(NAME no_heap_bintree_egl COMMAND test_no_heap
                ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree.png egl-gles3 bintree replay)
+      if(FIXTERRAIN_WITH_METHOD_PGRID)
+        add_test(NAME no_heap_pgrid_egl COMMAND test_no_heap
+                 ${CMAKE_BINARY_DIR}/test-out/no_heap_pgrid.png egl-gles3 pgrid)
+      endif()
       add_test(NAME no_heap_bintree_gles2 COMMAND test_no_heap
                ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree_es2.png egl-gles2 bintree)
       set_tests_properties(no_heap_bintree_gles2 PROPERTIES

@@ -72,14 +72,17 @@ typedef struct bench_method {
     int axis_count;
 } bench_method;
 
-/* Defaults: issue 6 (tau in {0.5, 1, 2, 4}, bintree template sizes) and the
- * projective-grid issue's grid sizes (cols x rows). */
+/* Defaults: issue 6 (tau and gamma in {0.5, 1, 2, 4}, bintree template
+ * sizes) and the projective-grid issue's grid sizes (cols x rows) for pgm;
+ * pgrid sweeps gamma on one grid (other pgrid keys: the scene's). */
 static const struct {
     const char *method, *key, *values;
 } k_default_axes[] = {
     {"bintree", "template_k", "2,3,4"},
     {"bintree", "tau_px", "0.5,1,2,4"},
     {"pgm", "grid", "150x600,200x800,430x430,300x900,600x600,400x1600"},
+    {"pgrid", "grid", "200x800"},
+    {"pgrid", "gamma_px", "0.5,1,2,4"},
 };
 
 /* Short names for plot labels ("" = the value alone). */
@@ -210,6 +213,7 @@ static int method_built(ft_method_kind k)
     case FT_METHOD_BRUTE: return FT_WITH_METHOD_BRUTE;
     case FT_METHOD_BINTREE: return FT_WITH_METHOD_BINTREE;
     case FT_METHOD_PGM: return FT_WITH_METHOD_PGM;
+    case FT_METHOD_PGRID: return FT_WITH_METHOD_PGRID;
     default: return 1; /* a newer method: ft_app_init says if it is missing */
     }
 }
@@ -962,7 +966,8 @@ static void print_help(void)
         "                     axis; settings are the product of a method's axes. Defaults:\n"
         "                     bintree.template_k=2,3,4 bintree.tau_px=0.5,1,2,4\n"
         "                     pgm.grid=150x600,200x800,430x430,300x900,600x600,400x1600\n"
-        "                     (grid = COLSxROWS: pgm.grid_cols, pgm.grid_rows). Any key of\n"
+        "                     pgrid.grid=200x800 pgrid.gamma_px=0.5,1,2,4\n"
+        "                     (grid = COLSxROWS: METHOD.grid_cols, .grid_rows). Any key of\n"
         "                     the method's scene section can be swept. Repeatable.\n"
         "  --csv, --plot, --report   outputs (default bench.csv, bench.png; no report)\n"
         "  --plot-error KIND  max (default) or p999 on the plot's y axis (log scale)\n"

@@ -122,7 +122,7 @@ echo "guest-kms: CRTC restored after SIGTERM: $after"
 # paced by the monotonic clock: never more frames than periods (uptime is
 # the same clock as the loop's t_start_ns here: no suspend in the VM)
 period=$(sed -n 's/^period_ms *= *//p' "$scene")
-frames=$(sed -n 's/.*"frames": \([0-9]*\).*/\1/p' "$out/run.json")
+frames=$(sed -n 's/^  "frames": \([0-9]*\).*/\1/p' "$out/run.json")
 t_start=$(sed -n 's/.*"t_start_ns": \([0-9]*\).*/\1/p' "$out/run.json")
 awk -v f="$frames" -v ts="$t_start" -v te="$t_term" -v p="$period" 'BEGIN {
   d = te - ts / 1e9; slots = d * 1000 / p

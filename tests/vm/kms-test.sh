@@ -124,7 +124,7 @@ for dev in $devices; do
     fail "$dev: the console is not back after SIGTERM"
   c "$d/console-after.ppm" "$out/ref.png" --expect-differ || fail "$dev: the terrain is still shown"
 
-  frames=$(sed -n 's/.*"frames": \([0-9]*\).*/\1/p' "$d/run.json")
+  frames=$(sed -n 's/^  "frames": \([0-9]*\).*/\1/p' "$d/run.json")
   misses=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$d/run.json")
   slowest=$(sed -n 's/.*"frame_ms_max": \([0-9.]*\).*/\1/p' "$d/run.json")
   if [ -z "$frames" ] || [ -z "$misses" ]; then fail "$dev: no frames/deadline_misses in run.json"; fi

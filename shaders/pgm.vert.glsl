@@ -20,14 +20,16 @@ precision highp float;
 
 #define FT_PGM_LEVELS 16
 
-uniform sampler2D u_heights;
+/* highp: samplers default to lowp even in the vertex stage, and Mesa then
+ * returns float texels at half precision (2059 m reads as 2058 m) */
+uniform highp sampler2D u_heights;
 uniform vec2 u_grid_size;        /* samples (width, height) */
 uniform vec2 u_cell_m;
 uniform vec3 u_origin_rel_eye_m; /* grid sample (0,0) minus the viewing eye */
 uniform mat4 u_view_proj;
 uniform vec2 u_pack;             /* heights: packed (min, range); range 0 = float */
 
-uniform sampler2D u_pgm_atlas;
+uniform highp sampler2D u_pgm_atlas;
 uniform vec2 u_pgm_atlas_size;
 uniform vec2 u_pgm_atlas_pack;   /* like u_pack, for the atlas */
 uniform vec4 u_pgm_level[FT_PGM_LEVELS]; /* atlas origin (xy) and size (zw) per avg level */
@@ -135,7 +137,11 @@ void main()
         w = 0.0;
     }
 
-    vec2 g = clamp((p - u_origin_rel_eye_m.xy) * inv_cell, vec2(0.0), u_grid_size - 1.0);
+    /* clamped into the grid in eye-relative metres: near the eye the vertex
+     * never goes through the (large) grid origin, float keeps millimetres */
+    vec2 lo = u_origin_rel_eye_m.xy;
+    vec2 pc = clamp(p, lo, lo + (u_grid_size - 1.0) * u_cell_m);
+    vec2 g = (pc - lo) * inv_cell;
     vec3 s = ft_level_sample(level, g);
     if (w > 0.0) {
         s = mix(s, ft_level_sample(level + 1.0, g), w);
@@ -143,6 +149,6 @@ void main()
     v_normal = normalize(vec3(-s.y * inv_cell.x, -s.z * inv_cell.y, 1.0));
     v_morph = level + w;
     v_height_m = s.x;
-    v_pos_rel_eye_m = u_origin_rel_eye_m + vec3(g * u_cell_m, s.x);
+    v_pos_rel_eye_m = vec3(pc, s.x + u_origin_rel_eye_m.z);
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }

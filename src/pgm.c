@@ -101,6 +101,31 @@ double ft_pgm_max_height(const ft_terrain *t, double x0_m, double y0_m, double x
     if (!(cx1 >= 0.0 && cy1 >= 0.0 && cx0 <= mx && cy0 <= my)) {
         return -INFINITY;
     }
+    /* A small box: the exact maximum of the bilinear surface. On each cell's
+     * part of the box the surface is bilinear, so its maximum is at a corner
+     * of that part: the corners are every (X, Y) with X in {x0, x1, the grid
+     * columns between} and Y likewise. */
+    const double gx0 = clampd((x0_m - t->origin_world_x_m) / t->cell_x_m, 0.0, mx + 1.0);
+    const double gx1 = clampd((x1_m - t->origin_world_x_m) / t->cell_x_m, 0.0, mx + 1.0);
+    const double gy0 = clampd((y0_m - t->origin_world_y_m) / t->cell_y_m, 0.0, my + 1.0);
+    const double gy1 = clampd((y1_m - t->origin_world_y_m) / t->cell_y_m, 0.0, my + 1.0);
+    if (gx1 - gx0 <= FT_PGM_EXACT_MAX_CELLS && gy1 - gy0 <= FT_PGM_EXACT_MAX_CELLS) {
+        double best = -INFINITY;
+        const double fx0 = floor(gx0), fy0 = floor(gy0);
+        for (uint32_t a = 0; a <= FT_PGM_EXACT_MAX_CELLS + 2u; ++a) {
+            double gx = (a == 0u) ? gx0 : fx0 + (double)a;
+            if (gx >= gx1) gx = gx1;
+            for (uint32_t b = 0; b <= FT_PGM_EXACT_MAX_CELLS + 2u; ++b) {
+                double gy = (b == 0u) ? gy0 : fy0 + (double)b;
+                if (gy >= gy1) gy = gy1;
+                const double v = ft_pgm_level_height(t, 0u, gx, gy, NULL);
+                best = (v > best) ? v : best;
+                if (gy >= gy1) break;
+            }
+            if (gx >= gx1) break;
+        }
+        return best;
+    }
     uint32_t ix0 = (uint32_t)clampd(cx0, 0.0, mx), ix1 = (uint32_t)clampd(cx1, 0.0, mx);
     uint32_t iy0 = (uint32_t)clampd(cy0, 0.0, my), iy1 = (uint32_t)clampd(cy1, 0.0, my);
     /* the finest level where the box spans at most 4 x 4 texels */
@@ -229,34 +254,128 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
 
     /* viewport extension from the rectangle before it */
     const double beta = dep + a;
-    const double room = 0.5 * FT_PGM_PI - beta;
     double gamma = 0.0;
-    if (room > 1e-9) {
+    if (0.5 * FT_PGM_PI - beta > 1e-9) {
         const double xc0 = x_cap(dep, s->eps_rad, -s->half_y_tan, y1);
         const double txp = (tx_cov < xc0) ? tx_cov : xc0;
         s->near_ground_m = h / tan(beta);
-        double gl[2], gr[2];
-        ground_of(s, -txp, -s->half_y_tan, gl);
-        ground_of(s, txp, -s->half_y_tan, gr);
-        double bx0 = 0.0, bx1 = 0.0, by0 = 0.0, by1 = 0.0;
-        bx0 = (gl[0] < bx0) ? gl[0] : bx0;
-        bx0 = (gr[0] < bx0) ? gr[0] : bx0;
-        bx1 = (gl[0] > bx1) ? gl[0] : bx1;
-        bx1 = (gr[0] > bx1) ? gr[0] : bx1;
-        by0 = (gl[1] < by0) ? gl[1] : by0;
-        by0 = (gr[1] < by0) ? gr[1] : by0;
-        by1 = (gl[1] > by1) ? gl[1] : by1;
-        by1 = (gr[1] > by1) ? gr[1] : by1;
-        const double mx = ft_pgm_max_height(t, c->eye_m[0] + bx0, c->eye_m[1] + by0,
-                                            c->eye_m[0] + bx1, c->eye_m[1] + by1);
-        s->missed_max_m = isfinite(mx) ? mx - s->base_z_m : 0.0;
-        gamma = ft_pgm_gamma(h, s->missed_max_m, s->near_ground_m, room);
+        /* the bottom edge's left corner, right corner and centre columns */
+        const double col_x[3] = {-txp, txp, 0.0};
+        double col_r[3], dir[3][2];
+        for (int k = 0; k < 3; ++k) {
+            double g[2];
+            ground_of(s, col_x[k], -s->half_y_tan, g);
+            col_r[k] = hypot(g[0], g[1]);
+            dir[k][0] = (col_r[k] > 0.0) ? g[0] / col_r[k] : 0.0;
+            dir[k][1] = (col_r[k] > 0.0) ? g[1] / col_r[k] : 0.0;
+        }
+        const double rc = (col_r[0] > col_r[1]) ? col_r[0] : col_r[1];
+        double x_req[3] = {col_r[0], col_r[1], col_r[2]};
+        /* What can enter the VIEW decides, so the formula's r is the ground
+         * distance of the view's bottom-edge ray in the column's azimuth (the
+         * same ray as the sampling camera's unless that one is pitched down):
+         * in the view's roll-free frame that ray is f_v + X r0 - ty_b u_v
+         * with X chosen for the azimuth. tan_bv <= 0: the view's bottom edge
+         * is at or above the horizon there. */
+        double tan_bv[3];
+        int past_nadir[3] = {0, 0, 0};
+        const double cv = cos(dep_v), sv = sin(dep_v);
+        const double c0 = cv - s->half_y_tan * sv; /* horizontal forward part */
+        for (int k = 0; k < 3; ++k) {
+            const double af = dir[k][0] * hd[0] + dir[k][1] * hd[1];
+            const double ar = dir[k][0] * r0[0] + dir[k][1] * r0[1];
+            if (!(c0 > 0.0) || !(af > 0.0)) {
+                past_nadir[k] = 1; /* the view looks down past the nadir */
+                tan_bv[k] = 0.0;
+                continue;
+            }
+            const double x = c0 * ar / af, dz = -sv - s->half_y_tan * cv;
+            tan_bv[k] = -dz / hypot(c0, x);
+        }
+        for (uint32_t q = 0; q < (FT_PGM_GAMMA_BANDS + 1u) * FT_PGM_GAMMA_PIECES; ++q) {
+            /* band b spans ground distances [x1 / 2, x1] of the bottom edge's
+             * wedge ([0, x1] for the last); piece q of it 1 / PIECES of that,
+             * so a thin wedge's box stays thin even when it runs diagonally */
+            const uint32_t b = q / FT_PGM_GAMMA_PIECES, pc = q % FT_PGM_GAMMA_PIECES;
+            const double bx = ldexp(rc, -(int)(FT_PGM_GAMMA_BANDS - b));
+            const double bw = (b == 0u) ? bx : 0.5 * bx;
+            const double x0 = bx - bw + bw * (double)pc / FT_PGM_GAMMA_PIECES;
+            const double x1 = bx - bw + bw * (double)(pc + 1u) / FT_PGM_GAMMA_PIECES;
+            double bx0 = INFINITY, by0 = INFINITY, bx1 = -INFINITY, by1 = -INFINITY;
+            for (int k = 0; k < 6; ++k) {
+                const double d = (k < 3) ? x0 : x1;
+                const double px = d * dir[k % 3][0], py = d * dir[k % 3][1];
+                bx0 = (px < bx0) ? px : bx0;
+                bx1 = (px > bx1) ? px : bx1;
+                by0 = (py < by0) ? py : by0;
+                by1 = (py > by1) ? py : by1;
+            }
+            const double mx = ft_pgm_max_height(t, c->eye_m[0] + bx0, c->eye_m[1] + by0,
+                                                c->eye_m[0] + bx1, c->eye_m[1] + by1);
+            const double m = isfinite(mx) ? mx - s->base_z_m : 0.0;
+            /* per column: the issue's formula with this piece's peak m and the
+             * view's bottom ray at depression beta_v (r = h / tan beta_v): the
+             * ray at beta_v + gamma meets the plane at x = h / tan(beta_v +
+             * gamma) = (h - m) r / h, and a peak of height m nearer than x
+             * stays under the view. Never nearer than the piece's near edge. */
+            if (!(m > 0.0)) {
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) {
+                double x;
+                if (past_nadir[k]) {
+                    x = x0; /* the view sees down to the nadir */
+                } else if (!(tan_bv[k] > 0.0)) {
+                    /* bottom edge at or above the horizon: only a peak above
+                     * the eye can show, and then at any distance */
+                    x = (m >= h) ? x0 : INFINITY;
+                } else {
+                    const double beta_v = atan(tan_bv[k]);
+                    const double room_v = 0.5 * FT_PGM_PI - beta_v;
+                    const double g = ft_pgm_gamma(h, m, h / tan_bv[k], room_v);
+                    x = (g >= room_v) ? 0.0 : h / tan(beta_v + g);
+                }
+                if (!(x < x1)) {
+                    continue; /* the whole piece is under the view's bottom edge */
+                }
+                x = (x > x0) ? x : x0;
+                if (x < x_req[k]) {
+                    x_req[k] = x;
+                    s->missed_max_m = (m > s->missed_max_m) ? m : s->missed_max_m;
+                }
+            }
+        }
+        /* lower the bottom edge until every column's ground point is within
+         * its x_req: along a column the distance falls monotonically from the
+         * edge (y = -ty) down to the nadir line y = -cot(dep) (bisection) */
+        const double y_nadir = -cd / sd;
+        double y_bot = -s->half_y_tan;
+        for (int k = 0; k < 3; ++k) {
+            double hi = -s->half_y_tan, lo = y_nadir;
+            double g[2];
+            ground_of(s, col_x[k], lo, g);
+            if (hypot(g[0], g[1]) >= x_req[k]) {
+                hi = lo; /* not even the nadir line gets that near: go there */
+            }
+            for (int it = 0; it < 60 && hi - lo > 1e-12 * (1.0 - lo); ++it) {
+                const double mid = 0.5 * (lo + hi);
+                ground_of(s, col_x[k], mid, g);
+                if (hypot(g[0], g[1]) > x_req[k]) hi = mid; else lo = mid;
+            }
+            y_bot = (hi < y_bot) ? hi : y_bot;
+        }
+        gamma = atan(-y_bot) - a;
+        gamma = (gamma > 0.0) ? gamma : 0.0;
     }
     s->gamma_rad = gamma;
-    /* bottom: extended, but not past the half-angle cap nor so far past the
-     * nadir that it looks flatter than eps behind the eye */
+    /* bottom: extended, but not past the half-angle cap (unless that is
+     * needed to reach the nadir, where the sampling camera is nearly level)
+     * nor so far past the nadir that it looks flatter than eps behind */
     double bot_a = a + gamma;
-    bot_a = (bot_a < FT_PGM_HALF_ANGLE_MAX_RAD) ? bot_a : FT_PGM_HALF_ANGLE_MAX_RAD;
+    const double cap = (0.5 * FT_PGM_PI - dep > FT_PGM_HALF_ANGLE_MAX_RAD)
+                           ? 0.5 * FT_PGM_PI - dep
+                           : FT_PGM_HALF_ANGLE_MAX_RAD;
+    bot_a = (bot_a < cap) ? bot_a : cap;
     const double behind = FT_PGM_PI - s->eps_rad - dep;
     bot_a = (bot_a < behind) ? bot_a : behind;
     const double y0 = -tan(bot_a);
@@ -307,8 +426,12 @@ void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t co
     out->r_cells = sqrt(r2);
     ft_pgm_lod(out->r_cells, t->pyr.avg_levels, &out->level, &out->parent_w);
     const double ox = t->origin_world_x_m - s->eye_m[0], oy = t->origin_world_y_m - s->eye_m[1];
-    out->grid[0] = clampd((p[0] - ox) / t->cell_x_m, 0.0, (double)t->width - 1.0);
-    out->grid[1] = clampd((p[1] - oy) / t->cell_y_m, 0.0, (double)t->height - 1.0);
+    /* clamped into the grid, xy relative to the eye: near the eye this never
+     * goes through the (large) grid origin, so float keeps millimetres */
+    const double px = clampd(p[0], ox, ox + ((double)t->width - 1.0) * t->cell_x_m);
+    const double py = clampd(p[1], oy, oy + ((double)t->height - 1.0) * t->cell_y_m);
+    out->grid[0] = (px - ox) / t->cell_x_m;
+    out->grid[1] = (py - oy) / t->cell_y_m;
     double hgt = ft_pgm_level_height(t, out->level, out->grid[0], out->grid[1], NULL);
     if (out->parent_w > 0.0) {
         const double hp =
@@ -316,8 +439,8 @@ void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t co
         hgt += (hp - hgt) * out->parent_w;
     }
     out->height_m = hgt;
-    out->pos_rel_eye_m[0] = ox + out->grid[0] * t->cell_x_m;
-    out->pos_rel_eye_m[1] = oy + out->grid[1] * t->cell_y_m;
+    out->pos_rel_eye_m[0] = px;
+    out->pos_rel_eye_m[1] = py;
     out->pos_rel_eye_m[2] = hgt - s->eye_m[2];
 }
 

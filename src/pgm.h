@@ -50,9 +50,27 @@
  * height m (above the base plane) nearer than r can reach into the view
  * without being sampled. The bottom edge is lowered by gamma,
  *     tan(gamma) = r h m / (h^3 + r^2 (h - m))
- * (gamma = 90 deg - beta when m >= h makes the denominator <= 0), m = the
- * max pyramid's bound over the box spanned by the eye's foot and the ground
- * points of the bottom corners.
+ * (gamma = 90 deg - beta when m >= h makes the denominator <= 0): the ray at
+ * beta + gamma meets the plane at x = (h - m) r / h, and a peak of height m
+ * nearer than x stays below the view's bottom edge. m is the highest terrain
+ * (ft_pgm_max_height: exact near the eye, else the max pyramid's bound) over
+ * the wedge between the eye's foot and the bottom edge's ground points, in
+ * FT_PGM_GAMMA_BANDS + 1 distance bands [x1 / 2, x1]
+ * (x1 = rc, rc / 2, ..., the last band [0, x1]), each cut into
+ * FT_PGM_GAMMA_PIECES pieces by distance, each piece one box (a thin wedge
+ * running diagonally keeps thin boxes). The requirement is taken
+ * per bottom column (left corner, centre, right corner: a corner's ray is
+ * flatter than the centre's and needs more): per band, the formula with the
+ * column's r_c, beta_c and the piece's m gives the ground distance the bottom
+ * row must reach, x = h / tan(beta_c + gamma), but never nearer than the
+ * piece's near edge (nearer ground holds none of its peaks); the bottom edge
+ * is lowered until every column reaches its nearest such x (bisection along
+ * the column), and gamma is what that adds to the half angle. For the centre
+ * column and one band [0, r] this is the formula exactly; the bands keep a
+ * high peak far away from dragging the edge to the nadir. The
+ * bottom edge stops at FT_PGM_HALF_ANGLE_MAX_RAD below the axis, or at the
+ * nadir if that is lower (a nearly level sampling camera close to a
+ * hillside needs the ground right under the eye).
  *
  * Level of detail per vertex: r = the ground distance (in grid cells) to the
  * farthest of its 4 grid neighbours' ground points; level L = max(0,
@@ -81,6 +99,12 @@
 #define FT_PGM_EPS_MIN_RAD (0.01 * FT_PGM_PI / 180.0)
 /* Largest half angle of the sampling rectangle (tan 88 deg = 28.6). */
 #define FT_PGM_HALF_ANGLE_MAX_RAD (88.0 * FT_PGM_PI / 180.0)
+/* Boxes up to this many cells a side get the exact maximum (pgm.c). */
+#define FT_PGM_EXACT_MAX_CELLS 8u
+/* Distance bands (halving toward the eye) the viewport extension checks,
+ * and pieces per band (each its own box). */
+#define FT_PGM_GAMMA_BANDS 12u
+#define FT_PGM_GAMMA_PIECES 8u
 /* The sampling eye is at least this high above the base plane. */
 #define FT_PGM_MIN_HEIGHT_M 1.0
 
@@ -98,7 +122,7 @@ typedef struct ft_pgm_sampling {
     double depression_rad;      /* dep_s */
     int pitched_down;           /* dep_s > dep_v (the view reaches up to or past the horizon) */
     double near_ground_m;       /* r: bottom centre ray's ground distance (0: past nadir) */
-    double missed_max_m;        /* m: max terrain height above the base plane near the eye */
+    double missed_max_m;        /* m of the band that set gamma (above the base plane) */
     double gamma_rad;           /* viewport extension */
     double rect[4];             /* x0, y0, x1, y1 (tan units, sampling image plane) */
     double min_neg_dz;          /* floor for -d_z (unit: the ray of a rect point) */
@@ -133,8 +157,10 @@ void ft_pgm_lod(double r_cells, uint32_t levels, uint32_t *level, double *parent
 double ft_pgm_level_height(const ft_terrain *t, uint32_t level, double gx, double gy,
                            double grad[2]);
 
-/* Max pyramid bound over world box [x0, x1] x [y0, y1] (at most 4 x 4 texels
- * of one level are read); -INFINITY if the box misses the grid. */
+/* Highest terrain over world box [x0, x1] x [y0, y1]: exact (the bilinear
+ * surface's maximum) for a box of at most FT_PGM_EXACT_MAX_CELLS cells a
+ * side, else the max pyramid's bound (at most 4 x 4 texels of one level are
+ * read); -INFINITY if the box misses the grid. */
 double ft_pgm_max_height(const ft_terrain *t, double x0_m, double y0_m, double x1_m,
                          double y1_m);
 

@@ -302,35 +302,52 @@ static void test_levels(void)
     }
     free_terrain(&t);
 
-    /* max bound: conservative against brute force, exact on one cell */
+    /* highest terrain in a box: never below the surface anywhere in it (dense
+     * samples of the bilinear surface), never above the grid's max; exact
+     * (within the dense sampling's reach) for small boxes */
     make_terrain(&t, 301, 233, 25.0, hills);
+    int exact = 0;
     for (int k = 0; k < 300; ++k) {
         double x0 = urand() * 7600.0 - 100.0, y0 = urand() * 5900.0 - 100.0;
         double x1 = x0 + urand() * 3000.0, y1 = y0 + urand() * 3000.0;
+        if (k % 2 == 0) { /* small boxes too: the exact path */
+            x1 = x0 + urand() * 200.0;
+            y1 = y0 + urand() * 200.0;
+        }
         const double m = ft_pgm_max_height(&t, x0, y0, x1, y1);
-        double brute = -INFINITY;
-        for (uint32_t y = 0; y < t.height; ++y) {
-            for (uint32_t x = 0; x < t.width; ++x) {
-                const double wx = x * 25.0, wy = y * 25.0;
-                if (wx >= x0 && wx <= x1 && wy >= y0 && wy <= y1) {
-                    const double v = t.heights_m[(size_t)y * t.width + x];
-                    brute = v > brute ? v : brute;
-                }
+        double dense = -INFINITY;
+        for (int a = 0; a <= 64; ++a) {
+            for (int b = 0; b <= 64; ++b) {
+                const double wx = x0 + (x1 - x0) * a / 64.0, wy = y0 + (y1 - y0) * b / 64.0;
+                if (wx < 0.0 || wy < 0.0 || wx > 300 * 25.0 || wy > 232 * 25.0) continue;
+                const double v = ft_pgm_level_height(&t, 0, wx / 25.0, wy / 25.0, NULL);
+                dense = v > dense ? v : dense;
             }
         }
-        CHECK(m >= brute);
+        CHECK(m >= dense - 1e-3);
         CHECK(m <= t.max_height_m);
+        if (x1 - x0 <= 200.0 && y1 - y0 <= 200.0 && isfinite(dense)) {
+            /* within what 1/64 of the box can miss on these slopes */
+            CHECK(m <= dense + 0.02 * (x1 - x0 + y1 - y0) + 1e-3);
+            ++exact;
+        }
     }
+    CHECK(exact > 100);
     {
-        const double m = ft_pgm_max_height(&t, 10 * 25.0 + 3.0, 20 * 25.0 + 3.0, 10 * 25.0 + 20.0,
-                                           20 * 25.0 + 20.0);
-        const float *hh = t.heights_m;
-        const size_t w = t.width, i = 20u * w + 10u;
-        double e = hh[i];
-        e = hh[i + 1] > e ? hh[i + 1] : e;
-        e = hh[i + w] > e ? hh[i + w] : e;
-        e = hh[i + w + 1] > e ? hh[i + w + 1] : e;
-        CHECK_NEAR(m, e, 0.0);
+        /* inside one cell the bilinear surface peaks at a corner of the box */
+        const double bx0 = 10 * 25.0 + 3.0, by0 = 20 * 25.0 + 3.0;
+        const double bx1 = 10 * 25.0 + 20.0, by1 = 20 * 25.0 + 20.0;
+        const double m = ft_pgm_max_height(&t, bx0, by0, bx1, by1);
+        double e = -INFINITY;
+        for (int k = 0; k < 4; ++k) {
+            const double v = ft_pgm_level_height(&t, 0, ((k & 1) ? bx1 : bx0) / 25.0,
+                                                 ((k & 2) ? by1 : by0) / 25.0, NULL);
+            e = (v > e) ? v : e;
+        }
+        CHECK_NEAR(m, e, 1e-9);
+        /* a big box: the max pyramid's bound, at least the samples' max */
+        const double big = ft_pgm_max_height(&t, 0.0, 0.0, 300 * 25.0, 232 * 25.0);
+        CHECK_NEAR(big, t.max_height_m, 0.0);
     }
     CHECK(ft_pgm_max_height(&t, -900.0, -900.0, -800.0, -800.0) == -INFINITY);
     free_terrain(&t);

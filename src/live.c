@@ -186,18 +186,14 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         const uint64_t t_due = t_base + (k - k_base) * period_ns;
         uint64_t now = ft_plat_monotonic_ns();
         const uint64_t t_poll0 = now;
-        for (int p = 0; p < 2 && st == FT_OK; ++p) {
-            if (lv->can_open[p]) {
-                st = drain_can(lv, p, p == source, feed, r, err);
-            }
-        }
-        if (st == FT_OK) {
-            st = poll_gpio(lv, now, r, err);
-        }
+        st = poll_gpio(lv, now, r, err);
         if (st != FT_OK) {
             break;
         }
-        /* source: the backup on request, or while the primary is silent */
+        /* source: the backup on request, or while the primary has been
+         * silent for can.failover_ms (receive times of the frames drained so
+         * far); decided before this frame's drain so that the frames waiting
+         * on the new source feed this very frame */
         int want = 0;
         if (lv->can_open[1]) {
             const int primary_silent = now > lv->last_rx_ns[0] + failover_ns;
@@ -207,6 +203,14 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         if (want != source) {
             source = want;
             r->source_switches += 1u;
+        }
+        for (int p = 0; p < 2 && st == FT_OK; ++p) {
+            if (lv->can_open[p]) {
+                st = drain_can(lv, p, p == source, feed, r, err);
+            }
+        }
+        if (st != FT_OK) {
+            break;
         }
         ft_pose_view v;
         now = ft_plat_monotonic_ns();

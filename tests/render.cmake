@@ -66,6 +66,14 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
       set_tests_properties(no_heap_bintree_gles2 PROPERTIES
                            ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
     endif()
+    if(FIXTERRAIN_WITH_METHOD_PGM)
+      add_test(NAME no_heap_pgm_egl COMMAND test_no_heap
+               ${CMAKE_BINARY_DIR}/test-out/no_heap_pgm.png egl-gles3 pgm)
+      add_test(NAME no_heap_pgm_gles2 COMMAND test_no_heap
+               ${CMAKE_BINARY_DIR}/test-out/no_heap_pgm_es2.png egl-gles2 pgm)
+      set_tests_properties(no_heap_pgm_gles2 PROPERTIES
+                           ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+    endif()
   endif()
   if(FIXTERRAIN_WITH_OSMESA)
     add_test(NAME no_heap_osmesa COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap_osmesa.png osmesa)

@@ -12,8 +12,9 @@
  * The test first proves the wrapping works (a deliberate malloc is counted),
  * then runs init, then 120 frames along a moving path plus a position pass
  * and a PNG write with counting on, and requires zero calls.
- * Usage: test_no_heap OUT.png [BACKEND [METHOD [replay]]] (the path changes
- * the view every frame, so a LOD method selects anew each frame). With
+ * Usage: test_no_heap OUT.png [BACKEND [METHOD [replay]]] (METHOD as in
+ * scene.method: brute, bintree, pgm, ...; the path changes the view every
+ * frame, so a LOD method selects anew each frame). With
  * "replay", a candump log with a stall is then replayed too (decoder, pose
  * feed, annunciation overlay, pose CSV, one PNG per frame), counting on. */
 #define _GNU_SOURCE
@@ -85,6 +86,7 @@ static const char k_scene[] =
     "synth_seed = 3\nsynth_octaves = 8\nsynth_anchor_lat_deg = 46.5\nsynth_anchor_lon_deg = 8.0\n"
     "[gpu]\ntexture_bytes = 16M\n[metric]\nenabled = 1\n"
     "[bintree]\ntemplate_k = 3\ntiles_max = 4096\ntau_px = 1.0\nmorph = 1\n"
+    "[pgm]\ngrid_cols = 200\ngrid_rows = 800\n"
     "[budget]\nheights_bytes = 512K\npyramids_bytes = 2M\nframe_rgba_bytes = 256K\n"
     "frame_pos_bytes = 1M\nreference_bytes = 2M\nmetric_bytes = 256K\n"
     "gpu_staging_bytes = 512K\nmethod_bytes = 1M\npng_bytes = 512K\n";

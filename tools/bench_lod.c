@@ -1,11 +1,14 @@
 /* bench_lod.c - error against run time for the LOD methods, in one run.
  *
  *   fixterrain-bench-lod SCENE.ini [--frames N] [--size WxH] [--ks 2,3,4]
- *                        [--taus 0.5,1,2,4] [--md OUT.md]
+ *                        [--taus 0.5,1,2,4] [--methods bintree,pgm]
+ *                        [--grids 200x800,430x430] [--md OUT.md]
  *
  * Flies one camera path (an orbit around the scene's pose: radius 6 km,
  * looking at the orbit centre, 10 deg down, altitude varying by +-500 m) with
- * brute force and with the bintree for every (template k, tau_px) pair, and
+ * brute force (always, first: the base of the ratios), then each method of
+ * --methods (default bintree): the bintree for every (template k, tau_px)
+ * pair, pgm for every grid (cols x rows) of --grids, and
  * prints one row per run: init time, frame time (median, p99, max; frame =
  * selection + draw + readback, i.e. until the GPU is done), CPU selection
  * time (median, max), triangles and tiles (mean), and the screen-space error
@@ -33,6 +36,7 @@ static char g_gl_renderer[512];
 typedef struct bench_row {
     char method[32];
     uint32_t k;
+    uint32_t cols, rows; /* pgm grid */
     double tau;
     double init_ms;
     double tables_ms; /* bintree: ft_bintree_init alone (error + bound tables) */
@@ -101,8 +105,8 @@ static ft_pose orbit_pose(const ft_pose *centre, int f, int frames)
     return p;
 }
 
-static int run(const ft_scene *base, const char *method, uint32_t k, double tau, int frames,
-               bench_row *row)
+static int run(const ft_scene *base, const char *method, uint32_t k, double tau, uint32_t cols,
+               uint32_t rows, int frames, bench_row *row)
 {
     static double frame_ms[BENCH_FRAMES_MAX], select_ms[BENCH_FRAMES_MAX];
     ft_scene s = *base;
@@ -115,6 +119,10 @@ static int run(const ft_scene *base, const char *method, uint32_t k, double tau,
         s.bintree_template_k = k;
         s.bintree_tau_px = tau;
     }
+    if (s.method == FT_METHOD_PGM) {
+        s.pgm_grid_cols = cols;
+        s.pgm_grid_rows = rows;
+    }
     if (ft_scene_validate(&s, &err) != FT_OK || ft_app_init(&g_app, &s, &err) != FT_OK) {
         fprintf(stderr, "bench: %s k=%u tau=%g: %s\n", method, k, tau, err.text);
         return 0;
@@ -123,6 +131,8 @@ static int run(const ft_scene *base, const char *method, uint32_t k, double tau,
     (void)snprintf(row->method, sizeof row->method, "%s", method);
     row->k = k;
     row->tau = tau;
+    row->cols = cols;
+    row->rows = rows;
     row->init_ms = (double)g_app.init_ns * 1e-6;
     (void)snprintf(g_gl_renderer, sizeof g_gl_renderer, "%s / %s", g_app.gpu.version,
                    g_app.gpu.renderer);
@@ -187,11 +197,35 @@ static int parse_list(const char *text, double *out, int max)
     return n;
 }
 
+/* "200x800,430x430" -> cols[], rows[]; 0 on a malformed list. */
+static int parse_grids(const char *text, uint32_t *cols, uint32_t *rows, int max)
+{
+    int n = 0;
+    const char *p = text;
+    while (*p != '\0' && n < max) {
+        char *end = NULL;
+        const unsigned long c = strtoul(p, &end, 10);
+        if (end == p || *end != 'x') return 0;
+        p = end + 1;
+        const unsigned long r = strtoul(p, &end, 10);
+        if (end == p || (*end != ',' && *end != '\0') || c < 2 || r < 2 || c > 8192 || r > 8192) {
+            return 0;
+        }
+        cols[n] = (uint32_t)c;
+        rows[n] = (uint32_t)r;
+        ++n;
+        p = (*end == ',') ? end + 1 : end;
+    }
+    return (*p == '\0') ? n : 0;
+}
+
 static void print_row(FILE *f, const bench_row *r, double brute_med)
 {
     char setting[48];
     if (strcmp(r->method, "bintree") == 0) {
         (void)snprintf(setting, sizeof setting, "k=%u tau=%.1f", r->k, r->tau);
+    } else if (strcmp(r->method, "pgm") == 0) {
+        (void)snprintf(setting, sizeof setting, "grid %ux%u", r->cols, r->rows);
     } else {
         (void)snprintf(setting, sizeof setting, "-");
     }
@@ -209,6 +243,8 @@ int main(int argc, char **argv)
     int frames = 40;
     double ks[BENCH_LIST_MAX] = {2, 3, 4}, taus[BENCH_LIST_MAX] = {0.5, 1, 2, 4};
     int nk = 3, nt = 4;
+    uint32_t gcols[BENCH_LIST_MAX] = {200, 430}, grows[BENCH_LIST_MAX] = {800, 430};
+    int ng = 2, with_bintree = 1, with_pgm = 0;
     uint32_t w = 640, h = 480;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -217,14 +253,33 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--ks") == 0 && v) { nk = parse_list(v, ks, BENCH_LIST_MAX); ++i; }
         else if (strcmp(a, "--taus") == 0 && v) { nt = parse_list(v, taus, BENCH_LIST_MAX); ++i; }
         else if (strcmp(a, "--md") == 0 && v) { md_path = v; ++i; }
+        else if (strcmp(a, "--grids") == 0 && v) { ng = parse_grids(v, gcols, grows, BENCH_LIST_MAX); ++i; }
+        else if (strcmp(a, "--methods") == 0 && v) {
+            /* brute always runs (the base of the ratios); listing it is allowed */
+            with_bintree = strstr(v, "bintree") != NULL;
+            with_pgm = strstr(v, "pgm") != NULL;
+            for (const char *q = v; *q != '\0';) {
+                const size_t len = strcspn(q, ",");
+                if (!(len == 5 && strncmp(q, "brute", 5) == 0) &&
+                    !(len == 7 && strncmp(q, "bintree", 7) == 0) &&
+                    !(len == 3 && strncmp(q, "pgm", 3) == 0)) {
+                    fprintf(stderr, "%s: --methods takes brute, bintree, pgm\n", argv[0]);
+                    return 2;
+                }
+                q += len + (q[len] == ',');
+            }
+            ++i;
+        }
         else if (a[0] != '-' && scene_path == NULL) { scene_path = a; }
         else {
             fprintf(stderr, "usage: %s SCENE.ini [--frames N] [--size WxH] [--ks 2,3,4] "
-                            "[--taus 0.5,1,2,4] [--md OUT.md]\n", argv[0]);
+                            "[--taus 0.5,1,2,4] [--methods bintree,pgm] "
+                            "[--grids 200x800,430x430] [--md OUT.md]\n", argv[0]);
             return 2;
         }
     }
-    if (scene_path == NULL || frames < 2 || frames >= BENCH_FRAMES_MAX || nk <= 0 || nt <= 0) {
+    if (scene_path == NULL || frames < 2 || frames >= BENCH_FRAMES_MAX || nk <= 0 || nt <= 0 ||
+        ng <= 0) {
         fprintf(stderr, "%s: need a scene file, 2 <= frames < %d, and non-empty lists\n", argv[0],
                 BENCH_FRAMES_MAX);
         return 2;
@@ -262,19 +317,26 @@ int main(int argc, char **argv)
     base.width_px = w;
     base.height_px = h;
 
-    static bench_row rows[1 + BENCH_LIST_MAX * BENCH_LIST_MAX];
+    static bench_row rows[1 + BENCH_LIST_MAX * BENCH_LIST_MAX + BENCH_LIST_MAX];
     int nrows = 0;
     printf("bench: %s, %ux%u, %d frames per run (+1 warm-up)\n", scene_path, w, h, frames);
-    if (!run(&base, "brute", 0, 0.0, frames, &rows[nrows])) return 1;
+    if (!run(&base, "brute", 0, 0.0, 0, 0, frames, &rows[nrows])) return 1;
     printf("  brute done: median %.1f ms\n", rows[nrows].frame_med_ms);
     ++nrows;
-    for (int a = 0; a < nk; ++a) {
+    for (int a = 0; a < nk && with_bintree; ++a) {
         for (int b = 0; b < nt; ++b) {
-            if (!run(&base, "bintree", (uint32_t)ks[a], taus[b], frames, &rows[nrows])) return 1;
+            if (!run(&base, "bintree", (uint32_t)ks[a], taus[b], 0, 0, frames, &rows[nrows])) {
+                return 1;
+            }
             printf("  bintree k=%g tau=%g done: median %.1f ms\n", ks[a], taus[b],
                    rows[nrows].frame_med_ms);
             ++nrows;
         }
+    }
+    for (int g = 0; g < ng && with_pgm; ++g) {
+        if (!run(&base, "pgm", 0, 0.0, gcols[g], grows[g], frames, &rows[nrows])) return 1;
+        printf("  pgm %ux%u done: median %.1f ms\n", gcols[g], grows[g], rows[nrows].frame_med_ms);
+        ++nrows;
     }
     FILE *outs[2] = {stdout, NULL};
     if (md_path != NULL) {

@@ -82,41 +82,67 @@ float texmax(float level, vec2 ij)
     return ft_decode(texelFetch(u_pgrid_mm, ivec2(o), 0), u_pgrid_mm_info.zw);
 }
 
-/* first t in [ta, tb] where o + t d meets cell (i, j)'s bilinear patch */
+/* first t in [ta, tb] where o + t d meets cell (i, j)'s bilinear patch.
+ * Solved in the segment's own frame (origin: the ray at ta, s = t - ta), so
+ * the patch is never extrapolated out to the eye: the coefficients stay of
+ * the order of the cell's heights and float keeps millimetres. A sign change
+ * the closed form loses to round-off is refined by bisection. */
 bool solve_cell(vec2 ij, vec3 o, vec3 d, float ta, float tb, out float th)
 {
     float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
     float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
-    /* local u = o.x - i + t d.x, v likewise; H = h00 + a u + b v + c u v */
+    /* local u = u0 + s d.x, v likewise; H = h00 + a u + b v + c u v */
     float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
-    float u0 = o.x - ij.x, v0 = o.y - ij.y;
-    /* f(t) = o.z + t d.z - H(u0 + t dx, v0 + t dy) = A t^2 + B t + C */
+    vec3 pa = o + ta * d;
+    float u0 = pa.x - ij.x, v0 = pa.y - ij.y;
+    float len = tb - ta;
+    /* f(s) = pa.z + s d.z - H(u0 + s dx, v0 + s dy) = A s^2 + B s + C */
     float A = -c * d.x * d.y;
     float B = d.z - a * d.x - b * d.y - c * (u0 * d.y + v0 * d.x);
-    float C = o.z - (h00 + a * u0 + b * v0 + c * u0 * v0);
-    float fa = (A * ta + B) * ta + C;
-    float fb = (A * tb + B) * tb + C;
+    float C = pa.z - (h00 + a * u0 + b * v0 + c * u0 * v0);
+    float fa = C;
+    float fb = (A * len + B) * len + C;
     float best = 1e30;
-    if (abs(A) < 1e-12 * max(abs(B), 1e-30)) {
+    if (fa <= 0.0) {
+        /* already under the (continuous) surface where the ray enters the
+         * cell: the crossing was at the entry, within the round-off of the
+         * previous cell's solve. Without this the ray would run on under
+         * the ground (a hole, or a hit on a later, farther surface). */
+        th = ta;
+        return true;
+    }
+    if (abs(A) * len < 1e-6 * max(abs(B), 1e-30)) {
         if (B != 0.0) {
-            float t = -C / B;
-            if (t >= ta && t <= tb) best = t;
+            float s = -C / B;
+            if (s >= 0.0 && s <= len) best = s;
         }
     } else {
         float disc = B * B - 4.0 * A * C;
         if (disc >= 0.0) {
             float sq = sqrt(disc);
             float q = -0.5 * (B + (B >= 0.0 ? sq : -sq));
-            float t1 = q / A;
-            float t2 = (q != 0.0) ? C / q : t1;
-            if (t1 >= ta && t1 <= tb) best = min(best, t1);
-            if (t2 >= ta && t2 <= tb) best = min(best, t2);
+            float s1 = q / A;
+            float s2 = (q != 0.0) ? C / q : s1;
+            if (s1 >= 0.0 && s1 <= len) best = min(best, s1);
+            if (s2 >= 0.0 && s2 <= len) best = min(best, s2);
         }
     }
     if (best > 1e29 && fa * fb <= 0.0) {
-        best = (fa == 0.0) ? ta : tb; /* float round-off at an end */
+        /* round-off at an end: bisect the sign change */
+        float lo = 0.0, hi = len, flo = fa;
+        for (int k = 0; k < 24; ++k) {
+            float mid = 0.5 * (lo + hi);
+            float fm = (A * mid + B) * mid + C;
+            if ((fm <= 0.0) == (flo <= 0.0) && fm != 0.0) {
+                lo = mid;
+                flo = fm;
+            } else {
+                hi = mid;
+            }
+        }
+        best = (fa == 0.0) ? 0.0 : hi;
     }
-    th = best;
+    th = ta + best;
     return best < 1e29;
 }
 

@@ -1,3 +1,18 @@
 # Error-bounded projective grid (method 'pgrid'): the CPU pieces
 # (tests/test_pgrid.c).
 ft_add_test(test_pgrid SOURCES test_pgrid.c)
+# The method on real contexts over a real DEM (tests/test_pgrid_gl.c).
+if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PGRID
+   AND FIXTERRAIN_WITH_METHOD_BRUTE AND FIXTERRAIN_WITH_EGL)
+  add_executable(test_pgrid_gl test_pgrid_gl.c)
+  target_compile_options(test_pgrid_gl PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_pgrid_gl PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_pgrid_gl PRIVATE ft_app m)
+  set(_dem ${FT_SHARED_DATA_DIR}/N42E001.hgt)
+  # error bound with ray casting, distribution, sweep, cracks (GLES 3)
+  add_test(NAME pgrid_gl_es3 COMMAND test_pgrid_gl es3 ${_dem})
+  # a true ES 2.0 context: no ray casting, the mesh's bound reported, cracks
+  add_test(NAME pgrid_gl_es2 COMMAND test_pgrid_gl es2 ${_dem})
+  set_tests_properties(pgrid_gl_es3 pgrid_gl_es2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+  set_tests_properties(pgrid_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+endif()

@@ -1,0 +1,467 @@
+/* test_pgrid_gl.c - the error-bounded projective grid (method 'pgrid',
+ * src/pgrid.h) on a real GPU context over a real DEM (argv[2], e.g.
+ * ../shared/data/N42E001.hgt). Views are 256 x 192 with a ray-casting budget
+ * of every pixel, so the budget is never what limits the bound.
+ *
+ * es3:
+ * 1. Error bound with ray casting: along an 8-frame flight, for gamma_px in
+ *    {0.5, 1, 2}, on every frame whose budget was not hit the foundation
+ *    metric's max screen-space error (against the bilinear reference) is
+ *        es.max_px <= gamma_px + TOL_PX
+ *    (TOL_PX and its derivation: below), and the coverage mismatch
+ *    (only_method_px + only_ref_px) is at most COVER_MAX_PX.
+ * 2. Row distribution: ray casting off, the same flight, the same grid
+ *    (same vertex count): the view-dependent rows give a lower mean error
+ *    than uniform rows (summed over the flight, and on most frames).
+ * 3. Sweep: pitch -90..+60 deg, FOV 10..150 deg, heights 10 m .. 50 km
+ *    above the ground, ray casting on and off: no non-finite position
+ *    (es.nonfinite_px == 0), terrain present whenever the reference has some.
+ * 4. Image crack test: clear colour magenta (never a terrain colour); views
+ *    the terrain covers completely show no magenta pixel and the position
+ *    pass is terrain at every pixel (a ray-cast miss would show there),
+ *    ray casting on and off; a view with sky shows magenta (the counter
+ *    works).
+ * es2 (run with MESA_GLES_VERSION_OVERRIDE=2.0, backend egl-gles2):
+ *    init with ray_casting = 1 succeeds and runs without ray casting (no
+ *    pixel ray cast, budget not hit), the reported bound is the mesh's own
+ *    (positive, finite: above gamma_px on these views), frames render and the
+ *    crack test passes.
+ *
+ * Usage: test_pgrid_gl es3|es2 DEM */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "test_util.h"
+
+#define W_PX 256u
+#define H_PX 192u
+
+static ft_app g_app;
+static char g_text[4096];
+
+static const char k_scene_fmt[] =
+    "[scene]\nmethod = %s\nbackend = %s\n"
+    "[view]\nwidth_px = %u\nheight_px = %u\nfovy_deg = %.1f\n"
+    "[terrain]\ndem = %s\n"
+    "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
+    "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
+    "[pgrid]\ngrid_cols = %u\ngrid_rows = %u\ndistribution = %s\nray_casting = %d\n"
+    "gamma_px = %.3f\nraycast_max_px = %u\n"
+    "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
+    "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 1M\n"
+    "gpu_staging_bytes = 8M\nmethod_bytes = 16M\npng_bytes = 512K\n";
+
+typedef struct setup {
+    const char *method, *backend, *dem;
+    double fovy_deg;
+    uint32_t cols, rows;
+    int view_dist, ray_casting;
+    double gamma;
+    int metric;
+} setup;
+
+static void app_init(const setup *c)
+{
+    ft_scene s;
+    ft_error err;
+    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, W_PX, H_PX,
+                   c->fovy_deg, c->dem, c->metric, c->cols, c->rows,
+                   c->view_dist ? "view" : "uniform", c->ray_casting, c->gamma, W_PX * H_PX);
+    ft_scene_defaults(&s);
+    ft_status st = ft_scene_parse(&s, g_text, "test scene", &err);
+    if (st == FT_OK) st = ft_app_init(&g_app, &s, &err);
+    if (st != FT_OK) fprintf(stderr, "init (%s): %s\n", c->method, err.text);
+    REQUIRE(st == FT_OK);
+}
+
+static ft_pose pose_of(double lat, double lon, double alt, double heading, double pitch,
+                       double roll)
+{
+    ft_pose p = {lat, lon, alt, heading, pitch, roll};
+    return p;
+}
+
+static void frame(const ft_pose *p, ft_camera *cam, ft_frame_stats *fs)
+{
+    ft_error err;
+    ft_status st = ft_app_render(&g_app, p, cam, fs, &err);
+    if (st != FT_OK) fprintf(stderr, "frame: %s\n", err.text);
+    REQUIRE(st == FT_OK);
+}
+
+static void measure(const ft_camera *cam, ft_error_stats *es)
+{
+    ft_error err;
+    ft_status st = ft_app_measure(&g_app, cam, es, &err);
+    if (st != FT_OK) fprintf(stderr, "measure: %s\n", err.text);
+    REQUIRE(st == FT_OK);
+}
+
+/* Per-pixel split of the last measured frame (pgrid): the largest metric
+ * error over the ray-cast pixels (dilated code >= threshold, src/pgrid.h 4)
+ * and over the mesh pixels, and the largest error / rho_hi(code) ratio of the
+ * mesh pixels (how tight the per-pixel bound is). */
+typedef struct split {
+    double rc_max, mesh_max;
+    uint32_t rc_x, rc_y;
+    double rc_dist;
+} split;
+
+static double pixel_error(const ft_camera *cam, const float *q, double *dist)
+{
+    double d = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2]);
+    *dist = d;
+    if (d < cam->near_m) d = cam->near_m;
+    return fabs(cam->eye_m[2] + q[2] -
+                ft_terrain_height_at(&g_app.terrain, cam->eye_m[0] + q[0], cam->eye_m[1] + q[1])) *
+           cam->px_per_rad_k / d;
+}
+
+static split split_errors(const ft_camera *cam)
+{
+    const float *pos = g_app.renderer.pos;
+    const ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
+    split r = {0.0, 0.0, 0u, 0u, 0.0};
+    for (uint32_t y = 0; y < H_PX; ++y) {
+        for (uint32_t x = 0; x < W_PX; ++x) {
+            const float *q = pos + 4u * (y * W_PX + x);
+            if (!(q[3] > 0.5f)) continue;
+            double dist;
+            const double e = pixel_error(cam, q, &dist);
+            uint32_t code = 0;
+            const int gy = (int)(H_PX - 1u - y); /* error buffer rows: 0 = bottom */
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int xx = (int)x + dx, yy = gy + dy;
+                    if (xx < 0 || yy < 0 || xx >= (int)W_PX || yy >= (int)H_PX) continue;
+                    const uint32_t c = m->readback[4u * ((uint32_t)yy * W_PX + (uint32_t)xx) + 1u];
+                    if (c > code) code = c;
+                }
+            }
+            if (code >= m->thr) {
+                if (e > r.rc_max) {
+                    if (getenv("PGRID_DEBUG") != NULL) {
+                        const ft_ref_pixel *rp = &g_app.ref[y * W_PX + x];
+                        fprintf(stderr, "rc px (%u,%u) e %.4f: gpu (%.3f %.3f %.3f) ref (%.3f %.3f "
+                                "%.3f) hit %u\n", x, y, e, q[0], q[1], q[2], rp->pos_rel_eye_m[0],
+                                rp->pos_rel_eye_m[1], rp->pos_rel_eye_m[2], rp->hit);
+                    }
+                    r.rc_max = e;
+                    r.rc_x = x;
+                    r.rc_y = y;
+                    r.rc_dist = dist;
+                }
+            } else if (e > r.mesh_max) {
+                r.mesh_max = e;
+            }
+        }
+    }
+    return r;
+}
+
+/* ---- 1. error bound with ray casting ------------------------------------------ */
+
+#define PATH_FRAMES 8
+#define GRID_COLS 200u
+#define GRID_ROWS 800u
+
+static ft_pose path_pose(int f)
+{
+    const double s = (double)f / (PATH_FRAMES - 1);
+    return pose_of(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
+                   -8.0 - 4.0 * f, (f % 3) * 8.0 - 8.0);
+}
+
+/* TOL_PX: the metric's own accuracy (0.05 px, as in test_bintree_gl) plus
+ * what the GPU ray caster's float32 hit adds against the CPU reference's
+ * double one: measured at <= 0.063 px over these frames (about 1 m along the
+ * steepest, nearest rays at the bottom of the view, ~2.7 km away; elsewhere
+ * 0.000 px), so 0.05 + 0.05. The mesh pixels (under gamma, not ray cast) are
+ * bounded by rho (a convex bound, src/pgrid.h 2) and measured well under it:
+ * max - gamma <= -0.3 px on every frame. COVER_MAX_PX: silhouette pixels the
+ * bound allows to differ (a mesh silhouette under gamma may be off by up to
+ * gamma px along the skyline; measured <= 40 at gamma 2, <= 7 at gamma 1). */
+#define TOL_PX 0.10
+#define COVER_MAX_PX 64u
+
+static void test_error_bound(const char *dem)
+{
+    double brute_max[PATH_FRAMES], brute_mean[PATH_FRAMES];
+    setup cb = {"brute", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 0, 1.0, 1};
+    app_init(&cb);
+    for (int f = 0; f < PATH_FRAMES; ++f) {
+        ft_camera cam;
+        ft_frame_stats fs;
+        ft_error_stats es;
+        ft_pose p = path_pose(f);
+        frame(&p, &cam, &fs);
+        measure(&cam, &es);
+        brute_max[f] = es.max_px;
+        brute_mean[f] = es.mean_px;
+    }
+    ft_app_shutdown(&g_app);
+
+    static const double gammas[] = {0.5, 1.0, 2.0};
+    printf("error bound, ray casting on, %ux%u view rows, %d-frame flight "
+           "(max/mean px, cover mismatch, px ray cast; brute max/mean in brackets):\n",
+           GRID_COLS, GRID_ROWS, PATH_FRAMES);
+    for (size_t gi = 0; gi < sizeof gammas / sizeof gammas[0]; ++gi) {
+        const double gamma = gammas[gi];
+        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, gamma, 1};
+        app_init(&c);
+        double worst_over = -INFINITY;
+        uint32_t worst_cover = 0;
+        int held = 0;
+        for (int f = 0; f < PATH_FRAMES; ++f) {
+            ft_camera cam;
+            ft_frame_stats fs;
+            ft_error_stats es;
+            ft_pose p = path_pose(f);
+            frame(&p, &cam, &fs);
+            measure(&cam, &es);
+            const uint32_t cover = es.only_method_px + es.only_ref_px;
+            printf("  gamma %.1f f%d: max %.3f mean %.4f cover %u+%u rc %u achieved %.3f%s "
+                   "[%.3f/%.4f]\n",
+                   gamma, f, es.max_px, es.mean_px, es.only_method_px, es.only_ref_px, fs.tiles,
+                   fs.tau_achieved_px, fs.budget_hit ? " BUDGET" : "", brute_max[f],
+                   brute_mean[f]);
+            CHECK(es.nonfinite_px == 0u);
+            CHECK(es.terrain_px > 1000u);
+            const split sp = split_errors(&cam);
+            printf("    ray-cast pixels max %.3f px (worst at (%u, %u), %.0f m), mesh pixels max "
+                   "%.3f px\n", sp.rc_max, sp.rc_x, sp.rc_y, sp.rc_dist, sp.mesh_max);
+            if (fs.budget_hit) continue;
+            ++held;
+            if (es.max_px - gamma > worst_over) worst_over = es.max_px - gamma;
+            if (cover > worst_cover) worst_cover = cover;
+            CHECK(es.max_px <= gamma + TOL_PX);
+            CHECK(cover <= COVER_MAX_PX);
+            CHECK(fs.tau_achieved_px <= gamma);
+        }
+        printf("  gamma %.1f: %d of %d frames inside the budget; worst max - gamma %.3f px "
+               "(allowed %.2f); worst cover mismatch %u px (allowed %u)\n",
+               gamma, held, PATH_FRAMES, worst_over, TOL_PX, worst_cover, COVER_MAX_PX);
+        CHECK(held == PATH_FRAMES);
+        ft_app_shutdown(&g_app);
+    }
+}
+
+/* ---- 2. view-dependent rows against uniform rows ------------------------------ */
+
+static void test_distribution(const char *dem)
+{
+    static const uint32_t grids[][2] = {{200u, 800u}, {430u, 430u}};
+    for (size_t g = 0; g < sizeof grids / sizeof grids[0]; ++g) {
+        double mean[2][PATH_FRAMES], maxe[2][PATH_FRAMES], sum[2] = {0.0, 0.0};
+        for (int d = 0; d < 2; ++d) {
+            setup c = {"pgrid", "egl-gles3", dem, 60.0, grids[g][0], grids[g][1], d, 0, 1.0, 1};
+            app_init(&c);
+            for (int f = 0; f < PATH_FRAMES; ++f) {
+                ft_camera cam;
+                ft_frame_stats fs;
+                ft_error_stats es;
+                ft_pose p = path_pose(f);
+                frame(&p, &cam, &fs);
+                measure(&cam, &es);
+                CHECK(es.nonfinite_px == 0u);
+                CHECK(fs.tiles == 0u);
+                mean[d][f] = es.mean_px;
+                maxe[d][f] = es.max_px;
+                sum[d] += es.mean_px;
+            }
+            ft_app_shutdown(&g_app);
+        }
+        int better = 0;
+        printf("distribution %ux%u, ray casting off (mean/max px, uniform -> view):",
+               grids[g][0], grids[g][1]);
+        for (int f = 0; f < PATH_FRAMES; ++f) {
+            printf(" %.3f/%.2f->%.3f/%.2f", mean[0][f], maxe[0][f], mean[1][f], maxe[1][f]);
+            better += (mean[1][f] < mean[0][f]);
+        }
+        printf("\n  flight mean: uniform %.4f px, view %.4f px; view lower on %d of %d frames\n",
+               sum[0] / PATH_FRAMES, sum[1] / PATH_FRAMES, better, PATH_FRAMES);
+        CHECK(sum[1] < sum[0]);
+        CHECK(better >= PATH_FRAMES - 1);
+    }
+}
+
+/* ---- 3. sweep ----------------------------------------------------------------- */
+
+static void test_sweep(const char *dem)
+{
+    static const double fovs[] = {10.0, 60.0, 150.0};
+    static const double pitches[] = {-90.0, -60.0, -30.0, -10.0, -3.0, 0.0, 10.0, 60.0};
+    static const double clear_m[] = {10.0, 300.0, 3000.0, 50000.0};
+    uint32_t frames = 0, nonfinite = 0, absent = 0;
+    for (int rc = 0; rc <= 1; ++rc) {
+        for (size_t fi = 0; fi < sizeof fovs / sizeof fovs[0]; ++fi) {
+            setup c = {"pgrid", "egl-gles3", dem, fovs[fi], GRID_COLS, GRID_ROWS, 1, rc, 1.0, 1};
+            app_init(&c);
+            /* the ground under the eye, from a probe frame's camera */
+            ft_camera cam;
+            ft_frame_stats fs;
+            ft_pose probe = pose_of(42.45, 1.55, 5000.0, 30.0, -30.0, 0.0);
+            frame(&probe, &cam, &fs);
+            const double ground = ft_terrain_height_at(&g_app.terrain, cam.eye_m[0], cam.eye_m[1]);
+            uint32_t worst_cover = 0;
+            for (size_t pi = 0; pi < sizeof pitches / sizeof pitches[0]; ++pi) {
+                for (size_t hi = 0; hi < sizeof clear_m / sizeof clear_m[0]; ++hi) {
+                    ft_error_stats es;
+                    ft_pose p = pose_of(42.45, 1.55, ground + clear_m[hi], 30.0, pitches[pi],
+                                        (pi % 2) ? 10.0 : 0.0);
+                    frame(&p, &cam, &fs);
+                    measure(&cam, &es);
+                    ++frames;
+                    const uint32_t ref_hits = es.terrain_px - es.only_method_px + es.only_ref_px;
+                    /* the reported bound: never NaN; +inf is the documented "over
+                     * 256 px" without ray casting (src/pgrid.c, saturated code) */
+                    const int bad_bound = isnan(fs.tau_achieved_px) ||
+                                          (rc && !fs.budget_hit && !(fs.tau_achieved_px <= 1.0));
+                    if (es.nonfinite_px != 0u || bad_bound) {
+                        fprintf(stderr, "sweep rc %d fov %.0f pitch %.0f +%.0f m: %u non-finite, bound %g\n",
+                                rc, fovs[fi], pitches[pi], clear_m[hi], es.nonfinite_px,
+                                fs.tau_achieved_px);
+                        ++nonfinite;
+                    }
+                    if (ref_hits > 0u && es.terrain_px == 0u) {
+                        fprintf(stderr, "sweep rc %d fov %.0f pitch %.0f +%.0f m: reference has "
+                                "%u terrain px, the frame none\n", rc, fovs[fi], pitches[pi],
+                                clear_m[hi], ref_hits);
+                        ++absent;
+                    }
+                    const uint32_t cover = es.only_method_px + es.only_ref_px;
+                    if (cover > worst_cover) worst_cover = cover;
+                }
+            }
+            printf("sweep ray casting %d, fov %.0f: ground %.0f m, worst cover mismatch %u px\n",
+                   rc, fovs[fi], ground, worst_cover);
+            ft_app_shutdown(&g_app);
+        }
+    }
+    printf("sweep: %u frames (pitch -90..60, fov 10..150, 10 m..50 km above ground, ray casting "
+           "off/on): %u with non-finite positions, %u without terrain the reference sees\n",
+           frames, nonfinite, absent);
+    CHECK(nonfinite == 0u);
+    CHECK(absent == 0u);
+}
+
+/* ---- 4. image crack test -------------------------------------------------------- */
+
+static uint32_t clear_pixels(void)
+{
+    const uint8_t *p = g_app.renderer.rgba;
+    const size_t n = (size_t)W_PX * H_PX;
+    uint32_t c = 0;
+    for (size_t i = 0; i < n; ++i) {
+        c += (p[4u * i] == 255u && p[4u * i + 1u] == 0u && p[4u * i + 2u] == 255u);
+    }
+    return c;
+}
+
+static void test_cracks(const char *backend, const char *dem)
+{
+    /* views the terrain covers completely (as in test_bintree_gl) */
+    const ft_pose covered[] = {
+        pose_of(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
+        pose_of(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
+        pose_of(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
+        pose_of(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
+        pose_of(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
+    };
+    const int es2 = strcmp(backend, "egl-gles2") == 0;
+    static const uint32_t grids[][2] = {{150u, 600u}, {430u, 430u}};
+    uint32_t worst = 0, worst_pos = 0;
+    for (int rc = 0; rc <= 1; ++rc) {
+        for (size_t g = 0; g < sizeof grids / sizeof grids[0]; ++g) {
+            for (int d = 0; d <= 1; ++d) {
+                const double gamma = 1.0;
+                setup c = {"pgrid", backend, dem, 60.0, grids[g][0], grids[g][1], d, rc, gamma,
+                           !es2};
+                app_init(&c);
+                if (es2) CHECK(strstr(g_app.gpu.version, "OpenGL ES 2.0") != NULL);
+                g_app.renderer.clear_rgb[0] = 1.0f; /* magenta: never a terrain colour */
+                g_app.renderer.clear_rgb[1] = 0.0f;
+                g_app.renderer.clear_rgb[2] = 1.0f;
+                double bound_min = INFINITY, bound_max = 0.0;
+                uint32_t rc_px = 0;
+                for (size_t v = 0; v < sizeof covered / sizeof covered[0]; ++v) {
+                    ft_camera cam;
+                    ft_frame_stats fs;
+                    frame(&covered[v], &cam, &fs);
+                    const uint32_t n = clear_pixels();
+                    if (n > 0u) {
+                        fprintf(stderr, "%s rc %d %ux%u %s view %zu: %u clear-colour pixels\n",
+                                backend, rc, grids[g][0], grids[g][1], d ? "view" : "uniform", v,
+                                n);
+                    }
+                    if (n > worst) worst = n;
+                    CHECK(n == 0u);
+                    CHECK(fs.triangles > 0u);
+                    CHECK(isfinite(fs.tau_achieved_px) && fs.tau_achieved_px > 0.0);
+                    if (fs.tau_achieved_px < bound_min) bound_min = fs.tau_achieved_px;
+                    if (fs.tau_achieved_px > bound_max) bound_max = fs.tau_achieved_px;
+                    rc_px += fs.tiles;
+                    if (es2 || !rc) {
+                        /* no ray casting: nothing ray cast, the mesh's bound reported */
+                        CHECK(fs.tiles == 0u);
+                        CHECK(!fs.budget_hit);
+                    } else {
+                        CHECK(!fs.budget_hit);
+                        CHECK(fs.tau_achieved_px <= gamma);
+                    }
+                    if (!es2) {
+                        /* the position pass too: terrain at every pixel */
+                        ft_error_stats es;
+                        measure(&cam, &es);
+                        const uint32_t miss = W_PX * H_PX - es.terrain_px;
+                        if (miss > worst_pos) worst_pos = miss;
+                        CHECK(miss == 0u);
+                        CHECK(es.nonfinite_px == 0u);
+                    }
+                }
+                if (es2 && rc) {
+                    /* asked for ray casting, ran without: the bound is the mesh's */
+                    CHECK(!g_app.renderer.method.u.pgrid.ray_casting);
+                    CHECK(bound_max > gamma);
+                }
+                ft_camera cam;
+                ft_frame_stats fs;
+                const ft_pose sky = pose_of(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
+                frame(&sky, &cam, &fs);
+                CHECK(clear_pixels() > 1000u); /* the counter works */
+                printf("cracks %s ray casting %d %ux%u %s: no clear pixel in %zu covered views; "
+                       "reported bound %.3f..%.3f px; %u px ray cast\n",
+                       backend, rc, grids[g][0], grids[g][1], d ? "view" : "uniform",
+                       sizeof covered / sizeof covered[0], bound_min, bound_max, rc_px);
+                ft_app_shutdown(&g_app);
+            }
+        }
+    }
+    printf("image crack test (%s): most clear-colour pixels in a covered view %u, most "
+           "position-pass sky pixels %u\n", backend, worst, worst_pos);
+}
+
+int main(int argc, char **argv)
+{
+    REQUIRE(argc >= 3);
+    const char *mode = argv[1], *dem = argv[2];
+    FILE *probe = fopen(dem, "rb");
+    if (probe == NULL) {
+        printf("%s missing: skipped (needs ../shared/data)\n", dem);
+        return FT_TEST_SKIP;
+    }
+    fclose(probe);
+    if (strcmp(mode, "es2") == 0) {
+        test_cracks("egl-gles2", dem);
+        return ft_test_result("test_pgrid_gl es2");
+    }
+    const char *only = getenv("PGRID_ONLY"); /* a single part, for diagnosis */
+    if (only == NULL || strcmp(only, "bound") == 0) test_error_bound(dem);
+    if (only == NULL || strcmp(only, "dist") == 0) test_distribution(dem);
+    if (only == NULL || strcmp(only, "sweep") == 0) test_sweep(dem);
+    if (only == NULL || strcmp(only, "cracks") == 0) test_cracks("egl-gles3", dem);
+    return ft_test_result("test_pgrid_gl es3");
+}

@@ -445,8 +445,18 @@ int plot_chart_draw(plot_image *im, const plot_chart *ch, plot_axis *xa_out, plo
                            (int)lround(plot_axis_map(&ya, fy[idx[k]])), 2, se->colour);
         }
     }
+    /* markers: series with more points first, so a lone baseline point stays visible */
+    int order[PLOT_SERIES_MAX];
     for (int s = 0; s < ch->series_count; ++s) {
-        const plot_series *se = &ch->series[s];
+        int j = s;
+        while (j > 0 && ch->series[order[j - 1]].n < ch->series[s].n) {
+            order[j] = order[j - 1];
+            --j;
+        }
+        order[j] = s;
+    }
+    for (int o = 0; o < ch->series_count; ++o) {
+        const plot_series *se = &ch->series[order[o]];
         for (size_t i = 0; i < se->n; ++i) {
             if (!point_ok(ch, se->x[i], se->y[i])) continue;
             int px = (int)lround(plot_axis_map(&xa, se->x[i]));

@@ -41,7 +41,7 @@ static void print_render_help(void)
            "scene (synthetic terrain, method brute, EGL GLES 3) to fixterrain.png.\n\n"
            "  --scene FILE        scene file (INI; see config/*.ini); default: embedded\n"
            "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
-           "  --method NAME       terrain method: brute | bintree (as built)\n"
+           "  --method NAME       terrain method: brute | bintree | pgm | pgrid (as built)\n"
            "  --backend NAME      egl-gles3 | egl-gles2 | osmesa\n"
            "  --display NAME      none (offscreen) | x11 (a window; EGL backends) |\n"
            "                      kms[:/dev/dri/cardN] (full screen on DRM/KMS, page flips;\n"

@@ -181,14 +181,23 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
     memset(s, 0, sizeof *s);
     memcpy(s->eye_m, c->eye_m, sizeof s->eye_m);
     s->base_z_m = (double)t->min_height_m;
+    /* Under the base plane only rising rays can meet the terrain (it is all
+     * above the plane), and a ray rising at elevation e meets the plane where
+     * the mirrored ray falling at depression e does: mirror the eye and the
+     * view through the plane. */
     const double above = c->eye_m[2] - s->base_z_m;
-    s->lift_m = (above < FT_PGM_MIN_HEIGHT_M) ? FT_PGM_MIN_HEIGHT_M - above : 0.0;
-    const double h = above + s->lift_m;
+    s->mirrored = above < 0.0;
+    double h = s->mirrored ? -above : above;
+    h = (h > FT_PGM_MIN_HEIGHT_M) ? h : FT_PGM_MIN_HEIGHT_M;
     s->height_m = h;
+    s->lift_m = s->base_z_m + h - c->eye_m[2];
+    const double zs = s->mirrored ? -1.0 : 1.0;
+    const double f[3] = {c->forward[0], c->forward[1], zs * c->forward[2]};
+    const double view_up[3] = {c->up[0], c->up[1], zs * c->up[2]};
+    const double view_right[3] = {c->right[0], c->right[1], zs * c->right[2]};
 
     /* Heading: the forward's horizontal direction; looking straight down
      * (or up) the image's up vector says where the heading is. */
-    const double *f = c->forward;
     double hd[2];
     const double fxy = hypot(f[0], f[1]);
     if (fxy > 1e-9) {
@@ -196,9 +205,9 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
         hd[1] = f[1] / fxy;
     } else {
         const double sg = (f[2] < 0.0) ? 1.0 : -1.0;
-        const double uxy = hypot(c->up[0], c->up[1]);
-        hd[0] = sg * c->up[0] / uxy;
-        hd[1] = sg * c->up[1] / uxy;
+        const double uxy = hypot(view_up[0], view_up[1]);
+        hd[0] = sg * view_up[0] / uxy;
+        hd[1] = sg * view_up[1] / uxy;
     }
     const double r0[3] = {hd[1], -hd[0], 0.0};
     const double dep_v = asin(clampd(-f[2], -1.0, 1.0));
@@ -206,7 +215,7 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
     /* roll: the view's right against the roll-free right, about the forward */
     const double up_nr[3] = {r0[1] * f[2] - r0[2] * f[1], r0[2] * f[0] - r0[0] * f[2],
                              r0[0] * f[1] - r0[1] * f[0]};
-    const double cr = dot3(c->right, r0), sr = -dot3(c->right, up_nr);
+    const double cr = dot3(view_right, r0), sr = -dot3(view_right, up_nr);
     s->roll_rad = atan2(sr, cr);
     const double ty = tan(0.5 * c->fovy_rad);
     const double tx = ty * (double)c->width_px / (double)c->height_px;
@@ -252,10 +261,12 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
     /* -d_z is smallest on the top edge: -d_z = sin(dep) - y1 cos(dep) > 0 */
     s->min_neg_dz = 0.5 * (sd - y1 * cd);
 
-    /* viewport extension from the rectangle before it */
+    /* viewport extension from the rectangle before it (none when mirrored:
+     * seen from below, terrain nearer than the steepest ray's plane point is
+     * above that ray, so out of the view) */
     const double beta = dep + a;
     double gamma = 0.0;
-    if (0.5 * FT_PGM_PI - beta > 1e-9) {
+    if (0.5 * FT_PGM_PI - beta > 1e-9 && !s->mirrored) {
         const double xc0 = x_cap(dep, s->eps_rad, -s->half_y_tan, y1);
         const double txp = (tx_cov < xc0) ? tx_cov : xc0;
         s->near_ground_m = h / tan(beta);

@@ -20,10 +20,15 @@
  * terrain point is on or above it and rays meet it as close to the surface
  * as a plane can (z = 0 under a high plateau would move every sample far
  * beyond the surface point the ray sees). The sampling eye is the viewing
- * eye raised, if needed, to FT_PGM_MIN_HEIGHT_M above the base plane: a
- * camera under the terrain, below z = 0 or below the base plane still gets
- * a valid grid (the mesh is the same terrain surface; only where its
- * samples fall changes), and h > 0 always.
+ * eye, at least FT_PGM_MIN_HEIGHT_M above the base plane (h > 0 always). A
+ * camera under the terrain but above the plane needs nothing special (the
+ * mesh is the same surface, seen from below; no face culling). A camera
+ * below the plane (below z = 0, or under the terrain's lowest point) can
+ * only see terrain along rising rays, and a ray rising at elevation e meets
+ * the plane where its mirror image falling at depression e does: the eye and
+ * the view are mirrored through the plane (`mirrored`), and everything below
+ * works on the mirrored view; there is no viewport extension then (terrain
+ * nearer than the steepest ray's plane point is above that ray).
  *
  * Sampling camera (no roll): heading = the view's heading (at nadir/zenith
  * from the view's up vector), depression (pitch down)
@@ -45,31 +50,34 @@
  * than eps; y from -tan(a + gamma) (bottom, extended) to tan(min(a, dep_s -
  * eps)) (top).
  *
- * Viewport extension below the sampling camera: the bottom centre ray (depression
- * beta = dep_s + a) meets the plane at distance r = h / tan(beta); a peak of
- * height m (above the base plane) nearer than r can reach into the view
- * without being sampled. The bottom edge is lowered by gamma,
+ * Viewport extension below the sampling camera: a peak of height m (above
+ * the base plane) nearer than the bottom rows' ground points can reach into
+ * the view without being sampled. The issue's rule: with r the base-plane
+ * distance of the nearest view ray (depression beta, tan beta = h / r), lower
+ * the bottom edge by gamma,
  *     tan(gamma) = r h m / (h^3 + r^2 (h - m))
  * (gamma = 90 deg - beta when m >= h makes the denominator <= 0): the ray at
  * beta + gamma meets the plane at x = (h - m) r / h, and a peak of height m
- * nearer than x stays below the view's bottom edge. m is the highest terrain
- * (ft_pgm_max_height: exact near the eye, else the max pyramid's bound) over
- * the wedge between the eye's foot and the bottom edge's ground points, in
- * FT_PGM_GAMMA_BANDS + 1 distance bands [x1 / 2, x1]
- * (x1 = rc, rc / 2, ..., the last band [0, x1]), each cut into
- * FT_PGM_GAMMA_PIECES pieces by distance, each piece one box (a thin wedge
- * running diagonally keeps thin boxes). The requirement is taken
- * per bottom column (left corner, centre, right corner: a corner's ray is
- * flatter than the centre's and needs more): per band, the formula with the
- * column's r_c, beta_c and the piece's m gives the ground distance the bottom
- * row must reach, x = h / tan(beta_c + gamma), but never nearer than the
- * piece's near edge (nearer ground holds none of its peaks); the bottom edge
- * is lowered until every column reaches its nearest such x (bisection along
- * the column), and gamma is what that adds to the half angle. For the centre
- * column and one band [0, r] this is the formula exactly; the bands keep a
- * high peak far away from dragging the edge to the nadir. The
- * bottom edge stops at FT_PGM_HALF_ANGLE_MAX_RAD below the axis, or at the
- * nadir if that is lower (a nearly level sampling camera close to a
+ * nearer than x stays under the view's bottom edge. Applied here:
+ *  - per bottom column (left corner, centre, right corner of the sampling
+ *    rectangle's bottom edge, whose ground points span the wedge in front of
+ *    the eye): a corner's ray is flatter than the centre's and needs more;
+ *  - r and beta are those of the VIEW's bottom edge in that column's azimuth
+ *    (the same ray unless the sampling camera is pitched below the view,
+ *    whose lower bottom edge would ask for peaks the view never shows);
+ *  - m per distance piece: FT_PGM_GAMMA_BANDS + 1 bands [x1 / 2, x1] (x1 =
+ *    rc, rc / 2, ...; the last [0, x1]) of FT_PGM_GAMMA_PIECES pieces each, m
+ *    = the highest terrain in the piece's box (ft_pgm_max_height: exact near
+ *    the eye, else the max pyramid's bound); the piece asks for x, but never
+ *    nearer than its own near edge (nearer ground holds none of its peaks);
+ *  - the bottom edge is lowered until every column's ground point is as near
+ *    as its nearest such x (bisection along the column), and gamma is what
+ *    that adds to the half angle.
+ * For the centre column, an unpitched sampling camera and one piece [0, r]
+ * this is the formula exactly; the pieces keep a high peak far away (or a
+ * slope beside a thin, diagonal wedge) from dragging the edge to the nadir.
+ * The bottom edge stops at FT_PGM_HALF_ANGLE_MAX_RAD below the axis, or at
+ * the nadir if that is lower (a nearly level sampling camera close to a
  * hillside needs the ground right under the eye).
  *
  * Level of detail per vertex: r = the ground distance (in grid cells) to the
@@ -111,7 +119,8 @@
 typedef struct ft_pgm_sampling {
     double eye_m[3];          /* viewing eye (world) */
     double base_z_m;          /* base plane height (terrain minimum) */
-    double lift_m;            /* sampling eye = viewing eye + (0, 0, lift_m), lift >= 0 */
+    double lift_m;            /* sampling eye = viewing eye + (0, 0, lift_m) */
+    int mirrored;             /* eye below the base plane: view mirrored through it */
     double height_m;          /* h: sampling eye above the base plane, >= FT_PGM_MIN_HEIGHT_M */
     double forward[3], right[3], up[3]; /* sampling frame (world, unit, right horizontal) */
     double view_depression_rad; /* dep_v: the view's forward below the horizon */
@@ -121,8 +130,8 @@ typedef struct ft_pgm_sampling {
     double eps_rad;             /* top edge depression bound */
     double depression_rad;      /* dep_s */
     int pitched_down;           /* dep_s > dep_v (the view reaches up to or past the horizon) */
-    double near_ground_m;       /* r: bottom centre ray's ground distance (0: past nadir) */
-    double missed_max_m;        /* m of the band that set gamma (above the base plane) */
+    double near_ground_m;  /* sampling bottom centre ray's ground distance (0: past nadir) */
+    double missed_max_m;   /* highest m (above base) of a piece that asked for more */
     double gamma_rad;           /* viewport extension */
     double rect[4];             /* x0, y0, x1, y1 (tan units, sampling image plane) */
     double min_neg_dz;          /* floor for -d_z (unit: the ray of a rect point) */

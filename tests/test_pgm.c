@@ -403,6 +403,9 @@ static void test_random_views(void)
         for (int k = 0; k < 64; ++k) {
             double d[3];
             ft_camera_pixel_ray(&c, urand() * w, urand() * h, d);
+            if (s.mirrored) {
+                d[2] = -d[2]; /* under the plane: the mirrored ray is sampled */
+            }
             if (-d[2] < sin(s.eps_rad) * (1.0 + 1e-9)) continue;
             double x, y, f;
             project(&s, d, &x, &y, &f);
@@ -453,24 +456,57 @@ static void test_random_views(void)
     free_terrain(&t);
 }
 
-/* Camera under the terrain and under the base plane: lifted sampling eye. */
+/* Camera under the terrain: nothing special above the base plane; below
+ * it the eye and the view are mirrored through the plane (a rising view ray
+ * meets the plane where the mirrored falling ray does). */
 static void test_below(void)
 {
     ft_terrain t;
     make_terrain(&t, 201, 201, 30.0, hills);
+    const double base = t.min_height_m;
     ft_pgm_sampling s;
-    ft_camera c = camera(3000.0, 3000.0, t.min_height_m - 250.0, 20.0, 10.0, 0.0, 60.0, 320, 240);
-    ft_pgm_setup(&s, &c, &t);
-    CHECK_NEAR(s.lift_m, 250.0 + FT_PGM_MIN_HEIGHT_M, 1e-6);
-    CHECK_NEAR(s.height_m, FT_PGM_MIN_HEIGHT_M, 1e-6);
     ft_pgm_vertex v;
-    ft_pgm_vertex_at(&s, &t, 50, 50, 25, 25, &v);
-    CHECK(isfinite(v.pos_rel_eye_m[2]) && v.pos_rel_eye_m[2] > 250.0); /* terrain above */
-    c = camera(3000.0, 3000.0, -1000.0, 20.0, -90.0, 0.0, 60.0, 320, 240); /* below z = 0 */
+    /* inside a hill, above the plane */
+    const double ground = ft_pgm_level_height(&t, 0, 100.0, 100.0, NULL);
+    ft_camera c = camera(3000.0, 3000.0, ground - 40.0, 20.0, 10.0, 0.0, 60.0, 320, 240);
+    REQUIRE(ground - 40.0 > base + 1.0);
     ft_pgm_setup(&s, &c, &t);
-    CHECK(s.lift_m > 1000.0 && s.height_m >= FT_PGM_MIN_HEIGHT_M - 1e-9);
-    ft_pgm_vertex_at(&s, &t, 50, 50, 0, 0, &v);
-    CHECK(isfinite(v.pos_rel_eye_m[0]) && isfinite(v.pos_rel_eye_m[1]));
+    CHECK(!s.mirrored);
+    CHECK_NEAR(s.lift_m, 0.0, 1e-9);
+    CHECK_NEAR(s.height_m, ground - 40.0 - base, 1e-9);
+    /* 250 m under the plane, looking up 60 deg, fov 40: the mirrored view
+     * looks down 60 deg (more than 20 + eps), so it is the sampling camera */
+    c = camera(3000.0, 3000.0, base - 250.0, 20.0, 60.0, 0.0, 40.0, 320, 240);
+    ft_pgm_setup(&s, &c, &t);
+    CHECK(s.mirrored);
+    CHECK_NEAR(s.height_m, 250.0, 1e-9);
+    CHECK_NEAR(s.lift_m, 500.0, 1e-9);
+    CHECK(!s.pitched_down);
+    CHECK_NEAR(s.depression_rad, 60.0 * DEG, 1e-12);
+    CHECK_NEAR(s.gamma_rad, 0.0, 0.0);
+    ft_pgm_vertex_at(&s, &t, 51, 51, 25, 25, &v); /* the centre: the view's axis */
+    {
+        double d[3];
+        ft_camera_pixel_ray(&c, 160.0, 120.0, d);
+        const double k = 250.0 / d[2]; /* the rising ray meets the plane */
+        CHECK_NEAR(v.ground_rel_m[0], k * d[0], 1e-6);
+        CHECK_NEAR(v.ground_rel_m[1], k * d[1], 1e-6);
+    }
+    CHECK(isfinite(v.pos_rel_eye_m[2]) && v.pos_rel_eye_m[2] >= 250.0 - 1e-6); /* terrain above */
+    /* far below z = 0, straight down: mirrored, every vertex finite */
+    c = camera(3000.0, 3000.0, -1000.0, 20.0, -90.0, 0.0, 60.0, 320, 240);
+    ft_pgm_setup(&s, &c, &t);
+    CHECK(s.mirrored && s.height_m >= 1000.0);
+    for (uint32_t k = 0; k < 50u * 50u; k += 7u) {
+        ft_pgm_vertex_at(&s, &t, 50, 50, k % 50u, k / 50u, &v);
+        CHECK(isfinite(v.pos_rel_eye_m[0]) && isfinite(v.pos_rel_eye_m[1]) &&
+              isfinite(v.pos_rel_eye_m[2]));
+    }
+    /* just under the plane (0.3 m): at least FT_PGM_MIN_HEIGHT_M */
+    c = camera(3000.0, 3000.0, base - 0.3, 20.0, 10.0, 0.0, 60.0, 320, 240);
+    ft_pgm_setup(&s, &c, &t);
+    CHECK(s.mirrored);
+    CHECK_NEAR(s.height_m, FT_PGM_MIN_HEIGHT_M, 1e-9);
     free_terrain(&t);
 }
 

@@ -10,7 +10,8 @@
  *    200 x 800 and 430 x 430, float and packed texels.
  * 2. Sweep: view pitch -90..+90 deg, fov 1..170 deg, camera 1 m .. 100 km
  *    above the ground under it, several headings and rolls, both grid
- *    shapes. Per view: no captured vertex is NaN or Inf, the position pass
+ *    shapes; and a camera 50 m under the ground and at z = -500 m (under the
+ *    base plane: the mirrored sampling camera). Per view: no captured vertex is NaN or Inf, the position pass
  *    has no non-finite pixel, and whenever the reference ray caster has
  *    terrain in view the frame has terrain too (terrain present). The
  *    fraction of the reference's terrain pixels the frame covers is printed
@@ -294,6 +295,50 @@ static void ref_coverage(const ft_camera *cam, uint32_t *ref_px, uint32_t *cover
     }
 }
 
+typedef struct sweep_totals {
+    uint64_t bad_vertices, bad_px;
+    uint32_t views, with_terrain, missing, below_90;
+    double cov_sum, cov_min;
+} sweep_totals;
+
+/* One sweep view: frame, capture (ES 3), reference coverage, metric (ES 3). */
+static void sweep_view(const ft_pose *p, double fov_deg, int es3, float *cap, size_t n,
+                       sweep_totals *tot, const char *what)
+{
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_error err;
+    camera_for(p, fov_deg, &cam);
+    draw(&cam, &fs);
+    if (es3) {
+        capture(cap);
+        const uint64_t b = count_nonfinite(cap, n);
+        if (b > 0u && tot->bad_vertices == 0u) {
+            fprintf(stderr, "non-finite vertices: %s\n", what);
+        }
+        tot->bad_vertices += b;
+    }
+    read_rgba();
+    uint32_t ref_px, covered;
+    ref_coverage(&cam, &ref_px, &covered);
+    if (es3) {
+        ft_error_stats es;
+        REQUIRE(ft_app_measure(&g_app, &cam, &es, &err) == FT_OK);
+        tot->bad_px += es.nonfinite_px;
+    }
+    ++tot->views;
+    if (ref_px == 0u) return;
+    ++tot->with_terrain;
+    const double cov = (double)covered / ref_px;
+    tot->cov_sum += cov;
+    tot->cov_min = (cov < tot->cov_min) ? cov : tot->cov_min;
+    tot->below_90 += (cov < 0.9);
+    if (covered == 0u) {
+        fprintf(stderr, "no terrain drawn, %u reference pixels: %s\n", ref_px, what);
+        ++tot->missing;
+    }
+}
+
 static void test_sweep(const char *backend, const char *dem)
 {
     static const double pitches[] = {-90.0, -75.0, -45.0, -20.0, -10.0, -5.0, -1.0,
@@ -318,9 +363,10 @@ static void test_sweep(const char *backend, const char *dem)
         const size_t n = (size_t)grids[g].cols * grids[g].rows;
         float *cap = es3 ? malloc(n * FT_CAPTURE_FLOATS_PER_VERTEX * sizeof(float)) : NULL;
         REQUIRE(!es3 || cap != NULL);
-        uint64_t bad_vertices = 0, bad_px = 0;
-        uint32_t views = 0, with_terrain = 0, missing = 0, below_90 = 0;
-        double cov_sum = 0.0, cov_min = 1.0;
+        sweep_totals tot;
+        memset(&tot, 0, sizeof tot);
+        tot.cov_min = 1.0;
+        char what[160];
         int k = 0;
         for (size_t pi = 0; pi < sizeof pitches / sizeof pitches[0]; ++pi) {
             for (size_t fi = 0; fi < sizeof fovs / sizeof fovs[0]; ++fi) {
@@ -331,43 +377,26 @@ static void test_sweep(const char *backend, const char *dem)
                     const double roll = (k % 4 == 0) ? 0.0 : fmod(k * 29.0, 120.0) - 60.0;
                     const ft_pose p = pose_of(lat, lon, ground_at(lat, lon) + heights[hi],
                                               heading, pitches[pi], roll);
-                    ft_camera cam;
-                    ft_frame_stats fs;
-                    camera_for(&p, fovs[fi], &cam);
-                    draw(&cam, &fs);
-                    if (es3) {
-                        capture(cap);
-                        const uint64_t b = count_nonfinite(cap, n);
-                        if (b > 0u && bad_vertices == 0u) {
-                            fprintf(stderr, "non-finite vertices: pitch %.0f fov %.0f height "
-                                    "%.0f m\n", pitches[pi], fovs[fi], heights[hi]);
-                        }
-                        bad_vertices += b;
-                    }
-                    read_rgba();
-                    uint32_t ref_px, covered;
-                    ref_coverage(&cam, &ref_px, &covered);
-                    if (es3) {
-                        ft_error_stats es;
-                        REQUIRE(ft_app_measure(&g_app, &cam, &es, &err) == FT_OK);
-                        bad_px += es.nonfinite_px;
-                    }
-                    ++views;
-                    if (ref_px == 0u) continue;
-                    ++with_terrain;
-                    const double cov = (double)covered / ref_px;
-                    cov_sum += cov;
-                    cov_min = (cov < cov_min) ? cov : cov_min;
-                    below_90 += (cov < 0.9);
-                    if (covered == 0u) {
-                        fprintf(stderr, "no terrain drawn, %u reference pixels: pitch %.0f fov "
-                                "%.0f height %.0f m roll %.0f\n", ref_px, pitches[pi],
-                                fovs[fi], heights[hi], roll);
-                        ++missing;
-                    }
+                    (void)snprintf(what, sizeof what, "pitch %.0f fov %.0f height %.0f m roll %.0f",
+                                   pitches[pi], fovs[fi], heights[hi], roll);
+                    sweep_view(&p, fovs[fi], es3, cap, n, &tot, what);
                 }
             }
         }
+        /* the camera under the terrain (50 m below the ground under it) and
+         * below z = 0 (under the base plane: the sampling eye is lifted) */
+        for (int u = 0; u < 8; ++u) {
+            const double lat = 42.3 + 0.05 * u, lon = 1.3 + 0.04 * u;
+            const double alt = (u < 4) ? ground_at(lat, lon) - 50.0 : -500.0;
+            const ft_pose p = pose_of(lat, lon, alt, 40.0 * u, -45.0 + 30.0 * (u % 4), 0.0);
+            (void)snprintf(what, sizeof what, "eye %s, pitch %.0f",
+                           (u < 4) ? "50 m under the ground" : "at z = -500 m", p.pitch_deg);
+            sweep_view(&p, 60.0, es3, cap, n, &tot, what);
+        }
+        const uint64_t bad_vertices = tot.bad_vertices, bad_px = tot.bad_px;
+        const uint32_t views = tot.views, with_terrain = tot.with_terrain;
+        const uint32_t missing = tot.missing, below_90 = tot.below_90;
+        const double cov_sum = tot.cov_sum, cov_min = tot.cov_min;
         char finite[96] = "vertices and pixels not captured on ES 2";
         if (es3) {
             (void)snprintf(finite, sizeof finite, "%llu non-finite vertices, %llu non-finite pixels",

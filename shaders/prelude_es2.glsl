@@ -5,3 +5,6 @@
 #define FT_OUT_VS varying
 #define FT_IN_FS varying
 precision highp float;
+/* Samplers default to lowp in the vertex stage; Mesa then returns float
+ * heights at half precision (2059 m read back as 2058 m). */
+precision highp sampler2D;

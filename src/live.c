@@ -90,6 +90,12 @@ static ft_status drain_can(ft_live *lv, int port, int active, ft_pose_feed *feed
             if (r->t_first_rx_ns == 0u) r->t_first_rx_ns = t;
             if (active) {
                 ft_pose_feed_frame(feed, &lv->batch[i]);
+            } else {
+                /* keep the standby source's newest frames: a failover
+                 * feeds them at once instead of waiting a frame */
+                lv->hold[port][lv->hold_next[port]] = lv->batch[i];
+                lv->hold_next[port] = (lv->hold_next[port] + 1u) % FT_LIVE_HOLD;
+                if (lv->hold_count[port] < FT_LIVE_HOLD) lv->hold_count[port] += 1u;
             }
         }
         r->can_frames[port] += got;
@@ -99,6 +105,17 @@ static ft_status drain_can(ft_live *lv, int port, int active, ft_pose_feed *feed
     }
     r->can_dropped[port] = lv->can[port].rx_dropped;
     return FT_OK;
+}
+
+/* Feeds the frames held for a standby port, oldest first, and empties it. */
+static void feed_held(ft_live *lv, int port, ft_pose_feed *feed)
+{
+    const uint32_t n = lv->hold_count[port];
+    const uint32_t first = (lv->hold_next[port] + FT_LIVE_HOLD - n) % FT_LIVE_HOLD;
+    for (uint32_t i = 0; i < n; ++i) {
+        ft_pose_feed_frame(feed, &lv->hold[port][(first + i) % FT_LIVE_HOLD]);
+    }
+    lv->hold_count[port] = 0u;
 }
 
 static ft_status poll_gpio(ft_live *lv, uint64_t now_ns, ft_live_result *r, ft_error *err)
@@ -187,13 +204,18 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         uint64_t now = ft_plat_monotonic_ns();
         const uint64_t t_poll0 = now;
         st = poll_gpio(lv, now, r, err);
+        for (int p = 0; p < 2 && st == FT_OK; ++p) {
+            if (lv->can_open[p]) {
+                st = drain_can(lv, p, p == source, feed, r, err);
+            }
+        }
         if (st != FT_OK) {
             break;
         }
         /* source: the backup on request, or while the primary has been
-         * silent for can.failover_ms (receive times of the frames drained so
-         * far); decided before this frame's drain so that the frames waiting
-         * on the new source feed this very frame */
+         * silent for can.failover_ms and the backup has not; on a switch the
+         * new source's held frames feed this very frame */
+        now = ft_plat_monotonic_ns();
         int want = 0;
         if (lv->can_open[1]) {
             const int primary_silent = now > lv->last_rx_ns[0] + failover_ns;
@@ -203,14 +225,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         if (want != source) {
             source = want;
             r->source_switches += 1u;
-        }
-        for (int p = 0; p < 2 && st == FT_OK; ++p) {
-            if (lv->can_open[p]) {
-                st = drain_can(lv, p, p == source, feed, r, err);
-            }
-        }
-        if (st != FT_OK) {
-            break;
+            feed_held(lv, source, feed);
         }
         ft_pose_view v;
         now = ft_plat_monotonic_ns();

@@ -47,6 +47,7 @@
 #define FT_LIVE_CAN_BATCHES_MAX 64u /* calls per frame and port: 4096 frames */
 #define FT_LIVE_TEST_REASON "ANNUNCIATION TEST"
 #define FT_LIVE_JOB_COST_NS 200000u /* declared cost of one pose-record write */
+#define FT_LIVE_HOLD 128u /* newest frames kept per standby port (~0.25 s of CANaerospace) */
 
 typedef struct ft_live_desc {
     const char *poses_path;  /* NULL: no pose record */
@@ -84,6 +85,8 @@ typedef struct ft_live {
     ft_debounce deb;
     ft_can_frame batch[FT_LIVE_CAN_BATCH];
     ft_jobs jobs;
+    ft_can_frame hold[2][FT_LIVE_HOLD]; /* standby port's newest frames */
+    uint32_t hold_next[2], hold_count[2];
     ft_gpio_edge edges[FT_GPIO_EVENTS_MAX];
 } ft_live;
 

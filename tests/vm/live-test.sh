@@ -82,17 +82,17 @@ awk -v a="$alive_s" -v c="$changes" -v d="$dead_s" -v dc="$dead_changes" -v p="$
   'BEGIN { rate = c / a; want = 1000 / p; exit !(rate > 0.8 * want && rate < 1.2 * want && dc == 0 && d >= 0.5) }' \
   || fail "heartbeat line: not one change per frame while running, or changes after exit"
 # phase 2: the primary stalls for 1 s and the backup does not. The source
-# line accounts for 2 switches; failover and failback for 2 more. After the
-# stall's first annunciated frame, a frame drawn from the backup without the
-# annunciation shows the backup bridged it (how many frames that takes
-# depends on the emulated VM's scheduling of the two canplayers).
+# line accounts for 2 switches; failover and failback for 2 more. With the
+# standby port's newest frames fed at the switch, the stall shows at most the
+# frames between the attitude timeout (100 ms) and the failover (200 ms):
+# <= 2 annunciated frames while the logs play (5 without a backup).
 switches=$(sed -n 's/.*"source_switches": \([0-9]*\).*/\1/p' "$out/live2.json")
 backup=$(sed -n 's/.*"frames_backup": \([0-9]*\).*/\1/p' "$out/live2.json")
 misses2=$(sed -n 's/.*"deadline_misses": \([0-9]*\).*/\1/p' "$out/live2.json")
-bridged=$(awk -F, 'NR > 1 { if ($9 == 0) { if (ann_after_good && $13 == 1) n++; good = 1 } else if (good) ann_after_good = 1 }
-                   END { print n + 0 }' "$out/live2.csv")
-echo "live-test: failover: $switches source switches, $backup frames from the backup, $bridged good frames from the backup after the stall began, $misses2 deadline misses"
+late_ann=$(awk -F, 'NR > 1 { if ($9 == 0) { if (good) n += pending; pending = 0; good = 1 } else if (good) pending++ }
+                    END { print n + 0 }' "$out/live2.csv")
+echo "live-test: failover: $switches source switches, $backup frames from the backup, $late_ann annunciated frames while data flowed, $misses2 deadline misses"
 [ "$switches" -ge 4 ] || fail "expected >= 4 source switches (source line on/off, failover, failback)"
-[ "$bridged" -ge 1 ] || fail "the backup never bridged the primary's stall"
+[ "$late_ann" -le 2 ] || fail "the backup did not bridge the primary's stall ($late_ann annunciated frames)"
 [ "$misses2" -eq 0 ] || fail "phase 2: $misses2 deadline misses"
 echo "live-test: ok"

@@ -390,10 +390,13 @@ static int cmd_render(int argc, char **argv)
         printf("frame: %llu triangles in %u draws, %.2f ms (first frame; median of later "
                "frames %.2f ms)\n",
                (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median);
-        if (st.tiles > 0u) {
+        if (st.tiles > 0u && scene.method == FT_METHOD_BINTREE) {
             printf("bintree: %u tiles, error bound %.3f px%s, selection %.3f ms\n", st.tiles,
                    st.tau_achieved_px, st.budget_hit ? " (tile budget hit: tau raised)" : "",
                    st.select_ms);
+        } else if (scene.method == FT_METHOD_PGRID) {
+            printf("pgrid: %u pixels ray cast, error bound %.3f px%s\n", st.tiles,
+                   st.tau_achieved_px, st.budget_hit ? " (ray-casting budget hit)" : "");
         }
         if (FT_WITH_PNG) {
             printf("wrote %s\n", out_path);

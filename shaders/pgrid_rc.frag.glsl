@@ -62,6 +62,17 @@ float hs(vec2 ij)
     return ft_decode(texelFetch(u_heights, q, 0), u_pack);
 }
 
+/* bilinear height at grid point g (clamped into the grid) */
+float hbil(vec2 g)
+{
+    vec2 gc = clamp(g, vec2(0.0), u_grid_size - 1.0);
+    vec2 ij = min(floor(gc), max(u_grid_size - 2.0, vec2(0.0)));
+    vec2 f = gc - ij;
+    float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
+    float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
+    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+}
+
 /* max of level L texel (i, j) (L >= 0) */
 float texmax(float level, vec2 ij)
 {
@@ -87,7 +98,7 @@ float texmax(float level, vec2 ij)
  * the patch is never extrapolated out to the eye: the coefficients stay of
  * the order of the cell's heights and float keeps millimetres. A sign change
  * the closed form loses to round-off is refined by bisection. */
-bool solve_cell(vec2 ij, vec3 o, vec3 d, float ta, float tb, out float th)
+bool solve_cell(vec2 ij, vec3 o, vec3 d, float ta, float tb, bool entry_hit, out float th)
 {
     float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
     float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
@@ -103,11 +114,14 @@ bool solve_cell(vec2 ij, vec3 o, vec3 d, float ta, float tb, out float th)
     float fa = C;
     float fb = (A * len + B) * len + C;
     float best = 1e30;
-    if (fa <= 0.0) {
+    if (entry_hit && fa <= 0.0) {
         /* already under the (continuous) surface where the ray enters the
          * cell: the crossing was at the entry, within the round-off of the
          * previous cell's solve. Without this the ray would run on under
-         * the ground (a hole, or a hit on a later, farther surface). */
+         * the ground (a hole, or a hit on a later, farther surface). Not
+         * for a ray that starts under the surface (an eye under the
+         * terrain): that one looks for its crossing from below, as the
+         * reference does. */
         th = ta;
         return true;
     }
@@ -196,6 +210,11 @@ void main()
     float top = u_pgrid_mm_levels - 1.0;
     bool hit = false;
     float th = 0.0;
+    bool entry_hit = true; /* false: the ray starts under the surface */
+    if (t0 <= t1) {
+        vec3 p0 = o + t0 * d;
+        entry_hit = p0.z >= hbil(p0.xy);
+    }
     if (t0 <= t1) {
         float t = t0;
         float level = top;
@@ -229,7 +248,7 @@ void main()
                 continue;
             }
             float tt;
-            if (solve_cell(c, o, d, t, te, tt)) {
+            if (solve_cell(c, o, d, t, te, entry_hit, tt)) {
                 th = tt;
                 hit = true;
                 break;

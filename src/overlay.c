@@ -3,9 +3,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "shaders.h"
+#include "renderer.h" /* ft_renderer_link_program: the one shader compile/link path */
 
-#define FT_OVERLAY_LOG_MAX 1024
 #define FT_OVERLAY_PAD_GLYPH_PX 2u /* box padding around the text, in glyph pixels */
 
 /* ---- layout (CPU only) ------------------------------------------------------ */
@@ -181,67 +180,6 @@ static void build(ft_overlay *ov, uint32_t width_px, uint32_t height_px)
 
 /* ---- GL ------------------------------------------------------------------------ */
 
-static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, GLuint *out,
-                         ft_error *err)
-{
-    const char *prelude =
-        ft_shader_find(gl->api == FT_GL_API_ES3 ? "prelude_es3.glsl" : "prelude_es2.glsl");
-    const char *body = ft_shader_find(body_name);
-    if (prelude == NULL || body == NULL) {
-        return ft_fail(err, FT_ERR_ARG, "embedded shader %s missing", body_name);
-    }
-    GLuint sh = gl->CreateShader(stage);
-    const GLchar *parts[2] = {prelude, body};
-    gl->ShaderSource(sh, 2, parts, NULL);
-    gl->CompileShader(sh);
-    GLint ok = 0;
-    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[FT_OVERLAY_LOG_MAX];
-        GLsizei n = 0;
-        gl->GetShaderInfoLog(sh, (GLsizei)sizeof log, &n, log);
-        log[(n > 0 && n < FT_OVERLAY_LOG_MAX) ? n : 0] = '\0';
-        gl->DeleteShader(sh);
-        return ft_fail(err, FT_ERR_GPU, "shader %s (GLSL ES %s) failed to compile: %.200s",
-                       body_name, gl->api == FT_GL_API_ES3 ? "3.00" : "1.00", log);
-    }
-    *out = sh;
-    return FT_OK;
-}
-
-static ft_status link_overlay_program(const ft_gl *gl, GLuint *out, ft_error *err)
-{
-    GLuint vs = 0, fs = 0;
-    ft_status s = compile(gl, GL_VERTEX_SHADER, "overlay.vert.glsl", &vs, err);
-    if (s != FT_OK) {
-        return s;
-    }
-    s = compile(gl, GL_FRAGMENT_SHADER, "overlay.frag.glsl", &fs, err);
-    if (s != FT_OK) {
-        gl->DeleteShader(vs);
-        return s;
-    }
-    GLuint prog = gl->CreateProgram();
-    gl->AttachShader(prog, vs);
-    gl->AttachShader(prog, fs);
-    gl->BindAttribLocation(prog, 0, "a_pos");
-    gl->LinkProgram(prog);
-    gl->DeleteShader(vs); /* flagged; freed with the program */
-    gl->DeleteShader(fs);
-    GLint ok = 0;
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[FT_OVERLAY_LOG_MAX];
-        GLsizei n = 0;
-        gl->GetProgramInfoLog(prog, (GLsizei)sizeof log, &n, log);
-        log[(n > 0 && n < FT_OVERLAY_LOG_MAX) ? n : 0] = '\0';
-        gl->DeleteProgram(prog);
-        return ft_fail(err, FT_ERR_GPU, "overlay program failed to link: %.200s", log);
-    }
-    *out = prog;
-    return FT_OK;
-}
-
 static void set_attrib(const ft_gl *gl)
 {
     gl->EnableVertexAttribArray(0);
@@ -252,7 +190,8 @@ ft_status ft_overlay_init(ft_overlay *ov, const ft_gl *gl, ft_error *err)
 {
     memset(ov, 0, sizeof *ov);
     GLuint prog = 0;
-    ft_status st = link_overlay_program(gl, &prog, err);
+    ft_status st =
+        ft_renderer_link_program(gl, "overlay.vert.glsl", "overlay.frag.glsl", "a_pos", &prog, err);
     if (st != FT_OK) {
         return st;
     }

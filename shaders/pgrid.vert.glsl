@@ -35,6 +35,7 @@ uniform sampler2D u_pgrid_mm;    /* min (x < half) | max (x >= half) atlas, leve
 uniform vec4 u_pgrid_mm_info;    /* (half width, height, pack min, pack range or 0) */
 uniform vec4 u_pgrid_mm_level[FT_PGM_LEVELS]; /* origin xy, size zw per min/max level */
 uniform float u_pgrid_mm_levels;
+uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the vertex at its region's max (min) */
 
 FT_IN_VS vec2 a_uv;
 FT_OUT_VS float v_delta_m;
@@ -218,6 +219,16 @@ void main()
         vec2 bmax = max(max(max(c0, c1), max(c2, c3)), pc);
         vec2 mm = ft_region_minmax((bmin - lo) * inv_cell, (bmax - lo) * inv_cell);
         v_delta_m = max(max(mm.y - s.x, s.x - mm.x), 0.0);
+        /* the envelopes (error pass, src/pgrid.h 3): every vertex at the max
+         * (u_pgrid_envelope 1) or the min (-1) of its region, which holds all
+         * the cells around it, so each triangle lies on or above (below) the
+         * surface over its footprint; between them the two hold every pixel
+         * the true surface can cover, from above or from under the ground */
+        if (u_pgrid_envelope > 0.5) {
+            s.x = max(mm.y, s.x);
+        } else if (u_pgrid_envelope < -0.5) {
+            s.x = min(mm.x, s.x);
+        }
     }
     v_normal = normalize(vec3(-s.y * inv_cell.x, -s.z * inv_cell.y, 1.0));
     v_morph = level + w;

@@ -102,11 +102,15 @@ void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3]
 
 void ft_camera_pick_depth_range(const double eye_m[3], double terrain_min_z_m,
                                 double terrain_max_z_m, const double box_min_m[2],
-                                const double box_max_m[2], double *near_m, double *far_m)
+                                const double box_max_m[2], double corner_cos, double *near_m,
+                                double *far_m)
 {
     /* Nothing of the terrain can be closer than the clearance above its
-     * highest point (or its horizontal distance to the box). Keep a factor
-     * of 2 margin; a 24-bit depth buffer holds far/near ratios of 1e5 well. */
+     * highest point (or its horizontal distance to the box). The near plane
+     * cuts at a DEPTH along the view axis, and a point at that distance in
+     * the frustum's corner lies only distance * corner_cos deep (0.16 at
+     * FOV 150): scale by it, and keep a factor of 2 margin; a 24-bit depth
+     * buffer holds far/near ratios of 1e5 well. */
     double dx = 0.0, dy = 0.0;
     if (eye_m[0] < box_min_m[0]) dx = box_min_m[0] - eye_m[0];
     if (eye_m[0] > box_max_m[0]) dx = eye_m[0] - box_max_m[0];
@@ -116,7 +120,8 @@ void ft_camera_pick_depth_range(const double eye_m[3], double terrain_min_z_m,
     if (eye_m[2] > terrain_max_z_m) dz = eye_m[2] - terrain_max_z_m;
     if (eye_m[2] < terrain_min_z_m) dz = terrain_min_z_m - eye_m[2];
     double closest = sqrt(dx * dx + dy * dy + dz * dz);
-    double n = 0.5 * closest;
+    if (!(corner_cos > 0.0) || corner_cos > 1.0) corner_cos = 1.0;
+    double n = 0.5 * closest * corner_cos;
     if (n < 0.25) n = 0.25;
     if (n > 5000.0) n = 5000.0;
 

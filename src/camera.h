@@ -46,10 +46,13 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
  * pass (x + 0.5, y + 0.5) for the centre of pixel (x, y). */
 void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3]);
 
-/* Near plane from the eye's clearance above the highest terrain, far plane
- * from the farthest terrain corner; both clamped to sane bounds. */
+/* Near plane from the eye's clearance above the highest terrain (times
+ * corner_cos, the cosine of the angle between the view axis and a frustum
+ * corner ray: 1 / sqrt(1 + tan^2(fovx/2) + tan^2(fovy/2))), far plane from
+ * the farthest terrain corner; both clamped to sane bounds. */
 void ft_camera_pick_depth_range(const double eye_m[3], double terrain_min_z_m,
                                 double terrain_max_z_m, const double box_min_m[2],
-                                const double box_max_m[2], double *near_m, double *far_m);
+                                const double box_max_m[2], double corner_cos, double *near_m,
+                                double *far_m);
 
 #endif

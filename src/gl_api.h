@@ -24,6 +24,7 @@
     X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                   \
     X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                 \
     X(PFNGLBINDTEXTUREPROC, BindTexture)                           \
+    X(PFNGLBLENDEQUATIONPROC, BlendEquation)                       \
     X(PFNGLBUFFERDATAPROC, BufferData)                             \
     X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                       \
     X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)     \

@@ -29,14 +29,30 @@
  *    and |h_v - H(x)| <= delta for every x of the box. A mesh point P is a
  *    convex combination of its triangle's vertices, so |P.z - H(P.xy)| <=
  *    the same combination of the deltas: the interpolated delta. Per fragment
- *        rho = K * delta / |P - eye|,  K = height_px / (2 tan(fovy / 2))
- *    bounds the metric's e (src/metric.h) at that pixel.
+ *        rho = K * delta / (|P - eye| cos^2 theta),  K = height_px / (2 tan(fovy / 2))
+ *    with theta the angle between P - eye and the view axis, bounds the
+ *    metric's e (src/metric.h, which is rho's numerator over |P - eye|: the
+ *    angle in centre pixels) and the displacement in true pixels: a
+ *    perspective image stretches angles by up to 1 / cos^2 theta (radially),
+ *    15x at 75 degrees off axis, so wide views (FOV 150) need the factor.
  *
  * 3. Error buffer (RGBA8, drawn with the grid): R = 1 - gamma / rho where
  *    rho > gamma, else 0 (the normalised error), G = code(rho), an 8-bit
  *    log code rounded UP: code(rho) = ceil((log2(rho) + 8) * 255 / 16) clamped
  *    to [1, 255] for terrain, 0 for sky (clear). rho > g implies code(rho) >=
  *    code(g), so thresholding codes is conservative.
+ *    With ray casting, the grid is drawn twice more into it, as envelopes:
+ *    every vertex at the max (then the min) of its region, with GLES 3 MAX
+ *    blending and depth writes off (the mesh's depth decides what is in
+ *    front). A vertex's region holds every cell around it, so the upper
+ *    envelope lies on or above the surface over each triangle's footprint,
+ *    and a ray from an eye above it that reaches the surface crosses it
+ *    first: every pixel the true surface can cover is covered by the mesh or
+ *    an envelope in front of it, and takes the largest code there. Without
+ *    them a ridge whose mesh skyline is lower than the true one shows sky
+ *    (or farther terrain) with a small code: 28 pixels of missed ridge on
+ *    Rainier at 800 x 600, 0 with them. The lower envelope does the same for
+ *    an eye under the ground, looking at the surface from below.
  *
  * 4. Ray-cast set: pixel p is ray cast iff max(code over p's 3 x 3
  *    neighbourhood) >= code_thr. The one-pixel dilation is the silhouette

@@ -402,10 +402,12 @@ ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fo
     double box_min[2] = {t->origin_world_x_m, t->origin_world_y_m};
     double box_max[2] = {t->origin_world_x_m + t->cell_x_m * (double)(t->width - 1u),
                          t->origin_world_y_m + t->cell_y_m * (double)(t->height - 1u)};
-    double near_m, far_m;
-    ft_camera_pick_depth_range(eye, t->min_height_m, t->max_height_m, box_min, box_max, &near_m,
-                               &far_m);
     const double d2r = FT_PI / 180.0;
+    const double ty = tan(0.5 * fovy_deg * d2r);
+    const double tx = ty * (double)width_px / (double)(height_px > 0u ? height_px : 1u);
+    double near_m, far_m;
+    ft_camera_pick_depth_range(eye, t->min_height_m, t->max_height_m, box_min, box_max,
+                               1.0 / sqrt(1.0 + tx * tx + ty * ty), &near_m, &far_m);
     return ft_camera_init(cam, eye, pose->heading_deg * d2r, pose->pitch_deg * d2r,
                           pose->roll_deg * d2r, fovy_deg * d2r, width_px, height_px, near_m,
                           far_m, err);

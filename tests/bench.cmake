@@ -27,3 +27,23 @@ if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BR
   set_tests_properties(bench_cli_errors PROPERTIES TIMEOUT 60
     PASS_REGULAR_EXPRESSION "bad key or values[^\n]*\nrc=2\n[^\n]*nowhere.wp: not a built-in path[^\n]*\nrc=2\n[^\n]*'gpu' is not a method\nrc=2\n[^\n]*expected COLSxROWS\nrc=2\nusage: fixterrain bench")
 endif()
+
+# tools/pgrid-report.sh (the issue-4 report matrix): two grids x uniform/view
+# x ray casting off/on + brute force, 2 frames at 96x72; every row present
+# with sane numbers (test_plot --check-bench). Skipped without ../shared/data.
+if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BRUTE
+   AND FIXTERRAIN_WITH_METHOD_PGRID)
+  set(FT_PGRID_REPORT_ROWS "brute:default")
+  foreach(_g 150x600 430x430)
+    foreach(_d uniform view)
+      foreach(_rc 0 1)
+        list(APPEND FT_PGRID_REPORT_ROWS "pgrid:grid=${_g} gamma_px=1 distribution=${_d} ray_casting=${_rc}")
+      endforeach()
+    endforeach()
+  endforeach()
+  add_test(NAME pgrid_report_smoke
+    COMMAND sh -c "test -f \"$1/N42E001.hgt\" || { echo 'no ../shared/data: skipped'; exit 77; }; out=\"$2/pgrid-report\"; rm -rf \"$out\"; FIXTERRAIN=\"$0\" GRIDS=150x600,430x430 \"$3/tools/pgrid-report.sh\" \"$3/config/pyrenees.ini\" \"$out\" --dem \"$1/N42E001.hgt\" --path valley --size 96x72 --frames 2 --quiet && test -s \"$out/pgrid.md\" && tp=\"$4\" && shift 4 && exec \"$tp\" --check-bench \"$out/pgrid.csv\" \"$out/pgrid.png\" 2 1 \"$@\""
+            $<TARGET_FILE:fixterrain> ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out
+            ${CMAKE_SOURCE_DIR} $<TARGET_FILE:test_plot> ${FT_PGRID_REPORT_ROWS})
+  set_tests_properties(pgrid_report_smoke PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
+endif()

@@ -13,9 +13,10 @@
  * 2. Row distribution: ray casting off, the same flight, the same grid
  *    (same vertex count): the view-dependent rows give a lower mean error
  *    than uniform rows (summed over the flight, and on most frames).
- * 3. Sweep: pitch -90..+60 deg, FOV 10..150 deg, heights 10 m .. 50 km
+ * 3. Sweep: pitch -90..+90 deg, FOV 1..170 deg, heights 1 m .. 100 km
  *    above the ground, ray casting on and off: no non-finite position
- *    (es.nonfinite_px == 0), terrain present whenever the reference has some.
+ *    (es.nonfinite_px == 0), terrain present whenever the reference has some,
+ *    and with ray casting the coverage mismatch at most SWEEP_COVER_MAX_PX.
  * 4. Image crack test: clear colour magenta (never a terrain colour); views
  *    the terrain covers completely show no magenta pixel and the position
  *    pass is terrain at every pixel (a ray-cast miss would show there),
@@ -183,9 +184,10 @@ static ft_pose path_pose(int f)
  * bounded by rho (a convex bound, src/pgrid.h 2) and measured well under it:
  * max - gamma <= -0.3 px on every frame. COVER_MAX_PX: silhouette pixels the
  * bound allows to differ (a mesh silhouette under gamma may be off by up to
- * gamma px along the skyline; measured <= 40 at gamma 2, <= 7 at gamma 1). */
+ * gamma px along the skyline; measured 0 / 2 / 10 at gamma 0.5 / 1 / 2 with
+ * the envelopes, 40 at gamma 2 without them). */
 #define TOL_PX 0.10
-#define COVER_MAX_PX 64u
+#define COVER_MAX_PX 24u
 
 static void test_error_bound(const char *dem)
 {
@@ -290,12 +292,20 @@ static void test_distribution(const char *dem)
 
 /* ---- 3. sweep ----------------------------------------------------------------- */
 
+/* With ray casting (budget not hit) a pixel left to the mesh has rho <
+ * gamma = 1 px in true pixels (src/pgrid.h 3: the cos^2 stretch, the
+ * envelopes), so mesh and reference skylines differ by under a pixel: only
+ * pixel centres a skyline or the DEM's edge passes between can differ, a few
+ * along a 256-px view (measured <= 10: the whole tile's edge seen from
+ * 100 km; before the envelopes and the stretch, 2953 at FOV 150). */
+#define SWEEP_COVER_MAX_PX 16u
+
 static void test_sweep(const char *dem)
 {
-    static const double fovs[] = {10.0, 60.0, 150.0};
-    static const double pitches[] = {-90.0, -60.0, -30.0, -10.0, -3.0, 0.0, 10.0, 60.0};
-    static const double clear_m[] = {10.0, 300.0, 3000.0, 50000.0};
-    uint32_t frames = 0, nonfinite = 0, absent = 0;
+    static const double fovs[] = {1.0, 10.0, 60.0, 150.0, 170.0};
+    static const double pitches[] = {-90.0, -60.0, -30.0, -10.0, -3.0, 0.0, 10.0, 60.0, 90.0};
+    static const double clear_m[] = {1.0, 30.0, 3000.0, 100000.0};
+    uint32_t frames = 0, nonfinite = 0, absent = 0, cover_bad = 0;
     for (int rc = 0; rc <= 1; ++rc) {
         for (size_t fi = 0; fi < sizeof fovs / sizeof fovs[0]; ++fi) {
             setup c = {"pgrid", "egl-gles3", dem, fovs[fi], GRID_COLS, GRID_ROWS, 1, rc, 1.0, 1};
@@ -334,6 +344,13 @@ static void test_sweep(const char *dem)
                     }
                     const uint32_t cover = es.only_method_px + es.only_ref_px;
                     if (cover > worst_cover) worst_cover = cover;
+                    if (rc && cover > SWEEP_COVER_MAX_PX) {
+                        fprintf(stderr, "sweep rc 1 fov %.0f pitch %.0f +%.0f m: cover mismatch "
+                                "%u+%u px (allowed %u), budget hit %d\n", fovs[fi], pitches[pi],
+                                clear_m[hi], es.only_method_px, es.only_ref_px,
+                                SWEEP_COVER_MAX_PX, fs.budget_hit);
+                        ++cover_bad;
+                    }
                 }
             }
             printf("sweep ray casting %d, fov %.0f: ground %.0f m, worst cover mismatch %u px\n",
@@ -341,11 +358,13 @@ static void test_sweep(const char *dem)
             ft_app_shutdown(&g_app);
         }
     }
-    printf("sweep: %u frames (pitch -90..60, fov 10..150, 10 m..50 km above ground, ray casting "
-           "off/on): %u with non-finite positions, %u without terrain the reference sees\n",
-           frames, nonfinite, absent);
+    printf("sweep: %u frames (pitch -90..90, fov 1..170, 1 m..100 km above ground, ray casting "
+           "off/on): %u with non-finite positions, %u without terrain the reference sees, %u "
+           "over %u px of coverage mismatch with ray casting\n",
+           frames, nonfinite, absent, cover_bad, SWEEP_COVER_MAX_PX);
     CHECK(nonfinite == 0u);
     CHECK(absent == 0u);
+    CHECK(cover_bad == 0u);
 }
 
 /* ---- 4. image crack test -------------------------------------------------------- */

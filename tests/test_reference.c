@@ -1026,6 +1026,45 @@ static void test_timing(void)
     grid_free(&t);
 }
 
+/* Depth range: no terrain point may fall in front of the near plane. Nothing
+ * is nearer than the clearance over the highest point, and along a frustum
+ * corner ray a point at that distance is only distance * cos(corner angle)
+ * deep: at FOV 150 (4:3) that is 0.16 of it, so the old near = clearance / 2
+ * cut the view's corners off (seen as ~5,000 missing pixels at FOV 150). */
+static void test_depth_range(void)
+{
+    static const double fovs_deg[] = {1.0, 30.0, 60.0, 150.0, 170.0};
+    const double eye[3] = {500.0, 700.0, 3000.0};
+    const double bmin[2] = {0.0, 0.0}, bmax[2] = {40000.0, 30000.0};
+    const double zmin = 200.0, zmax = 1000.0, clearance = 2000.0;
+    for (size_t k = 0; k < sizeof fovs_deg / sizeof fovs_deg[0]; ++k) {
+        const uint32_t w = 160u, h = 120u;
+        const double ty = tan(0.5 * fovs_deg[k] * PI / 180.0), tx = ty * w / h;
+        double n = 0.0, f = 0.0;
+        ft_camera_pick_depth_range(eye, zmin, zmax, bmin, bmax, 1.0 / sqrt(1.0 + tx * tx + ty * ty),
+                                   &n, &f);
+        ft_camera cam;
+        REQUIRE(ft_camera_init(&cam, eye, 0.3, -0.4, 0.2, fovs_deg[k] * PI / 180.0, w, h, n, f,
+                               NULL) == FT_OK);
+        double least_depth = INFINITY;
+        for (uint32_t y = 0; y <= h; y += h / 4u) {
+            for (uint32_t x = 0; x <= w; x += w / 4u) {
+                double d[3];
+                ft_camera_pixel_ray(&cam, (double)x, (double)y, d);
+                const double depth = clearance * (d[0] * cam.forward[0] + d[1] * cam.forward[1] +
+                                                  d[2] * cam.forward[2]);
+                if (depth < least_depth) least_depth = depth;
+            }
+        }
+        printf("depth range fov %.0f: near %.2f m, far %.0f m, least depth of a point %.0f m "
+               "away %.1f m\n", fovs_deg[k], n, f, clearance, least_depth);
+        CHECK(n >= 0.25 && n < f);
+        CHECK(least_depth >= n);
+        /* the farthest terrain corner, at any angle, is inside the far plane */
+        CHECK(f >= sqrt(39500.0 * 39500.0 + 29300.0 * 29300.0 + 2800.0 * 2800.0));
+    }
+}
+
 int main(void)
 {
     test_plane_rays(0.0, 0.0, 0.0, 0.0, "flat plane");
@@ -1042,6 +1081,7 @@ int main(void)
     test_vs_brute();
     test_render_poses();
     test_with_pyramid_build();
+    test_depth_range();
     test_timing();
     return ft_test_result("test_reference");
 }

@@ -369,11 +369,34 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
                       (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
         gl->Uniform2f(gl->GetUniformLocation(e->program, "u_pgrid_err"), (float)cam->px_per_rad_k,
                       (float)m->gamma_px);
+        gl->Uniform3f(gl->GetUniformLocation(e->program, "u_pgrid_fwd"), (float)cam->forward[0],
+                      (float)cam->forward[1], (float)cam->forward[2]);
         set_grid_uniforms(m, gl, e->program);
         ft_method_draw_stats dummy;
         memset(&dummy, 0, sizeof dummy);
         ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
         st->draw_calls += dummy.draw_calls;
+        if (m->ray_casting) {
+            /* 2b. the upper and lower envelopes (src/pgrid.h 3): where one
+             * lies in front of the mesh, the pixel may show a ridge the
+             * mesh's skyline missed (or, from under the ground, a surface
+             * the mesh leaves out): the pixel takes the larger code (GLES 3
+             * MAX blending); depth writes off, the mesh's depth decides */
+            const GLint env = gl->GetUniformLocation(e->program, "u_pgrid_envelope");
+            gl->DepthMask(GL_FALSE);
+            gl->Enable(GL_BLEND);
+            gl->BlendEquation(GL_MAX);
+            for (int side = 0; side < 2; ++side) {
+                gl->Uniform1f(env, side == 0 ? 1.0f : -1.0f);
+                memset(&dummy, 0, sizeof dummy);
+                ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
+                st->draw_calls += dummy.draw_calls;
+            }
+            gl->Disable(GL_BLEND);
+            gl->BlendEquation(GL_FUNC_ADD);
+            gl->DepthMask(GL_TRUE);
+            gl->Uniform1f(env, 0.0f);
+        }
         /* 3. the decision (colour pass, or a view the colour pass did not see) */
         if (!pos_pass || !same_decision_view(m, cam)) {
             decide(m, gl, cam);

@@ -7,28 +7,8 @@
  *    over the box of the ground points of grid points (i +- 1, j +- 1), from
  *    the min/max atlas (levels >= 2) or the heights (levels 0, 1), passed on
  *    as v_delta_m (interpolated: a convex bound of the mesh's error).
- * Kept in step with pgm.vert.glsl by hand (that file belongs to 'pgm'). */
-precision highp float;
-
-#define FT_PGM_LEVELS 16
-
-uniform sampler2D u_heights;
-uniform vec2 u_grid_size;        /* samples (width, height) */
-uniform vec2 u_cell_m;
-uniform vec3 u_origin_rel_eye_m; /* grid sample (0,0) minus the viewing eye */
-uniform mat4 u_view_proj;
-uniform vec2 u_pack;             /* heights: packed (min, range); range 0 = float */
-
-uniform sampler2D u_pgm_atlas;
-uniform vec2 u_pgm_atlas_size;
-uniform vec2 u_pgm_atlas_pack;   /* like u_pack, for the atlas */
-uniform vec4 u_pgm_level[FT_PGM_LEVELS]; /* atlas origin (xy) and size (zw) per avg level */
-uniform vec4 u_pgm_grid;         /* (cols - 1, rows - 1, band's first row, avg levels) */
-uniform vec3 u_pgm_fwd;          /* sampling frame (world, unit) */
-uniform vec3 u_pgm_right;
-uniform vec3 u_pgm_up;
-uniform vec4 u_pgm_rect;         /* (x0, y0, x1, y1): image plane at distance 1 */
-uniform vec2 u_pgm_eye;          /* (h: sampling eye above the base plane, floor of -d_z) */
+ * The placement is shaders/pgm_grid.glsl (shared with 'pgm'). */
+#include "pgm_grid.glsl"
 
 uniform vec4 u_pgrid_dist;       /* (mode, s0, s1, dep_s) */
 uniform sampler2D u_pgrid_mm;    /* min (x < half) | max (x >= half) atlas, levels >= 2 */
@@ -37,75 +17,18 @@ uniform vec4 u_pgrid_mm_level[FT_PGM_LEVELS]; /* origin xy, size zw per min/max 
 uniform float u_pgrid_mm_levels;
 uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the vertex at its region's max (min) */
 
-FT_IN_VS vec2 a_uv;
 FT_OUT_VS float v_delta_m;
 
-FT_OUT_VS vec3 v_pos_rel_eye_m;
-FT_OUT_VS vec3 v_normal;
-FT_OUT_VS float v_height_m;
-FT_OUT_VS float v_morph; /* the continuous level L + w (captured by the tests) */
-
-float ft_decode(vec4 t, vec2 pack)
+/* src/pgrid.h 1: mode 1 (view) spaces rows evenly in s = asinh(ground
+ * distance / h); mode 0 keeps pgm's uniform y */
+float ft_row_y(float t, float y)
 {
-    if (pack.y > 0.0) {
-        float q = dot(floor(t.rgb * 255.0 + 0.5), vec3(65536.0, 256.0, 1.0));
-        return pack.x + pack.y * (q / 16777215.0);
-    }
-    return t.r;
-}
-
-/* Texel ij (integer valued, inside the level) of avg level `level`. */
-float ft_texel(float level, vec2 ij)
-{
-    if (level < 0.5) {
-#if FT_ES3
-        return ft_decode(texelFetch(u_heights, ivec2(ij), 0), u_pack);
-#else
-        return ft_decode(texture2DLod(u_heights, (ij + 0.5) / u_grid_size, 0.0), u_pack);
-#endif
-    }
-    vec2 a = u_pgm_level[int(level)].xy + ij;
-#if FT_ES3
-    return ft_decode(texelFetch(u_pgm_atlas, ivec2(a), 0), u_pgm_atlas_pack);
-#else
-    return ft_decode(texture2DLod(u_pgm_atlas, (a + 0.5) / u_pgm_atlas_size, 0.0),
-                     u_pgm_atlas_pack);
-#endif
-}
-
-/* Avg level `level` bilinear at grid coordinate g: (height, dh/dgx, dh/dgy). */
-vec3 ft_level_sample(float level, vec2 g)
-{
-    float scale = exp2(level);
-    vec2 u = (g + 0.5) / scale - 0.5;
-    vec2 i0 = floor(u);
-    vec2 f = u - i0;
-    vec2 hi = u_pgm_level[int(level)].zw - 1.0;
-    vec2 a = clamp(i0, vec2(0.0), hi);
-    vec2 b = clamp(i0 + 1.0, vec2(0.0), hi);
-    float h00 = ft_texel(level, a);
-    float h10 = ft_texel(level, vec2(b.x, a.y));
-    float h01 = ft_texel(level, vec2(a.x, b.y));
-    float h11 = ft_texel(level, b);
-    float lo = mix(h00, h10, f.x);
-    float up = mix(h01, h11, f.x);
-    float dx = mix(h10 - h00, h11 - h01, f.y) / scale;
-    float dy = mix(h01 - h00, h11 - h10, f.x) / scale;
-    return vec3(mix(lo, up, f.y), dx, dy);
-}
-
-/* Base-plane point of grid point ij, relative to the viewing eye (xy, m). */
-vec2 ft_ground(vec2 ij)
-{
-    vec2 st = ij / u_pgm_grid.xy;
-    vec2 xy = mix(u_pgm_rect.xy, u_pgm_rect.zw, st);
     if (u_pgrid_dist.x > 0.5) {
-        float s = mix(u_pgrid_dist.y, u_pgrid_dist.z, st.y);
+        float s = mix(u_pgrid_dist.y, u_pgrid_dist.z, t);
         float sh = 0.5 * (exp(s) - exp(-s));
-        xy.y = tan(u_pgrid_dist.w - atan(1.0, sh));
+        return tan(u_pgrid_dist.w - atan(1.0, sh));
     }
-    vec3 d = u_pgm_fwd + xy.x * u_pgm_right + xy.y * u_pgm_up;
-    return (u_pgm_eye.x / max(-d.z, u_pgm_eye.y)) * d.xy;
+    return y;
 }
 
 float ft_height_at(vec2 ij)
@@ -174,44 +97,11 @@ vec2 ft_region_minmax(vec2 a, vec2 b)
 void main()
 {
     vec2 ij = vec2(a_uv.x, a_uv.y + u_pgm_grid.z);
-    vec2 p = ft_ground(ij);
+    vec2 pc;
+    float morph;
+    vec3 s = ft_pgm_vertex(ij, pc, morph);
     vec2 inv_cell = 1.0 / u_cell_m;
-    vec2 q0 = (ft_ground(ij + vec2(1.0, 0.0)) - p) * inv_cell;
-    vec2 q1 = (ft_ground(ij - vec2(1.0, 0.0)) - p) * inv_cell;
-    vec2 q2 = (ft_ground(ij + vec2(0.0, 1.0)) - p) * inv_cell;
-    vec2 q3 = (ft_ground(ij - vec2(0.0, 1.0)) - p) * inv_cell;
-    float r = sqrt(max(max(dot(q0, q0), dot(q1, q1)), max(dot(q2, q2), dot(q3, q3))));
-
-    float level = 0.0;
-    float w = 0.0;
-    if (r > 1.0) {
-        level = floor(log2(r));
-        float span = exp2(level);
-        /* log2 may round across a power of two: settle on the exact level */
-        if (r < span) {
-            level -= 1.0;
-            span *= 0.5;
-        } else if (r >= 2.0 * span) {
-            level += 1.0;
-            span *= 2.0;
-        }
-        w = clamp(r / span - 1.0, 0.0, 1.0);
-    }
-    float top = u_pgm_grid.w - 1.0;
-    if (level >= top) {
-        level = top;
-        w = 0.0;
-    }
-
-    /* clamped into the grid in eye-relative metres: near the eye the vertex
-     * never goes through the (large) grid origin, float keeps millimetres */
     vec2 lo = u_origin_rel_eye_m.xy;
-    vec2 pc = clamp(p, lo, lo + (u_grid_size - 1.0) * u_cell_m);
-    vec2 g = (pc - lo) * inv_cell;
-    vec3 s = ft_level_sample(level, g);
-    if (w > 0.0) {
-        s = mix(s, ft_level_sample(level + 1.0, g), w);
-    }
     {
         vec2 c0 = ft_ground(ij + vec2(-1.0, -1.0)), c1 = ft_ground(ij + vec2(1.0, -1.0));
         vec2 c2 = ft_ground(ij + vec2(-1.0, 1.0)), c3 = ft_ground(ij + vec2(1.0, 1.0));
@@ -231,7 +121,7 @@ void main()
         }
     }
     v_normal = normalize(vec3(-s.y * inv_cell.x, -s.z * inv_cell.y, 1.0));
-    v_morph = level + w;
+    v_morph = morph;
     v_height_m = s.x;
     v_pos_rel_eye_m = vec3(pc, s.x + u_origin_rel_eye_m.z);
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);

@@ -3,8 +3,9 @@
  *
  * Input per frame: the frame's measured time (LOD selection + draw + GPU
  * finish) against the budget (frame.budget_ms). Output: a LOD scale >= 1
- * that the method applies (bintree: tau_px * scale; methods without a knob
- * ignore it and the policy reports that).
+ * that the method applies (bintree: tau_px * scale; pgrid: ray casting
+ * only over gamma_px * scale; brute and pgm have no knob, ignore it and
+ * the policy reports that).
  *   - over: a frame above FT_DEGRADE_HIGH of the budget (or a miss) raises
  *     the scale by FT_DEGRADE_STEP at once (a miss is already a failure),
  *     at most to max_scale;

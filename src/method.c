@@ -130,6 +130,13 @@ int ft_method_set_lod_scale(ft_method *m, double scale)
 #else
         break;
 #endif
+    case FT_METHOD_PGRID:
+#if FT_WITH_METHOD_PGRID
+        ft_pgrid_method_set_lod_scale(&m->u.pgrid, scale);
+        return 1;
+#else
+        break;
+#endif
     default:
         break;
     }

@@ -96,6 +96,7 @@ typedef struct ft_pgrid_method {
     uint32_t w_px, h_px;
     int distribution, ray_casting, es3;
     double gamma_px;
+    double lod_scale;               /* degradation: ray cast over gamma_px * lod_scale */
     uint64_t raycast_max_px;
     uint8_t *readback;              /* w * h * 4, FT_POOL_METHOD */
     uint8_t *work;                  /* w * h */
@@ -134,7 +135,8 @@ void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_progr
  * or the method selects nothing); ft_method_draw calls it too. */
 void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam);
 /* Coarsens the LOD by scale >= 1 (the degradation policy, src/degrade.h):
- * bintree draws to tau_px * scale. Returns 0 when the method has no LOD
+ * bintree draws to tau_px * scale, pgrid ray casts only the pixels over
+ * gamma_px * scale (its achieved bound is reported). Returns 0 when the method has no LOD
  * knob (brute, pgm: the scale is then ignored). */
 int ft_method_set_lod_scale(ft_method *m, double scale);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
@@ -155,6 +157,7 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
                                  const ft_terrain *t, ft_arena *a, ft_error *err);
 void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam);
 void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale);
+void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale);
 void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
                             const struct ft_terrain_program *p, const ft_terrain *t,
                             const ft_camera *cam, ft_method_draw_stats *st);

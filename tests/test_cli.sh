@@ -104,6 +104,20 @@ if [ -f "$data/N42E001.hgt" ]; then
     --stats "$out/deg0.json" --quiet || fail "replay without the degradation policy"
   grep -q '"raises": 0' "$out/deg0.json" || fail "the policy moved while off"
   grep -q '"frames_over_budget": 0,' "$out/deg0.json" && fail "no frame over a 1 us budget?"
+  # pgrid's knob: ray casting only over gamma x scale; the bound it met is
+  # reported (about 4 px at scale 4, <= gamma = 1 px without the policy)
+  if "$bin" render --help | grep -q 'pgrid'; then
+    printf '[scene]\nmethod = pgrid\n[pose]\nlat_deg = 42.30\nlon_deg = 1.50\nalt_m = 3800\npitch_deg = -14\n[frame]\nbudget_ms = 0.001\ndegrade = 1\ndegrade_max_scale = 4\n[pgrid]\ngamma_px = 1\n' > "$out/pdeg.ini"
+    "$bin" replay --scene "$out/pdeg.ini" --dem "$data/N42E001.hgt" --size 160x120 \
+      --log "$out/deg.log" --stats "$out/pdeg.json" --quiet || fail "pgrid replay with the policy"
+    grep -q '"scale_max": 4.000' "$out/pdeg.json" || fail "pgrid: scale not at its maximum: $(cat "$out/pdeg.json")"
+    grep -Eq '"tau_max_px": (1\.[5-9]|[23]\.|4\.0000)' "$out/pdeg.json" ||
+      fail "pgrid: no coarser bound reported at scale 4: $(cat "$out/pdeg.json")"
+    sed 's/degrade = 1/degrade = 0/' "$out/pdeg.ini" > "$out/pdeg0.ini"
+    "$bin" replay --scene "$out/pdeg0.ini" --dem "$data/N42E001.hgt" --size 160x120 \
+      --log "$out/deg.log" --stats "$out/pdeg0.json" --quiet || fail "pgrid replay without the policy"
+    grep -Eq '"tau_max_px": 0\.' "$out/pdeg0.json" || fail "pgrid: bound over gamma without the policy: $(cat "$out/pdeg0.json")"
+  fi
   printf '[scene]\nmethod = bintree\n[budget]\nmethod_bytes = 64K\n' > "$out/btmem.ini"
   expect 1 "method_bytes" -- "$bin" render --scene "$out/btmem.ini" --dem "$data/N42E001.hgt" \
     --out "$out/x.png"

@@ -159,6 +159,7 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     m->h_px = s->height_px;
     m->distribution = s->pgrid_view_distribution ? FT_PGRID_DIST_VIEW : FT_PGRID_DIST_UNIFORM;
     m->gamma_px = s->pgrid_gamma_px;
+    m->lod_scale = 1.0;
     m->raycast_max_px = s->pgrid_raycast_max_px;
     m->es3 = (gl->api == FT_GL_API_ES3);
     m->ray_casting = s->pgrid_ray_casting && m->es3;
@@ -218,6 +219,15 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
 }
 
+void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale)
+{
+    const double s = scale < 1.0 ? 1.0 : scale;
+    if (s != m->lod_scale) {
+        m->lod_scale = s;
+        m->have_decision = 0; /* decide again for the same view */
+    }
+}
+
 void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     ft_pgm_method_select(&m->pgm, t, cam);
@@ -265,12 +275,14 @@ static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
         if (m->hist[c] != 0u) top = c;
     }
     if (m->ray_casting) {
-        m->thr = ft_pgrid_budget_threshold(m->hist, m->gamma_px, m->raycast_max_px, &m->rc_px,
+        /* the degradation policy trades error for time: it raises gamma */
+        const double gamma = m->gamma_px * m->lod_scale;
+        m->thr = ft_pgrid_budget_threshold(m->hist, gamma, m->raycast_max_px, &m->rc_px,
                                            &m->budget_hit);
         /* pixels under the threshold have codes <= thr - 1 */
         const uint32_t below = (m->thr < top + 1u) ? m->thr - 1u : top;
         const double hi = (below >= 1u) ? ft_pgrid_code_rho_hi(below) : 0.0;
-        m->achieved_px = m->budget_hit ? hi : ((hi < m->gamma_px) ? hi : m->gamma_px);
+        m->achieved_px = m->budget_hit ? hi : ((hi < gamma) ? hi : gamma);
     } else {
         m->thr = FT_PGRID_CODES;
         m->rc_px = 0u;

@@ -176,6 +176,65 @@ static void ground_of(const ft_pgm_sampling *s, double x, double y, double out[2
     out[1] = tr * d[1];
 }
 
+/* Columns wide enough for every view ray that can meet terrain (sampled
+ * along the side edges x = +-tx_b of the roll-free bounding rectangle). A
+ * ray at azimuth az off the heading and depression dv can meet terrain only
+ * where its base-plane point lies at a depression d >= d_min from the eye:
+ *  - falling (dv > 0): d_min = max(dv, eps) (it meets the plane at dv, and
+ *    the grid ends at the far corner, depression eps);
+ *  - level or rising: only terrain higher than the eye, m above the plane
+ *    (h: the eye), within D_max = (m - h) / tan(-dv) of it (or the far
+ *    corner): d_min = atan2(h, min(D_max, far)); none at all when m <= h.
+ * That ground direction has the sampling image abscissa
+ *     x_s = cos d sin az / (cos d cos az cos dep_s + sin d sin dep_s)
+ * (when the denominator, its depth along the sampling axis, is > 0), which
+ * falls as d grows: the need is at d_min. A view pitched up (dep_v < 0)
+ * needs it: its lower side rays spread wider than tx_b, and at FOV 1
+ * pitched up 10 deg the image's edge column (1.7% of the width) went
+ * missing. Widened, it gets a 1% margin for the need between the samples
+ * (where the view's own columns suffice, as when the sampling camera is the
+ * view, they stay exact). The columns stop at FT_PGM_COLUMNS_WIDEN_MAX x
+ * tx_b: near the zenith a view's sideways rays run at right angles to the
+ * sampling camera's heading (no finite width holds them, as no rectangle
+ * holds rays past the 88 deg cap), and widening the columns toward the cap
+ * for them would thin out the whole grid (on N42E001, pitch 90, FOV 120,
+ * 1 m above a slope: 1983 pixels of missed terrain instead of 86). */
+static double columns_for_view(double tx_cov, double dep_v, double dep_s, double eps,
+                               double tx_b, double ty_b, double h, double m, double far)
+{
+    const double e = -dep_v; /* the view axis's elevation */
+    for (int k = 0; k <= 32; ++k) {
+        const double y = -ty_b + 2.0 * ty_b * (double)k / 32.0;
+        const double fwd = cos(e) - y * sin(e); /* horizontal, along the heading */
+        const double up = sin(e) + y * cos(e);
+        const double hz = hypot(fwd, tx_b);
+        if (hz <= 1e-12) {
+            continue;
+        }
+        const double dv = atan2(-up, hz);
+        double d = (dv > eps) ? dv : eps;
+        if (dv <= 0.0) {
+            if (m <= h) {
+                continue; /* rising from above every peak: no terrain */
+            }
+            const double reach = (up > 1e-12) ? (m - h) * hz / up : far;
+            d = atan2(h, (reach < far) ? reach : far);
+            d = (d > eps) ? d : eps;
+        }
+        const double depth = cos(d) * (fwd / hz) * cos(dep_s) + sin(d) * sin(dep_s);
+        if (depth <= 1e-9) {
+            continue;
+        }
+        double need = cos(d) * (tx_b / hz) / depth;
+        if (need > tx_cov * (1.0 + 1e-9)) {
+            need *= 1.01; /* the margin: the need between the samples */
+            need = (need < FT_PGM_COLUMNS_WIDEN_MAX * tx_b) ? need : FT_PGM_COLUMNS_WIDEN_MAX * tx_b;
+            tx_cov = (need > tx_cov) ? need : tx_cov;
+        }
+    }
+    return tx_cov;
+}
+
 void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
 {
     memset(s, 0, sizeof *s);
@@ -256,8 +315,10 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
         /* every view ray below the horizon: x_s < tx_b cos(dep_v) / cos(dep_s) */
         const double wide = (cd > 1e-12) ? s->half_x_tan * cos(dep_v) / cd : tmax;
         tx_cov = (wide > tx_cov) ? wide : tx_cov;
-        tx_cov = (tx_cov < tmax) ? tx_cov : tmax;
     }
+    tx_cov = columns_for_view(tx_cov, dep_v, dep, s->eps_rad, s->half_x_tan, s->half_y_tan,
+                              s->height_m, t->max_height_m - s->base_z_m, s->far_m);
+    tx_cov = (tx_cov < tmax) ? tx_cov : tmax;
     /* -d_z is smallest on the top edge: -d_z = sin(dep) - y1 cos(dep) > 0 */
     s->min_neg_dz = 0.5 * (sd - y1 * cd);
 

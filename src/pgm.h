@@ -46,8 +46,10 @@
  * so even a neighbour outside the rectangle (LOD) stays finite.
  * Rectangle: x in [-tx_s, tx_s] with tx_s = tx_b, widened to tx_b cos(dep_v)
  * / cos(dep_s) when the sampling camera is pitched below the view (that
- * covers every view ray below the horizon), and cut where rays get flatter
- * than eps; y from -tan(a + gamma) (bottom, extended) to tan(min(a, dep_s -
+ * covers every view ray below the horizon), widened further where a view
+ * ray's reachable terrain needs it (a view pitched up: pgm.c,
+ * columns_for_view, up to FT_PGM_COLUMNS_WIDEN_MAX tx_b), and cut where
+ * rays get flatter than eps; y from -tan(a + gamma) (bottom, extended) to tan(min(a, dep_s -
  * eps)) (top).
  *
  * Viewport extension below the sampling camera: a peak of height m (above
@@ -107,6 +109,9 @@
 #define FT_PGM_EPS_MIN_RAD (0.01 * FT_PGM_PI / 180.0)
 /* Largest half angle of the sampling rectangle (tan 88 deg = 28.6). */
 #define FT_PGM_HALF_ANGLE_MAX_RAD (88.0 * FT_PGM_PI / 180.0)
+/* The columns are widened for the view's rays up to this factor of the
+ * view's own half width (pgm.c, columns_for_view). */
+#define FT_PGM_COLUMNS_WIDEN_MAX 1.5
 /* Boxes up to this many cells a side get the exact maximum (pgm.c). */
 #define FT_PGM_EXACT_MAX_CELLS 8u
 /* Distance bands (halving toward the eye) the viewport extension checks,

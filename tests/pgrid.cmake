@@ -13,6 +13,11 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PGRID
   add_test(NAME pgrid_gl_es3 COMMAND test_pgrid_gl es3 ${_dem})
   # a true ES 2.0 context: no ray casting, the mesh's bound reported, cracks
   add_test(NAME pgrid_gl_es2 COMMAND test_pgrid_gl es2 ${_dem})
-  set_tests_properties(pgrid_gl_es3 pgrid_gl_es2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+  # the sweep again over a second real DEM: the Maritime Alps above Nice
+  # (N43E007: mountains down to the sea), around 43.85 N 7.35 E
+  add_test(NAME pgrid_gl_sweep_n43e007
+           COMMAND test_pgrid_gl sweep ${FT_SHARED_DATA_DIR}/N43E007.hgt 43.85 7.35)
+  set_tests_properties(pgrid_gl_es3 pgrid_gl_es2 pgrid_gl_sweep_n43e007 PROPERTIES
+                       SKIP_RETURN_CODE 77 TIMEOUT 900)
   set_tests_properties(pgrid_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
 endif()

@@ -369,6 +369,7 @@ static void test_random_views(void)
     static const double fovs[] = {1.0, 10.0, 45.0, 60.0, 90.0, 120.0, 150.0, 170.0};
     static const double heights[] = {1.0, 10.0, 100.0, 1000.0, 10000.0, 100000.0};
     uint64_t rays = 0, vertices = 0, uncovered = 0, nonfinite = 0, bad_dz = 0, beyond_cap = 0;
+    uint64_t rising = 0, rising_out = 0;
     double worst_out = 0.0;
     for (int n = 0; n < 4000; ++n) {
         const double fov = fovs[n % 8], hgt = heights[(n / 8) % 6];
@@ -406,7 +407,43 @@ static void test_random_views(void)
             if (s.mirrored) {
                 d[2] = -d[2]; /* under the plane: the mirrored ray is sampled */
             }
-            if (-d[2] < sin(s.eps_rad) * (1.0 + 1e-9)) continue;
+            if (-d[2] < sin(s.eps_rad) * (1.0 + 1e-9)) {
+                /* a level or rising ray meets terrain (above the eye) at any
+                 * distance out to the far corner: the base-plane point under
+                 * it, along its azimuth just inside the top row's
+                 * depression eps, must be inside the rectangle's columns */
+                const double hz = hypot(d[0], d[1]);
+                /* straight up: no ground under it; mirrored (eye under the
+                 * base plane): this is a falling ray, it meets no terrain */
+                if (hz < 1e-9 || s.mirrored) continue;
+                /* it can only meet terrain if it is below the highest point
+                 * somewhere out to the far corner; a rising ray only out
+                 * to where it climbs past that point */
+                const double m = t.max_height_m - s.base_z_m;
+                const double drop = s.far_m * fmax(-d[2] / hz, 0.0);
+                if (s.height_m - drop > m) continue;
+                double reach = s.far_m;
+                if (d[2] > 0.0) reach = fmin(reach, (m - s.height_m) * hz / d[2]);
+                const double dep = fmax(atan2(s.height_m, reach), s.eps_rad) * (1.0 + 1e-6);
+                const double g[3] = {cos(dep) * d[0] / hz, cos(dep) * d[1] / hz, -sin(dep)};
+                double x, y, f;
+                project(&s, g, &x, &y, &f);
+                if (f < cos(FT_PGM_HALF_ANGLE_MAX_RAD)) continue;
+                /* the documented limit: columns widen to at most 1.5 tx_b */
+                if (fabs(x) > FT_PGM_COLUMNS_WIDEN_MAX * s.half_x_tan) continue;
+                ++rising;
+                const double out = fmax(s.rect[0] - x, x - s.rect[2]);
+                if (out > 1e-9 * (1.0 + fabs(x))) {
+                    if (rising_out < 5) {
+                        fprintf(stderr, "rising ray's ground outside the columns: pitch %.2f "
+                                "roll %.2f fov %.0f h %.1f dep_s %.3f x %.5f rect x %.5f\n",
+                                pitch, roll, fov, s.height_m, s.depression_rad / DEG, x,
+                                s.rect[2]);
+                    }
+                    ++rising_out;
+                }
+                continue;
+            }
             double x, y, f;
             project(&s, d, &x, &y, &f);
             if (f < cos(FT_PGM_HALF_ANGLE_MAX_RAD)) {
@@ -448,6 +485,11 @@ static void test_random_views(void)
            (unsigned long long)beyond_cap,
            (unsigned long long)vertices, (unsigned long long)nonfinite,
            (unsigned long long)bad_dz);
+    printf("random views: %llu level or rising view rays, %llu whose ground lies outside the "
+           "sampling rectangle's columns\n", (unsigned long long)rising,
+           (unsigned long long)rising_out);
+    CHECK(rising > 1000u);
+    CHECK(rising_out == 0u);
     CHECK(rays > 50000u);
     CHECK(uncovered == 0u);
     CHECK(beyond_cap * 500u < rays); /* a handful, all at fov 150..170 */

@@ -28,7 +28,9 @@
  *    (positive, finite: above gamma_px on these views), frames render and the
  *    crack test passes.
  *
- * Usage: test_pgrid_gl es3|es2 DEM */
+ * sweep: part 3 alone over another DEM, around LAT LON.
+ *
+ * Usage: test_pgrid_gl es3|es2 DEM | test_pgrid_gl sweep DEM LAT LON */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -300,7 +302,7 @@ static void test_distribution(const char *dem)
  * 100 km; before the envelopes and the stretch, 2953 at FOV 150). */
 #define SWEEP_COVER_MAX_PX 16u
 
-static void test_sweep(const char *dem)
+static void test_sweep(const char *dem, double lat, double lon)
 {
     static const double fovs[] = {1.0, 10.0, 60.0, 150.0, 170.0};
     static const double pitches[] = {-90.0, -60.0, -30.0, -10.0, -3.0, 0.0, 10.0, 60.0, 90.0};
@@ -313,14 +315,14 @@ static void test_sweep(const char *dem)
             /* the ground under the eye, from a probe frame's camera */
             ft_camera cam;
             ft_frame_stats fs;
-            ft_pose probe = pose_of(42.45, 1.55, 5000.0, 30.0, -30.0, 0.0);
+            ft_pose probe = pose_of(lat, lon, 5000.0, 30.0, -30.0, 0.0);
             frame(&probe, &cam, &fs);
             const double ground = ft_terrain_height_at(&g_app.terrain, cam.eye_m[0], cam.eye_m[1]);
             uint32_t worst_cover = 0;
             for (size_t pi = 0; pi < sizeof pitches / sizeof pitches[0]; ++pi) {
                 for (size_t hi = 0; hi < sizeof clear_m / sizeof clear_m[0]; ++hi) {
                     ft_error_stats es;
-                    ft_pose p = pose_of(42.45, 1.55, ground + clear_m[hi], 30.0, pitches[pi],
+                    ft_pose p = pose_of(lat, lon, ground + clear_m[hi], 30.0, pitches[pi],
                                         (pi % 2) ? 10.0 : 0.0);
                     frame(&p, &cam, &fs);
                     measure(&cam, &es);
@@ -473,6 +475,12 @@ int main(int argc, char **argv)
         return FT_TEST_SKIP;
     }
     fclose(probe);
+    if (strcmp(mode, "sweep") == 0) {
+        /* the sweep over another DEM, around (argv[3], argv[4]) */
+        REQUIRE(argc >= 5);
+        test_sweep(dem, atof(argv[3]), atof(argv[4]));
+        return ft_test_result("test_pgrid_gl sweep");
+    }
     if (strcmp(mode, "es2") == 0) {
         test_cracks("egl-gles2", dem);
         return ft_test_result("test_pgrid_gl es2");
@@ -480,7 +488,7 @@ int main(int argc, char **argv)
     const char *only = getenv("PGRID_ONLY"); /* a single part, for diagnosis */
     if (only == NULL || strcmp(only, "bound") == 0) test_error_bound(dem);
     if (only == NULL || strcmp(only, "dist") == 0) test_distribution(dem);
-    if (only == NULL || strcmp(only, "sweep") == 0) test_sweep(dem);
+    if (only == NULL || strcmp(only, "sweep") == 0) test_sweep(dem, 42.45, 1.55);
     if (only == NULL || strcmp(only, "cracks") == 0) test_cracks("egl-gles3", dem);
     return ft_test_result("test_pgrid_gl es3");
 }

@@ -113,6 +113,27 @@ static size_t json_pools(const ft_arena *a, char *buf, size_t cap)
     return n;
 }
 
+/* Writes the first len bytes of g_stats_text (a snprintf result: len < 0
+ * or too long means the JSON did not fit) to path, atomically. */
+static ft_status write_stats_text(const char *path, int len, const char *what, ft_error *err)
+{
+    if (len < 0 || (size_t)len >= sizeof g_stats_text) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "%s stats JSON longer than %u bytes", what,
+                       FT_STATS_TEXT_MAX);
+    }
+    ft_file f;
+    ft_status s = ft_plat_file_open_write(&f, path, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    s = f.writer.write(f.writer.ctx, g_stats_text, (size_t)len);
+    if (s != FT_OK) {
+        ft_plat_file_close(&f);
+        return ft_fail(err, s, "%s: write failed", path);
+    }
+    return ft_plat_file_finish_write(&f, err);
+}
+
 static ft_status write_stats(const char *path, const ft_app *app, const ft_camera *cam,
                              const ft_frame_stats *last, double median_ms, unsigned frames,
                              const char *error_json, ft_error *err)
@@ -143,27 +164,32 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms,
         (unsigned long long)app->renderer.gpu_bytes,
         (unsigned long long)app->scene.gpu_texture_bytes, error_json, pools);
-    if (n < 0 || (size_t)n >= sizeof g_stats_text) {
-        return ft_fail(err, FT_ERR_OVERSIZED, "stats JSON longer than %u bytes",
-                       FT_STATS_TEXT_MAX);
-    }
-    ft_file f;
-    ft_status s = ft_plat_file_open_write(&f, path, err);
-    if (s != FT_OK) {
-        return s;
-    }
-    s = f.writer.write(f.writer.ctx, g_stats_text, (size_t)n);
-    if (s != FT_OK) {
-        ft_plat_file_close(&f);
-        return ft_fail(err, s, "%s: write failed", path);
-    }
-    return ft_plat_file_finish_write(&f, err);
+    return write_stats_text(path, n, "render", err);
 }
 
 /* Options every rendering command shares. */
 typedef struct scene_opts {
     const char *scene_path, *dem, *method, *backend, *display, *size, *pose;
 } scene_opts;
+
+/* Takes option a with value v if it is one of the scene options every
+ * command shares (--scene --dem --method --backend --size, and --display
+ * where the command has a display): 1 when taken. */
+static int take_scene_opt(scene_opts *o, const char *a, const char *v, int with_display)
+{
+    const char **slot = NULL;
+    if (strcmp(a, "--scene") == 0) slot = &o->scene_path;
+    else if (strcmp(a, "--dem") == 0) slot = &o->dem;
+    else if (strcmp(a, "--method") == 0) slot = &o->method;
+    else if (strcmp(a, "--backend") == 0) slot = &o->backend;
+    else if (strcmp(a, "--size") == 0) slot = &o->size;
+    else if (with_display && strcmp(a, "--display") == 0) slot = &o->display;
+    if (slot == NULL) {
+        return 0;
+    }
+    *slot = v;
+    return 1;
+}
 
 /* Scene file (or the embedded default) + command-line overrides. Returns an
  * exit status: FT_EXIT_OK when the scene is ready. */
@@ -461,16 +487,7 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
         r->degrade.over_budget, r->degrade.enabled, r->degrade.raises, r->degrade.lowers,
         r->degrade_scale_max, r->tau_max_px);
-    if (len < 0 || (size_t)len >= sizeof g_stats_text) {
-        return ft_fail(err, FT_ERR_OVERSIZED, "replay stats longer than %u bytes",
-                       FT_STATS_TEXT_MAX);
-    }
-    ft_file file;
-    ft_status s = ft_plat_file_open_write(&file, path, err);
-    if (s == FT_OK) s = file.writer.write(file.writer.ctx, g_stats_text, (size_t)len);
-    if (s == FT_OK) s = ft_plat_file_finish_write(&file, err);
-    ft_plat_file_close(&file);
-    return s;
+    return write_stats_text(path, len, "replay", err);
 }
 
 static int cmd_replay(int argc, char **argv)
@@ -496,12 +513,9 @@ static int cmd_replay(int argc, char **argv)
             fprintf(stderr, "fixterrain replay: %s needs a value (or unknown option)\n", a);
             return FT_EXIT_USAGE;
         }
-        if (strcmp(a, "--log") == 0) d.log_path = v;
-        else if (strcmp(a, "--scene") == 0) o.scene_path = v;
-        else if (strcmp(a, "--dem") == 0) o.dem = v;
-        else if (strcmp(a, "--method") == 0) o.method = v;
-        else if (strcmp(a, "--backend") == 0) o.backend = v;
-        else if (strcmp(a, "--size") == 0) o.size = v;
+        if (take_scene_opt(&o, a, v, 0)) {
+            /* taken */
+        } else if (strcmp(a, "--log") == 0) d.log_path = v;
         else if (strcmp(a, "--frames-out") == 0) d.frames_dir = v;
         else if (strcmp(a, "--poses") == 0) d.poses_path = v;
         else if (strcmp(a, "--stats") == 0) stats_path = v;
@@ -641,15 +655,7 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         r->tau_max_px, (unsigned long long)r->jobs_run,
         (unsigned long long)r->jobs_deferred_frames, (unsigned long long)r->jobs_refused,
         r->jobs_high_water);
-    if (len < 0 || (size_t)len >= sizeof g_stats_text) {
-        return ft_fail(err, FT_ERR_OVERSIZED, "run stats too long");
-    }
-    ft_file file;
-    ft_status s = ft_plat_file_open_write(&file, path, err);
-    if (s == FT_OK) s = file.writer.write(file.writer.ctx, g_stats_text, (size_t)len);
-    if (s == FT_OK) s = ft_plat_file_finish_write(&file, err);
-    ft_plat_file_close(&file);
-    return s;
+    return write_stats_text(path, len, "run", err);
 }
 
 static int cmd_run(int argc, char **argv)
@@ -675,13 +681,9 @@ static int cmd_run(int argc, char **argv)
             fprintf(stderr, "fixterrain run: %s needs a value (or unknown option)\n", a);
             return FT_EXIT_USAGE;
         }
-        if (strcmp(a, "--scene") == 0) o.scene_path = v;
-        else if (strcmp(a, "--dem") == 0) o.dem = v;
-        else if (strcmp(a, "--method") == 0) o.method = v;
-        else if (strcmp(a, "--backend") == 0) o.backend = v;
-        else if (strcmp(a, "--display") == 0) o.display = v;
-        else if (strcmp(a, "--size") == 0) o.size = v;
-        else if (strcmp(a, "--poses") == 0) d.poses_path = v;
+        if (take_scene_opt(&o, a, v, 1)) {
+            /* taken */
+        } else if (strcmp(a, "--poses") == 0) d.poses_path = v;
         else if (strcmp(a, "--stats") == 0) stats_path = v;
         else if (strcmp(a, "--frames") == 0) {
             char *end = NULL;
@@ -808,12 +810,7 @@ static int cmd_budget(int argc, char **argv)
             fprintf(stderr, "fixterrain budget: %s needs a value (or unknown option)\n", a);
             return FT_EXIT_USAGE;
         }
-        if (strcmp(a, "--scene") == 0) o.scene_path = v;
-        else if (strcmp(a, "--dem") == 0) o.dem = v;
-        else if (strcmp(a, "--method") == 0) o.method = v;
-        else if (strcmp(a, "--backend") == 0) o.backend = v;
-        else if (strcmp(a, "--size") == 0) o.size = v;
-        else {
+        if (!take_scene_opt(&o, a, v, 0)) {
             fprintf(stderr, "fixterrain budget: unknown option %s (see --help)\n", a);
             return FT_EXIT_USAGE;
         }

@@ -181,6 +181,17 @@ static int parse_u32(const char *v, uint32_t lo, uint32_t hi, uint32_t *out)
     return 1;
 }
 
+/* A 0|1 switch into an int. */
+static int parse_flag(const char *v, int *out)
+{
+    uint32_t u;
+    if (!parse_u32(v, 0, 1, &u)) {
+        return 0;
+    }
+    *out = (int)u;
+    return 1;
+}
+
 static const char *const k_can_qty_key[FT_QTY_COUNT] = {
     [FT_QTY_PITCH] = "pitch",           [FT_QTY_ROLL] = "roll",
     [FT_QTY_HEADING] = "heading",       [FT_QTY_LAT] = "lat",
@@ -368,12 +379,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return 1;
         }
         if (strcmp(key, "pyramid_textures") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->pyramid_textures = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->pyramid_textures), "expected 0 or 1");
         }
         if (strcmp(key, "texture_bytes") == 0) {
             return RANGE(parse_u64(value, 0, 1ull << 40, &s->gpu_texture_bytes),
@@ -399,12 +405,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return RANGE(parse_f64(value, 0.0, 1000.0, &s->bintree_tau_px), "expected 0..1000");
         }
         if (strcmp(key, "morph") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->bintree_morph = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->bintree_morph), "expected 0 or 1");
         }
     } else if (strcmp(section, "pgm") == 0) {
         if (strcmp(key, "grid_cols") == 0) {
@@ -428,12 +429,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return fail_key(c, section, key, value, "expected uniform or view");
         }
         if (strcmp(key, "ray_casting") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->pgrid_ray_casting = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->pgrid_ray_casting), "expected 0 or 1");
         }
         if (strcmp(key, "gamma_px") == 0) {
             return RANGE(parse_f64(value, 0.1, 100.0, &s->pgrid_gamma_px), "expected 0.1..100");
@@ -450,12 +446,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return RANGE(parse_f64(value, 0.0, 1000.0, &s->frame_budget_ms), "expected 0..1000");
         }
         if (strcmp(key, "degrade") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->frame_degrade = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->frame_degrade), "expected 0 or 1");
         }
         if (strcmp(key, "degrade_max_scale") == 0) {
             return RANGE(parse_f64(value, 1.0, 64.0, &s->frame_degrade_max_scale),
@@ -504,12 +495,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return 1;
         }
         if (strcmp(key, "active_low") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->gpio_active_low = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->gpio_active_low), "expected 0 or 1");
         }
         if (strcmp(key, "debounce_ms") == 0) {
             return RANGE(parse_u32(value, 0, 1000, &s->gpio_debounce_ms), "expected 0..1000");
@@ -535,12 +521,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return 1;
         }
         if (strcmp(key, "png") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->build_png = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->build_png), "expected 0 or 1");
         }
     } else if (strcmp(section, "can_map") == 0) {
         if (strcmp(key, "defaults") == 0) {
@@ -584,12 +565,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
         }
     } else if (strcmp(section, "metric") == 0) {
         if (strcmp(key, "enabled") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            s->metric_enabled = (int)v;
-            return 1;
+            return RANGE(parse_flag(value, &s->metric_enabled), "expected 0 or 1");
         }
     } else if (strcmp(section, "budget") == 0) {
         ft_pool_id id;

@@ -162,3 +162,15 @@ vec3 ft_pgm_vertex(vec2 ij, out vec2 pc, out float morph)
     morph = level + w;
     return s;
 }
+
+/* The vertex's outputs: placed at (pc, height s.x), drawn with the viewing
+ * camera; the normal from the sample's gradient. */
+void ft_pgm_emit(vec2 pc, vec3 s, float morph)
+{
+    vec2 inv_cell = 1.0 / u_cell_m;
+    v_normal = normalize(vec3(-s.y * inv_cell.x, -s.z * inv_cell.y, 1.0));
+    v_morph = morph;
+    v_height_m = s.x;
+    v_pos_rel_eye_m = vec3(pc, s.x + u_origin_rel_eye_m.z);
+    gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
+}

@@ -120,9 +120,5 @@ void main()
             s.x = min(mm.x, s.x);
         }
     }
-    v_normal = normalize(vec3(-s.y * inv_cell.x, -s.z * inv_cell.y, 1.0));
-    v_morph = morph;
-    v_height_m = s.x;
-    v_pos_rel_eye_m = vec3(pc, s.x + u_origin_rel_eye_m.z);
-    gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
+    ft_pgm_emit(pc, s, morph);
 }

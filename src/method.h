@@ -93,6 +93,7 @@ typedef struct ft_pgrid_method {
     GLuint err_tex, err_depth, err_fbo, rc_prog, quad_vbo;
     struct ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
     int err_prog_built;
+    GLint u_err_k_gamma, u_err_fwd, u_err_envelope; /* err_prog's own uniforms */
     uint32_t w_px, h_px;
     int distribution, ray_casting, es3;
     double gamma_px;

@@ -37,7 +37,7 @@
 
 #include "app.h"
 #include "bintree_template.h"
-#include "test_util.h"
+#include "test_app_util.h"
 
 static ft_app g_app;
 static char g_text[4096];
@@ -62,30 +62,11 @@ typedef struct setup {
 
 static void app_init(const setup *c)
 {
-    ft_scene s;
-    ft_error err;
+    char what[64];
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, c->w, c->h, c->dem,
                    c->metric, c->k, c->tiles_max, c->tau, c->morph);
-    ft_scene_defaults(&s);
-    ft_status st = ft_scene_parse(&s, g_text, "test scene", &err);
-    if (st == FT_OK) st = ft_app_init(&g_app, &s, &err);
-    if (st != FT_OK) fprintf(stderr, "init (%s k=%u): %s\n", c->method, c->k, err.text);
-    REQUIRE(st == FT_OK);
-}
-
-static ft_pose pose_of(double lat, double lon, double alt, double heading, double pitch,
-                       double roll)
-{
-    ft_pose p = {lat, lon, alt, heading, pitch, roll};
-    return p;
-}
-
-static void frame(const ft_pose *p, ft_camera *cam, ft_frame_stats *fs)
-{
-    ft_error err;
-    ft_status st = ft_app_render(&g_app, p, cam, fs, &err);
-    if (st != FT_OK) fprintf(stderr, "frame: %s\n", err.text);
-    REQUIRE(st == FT_OK);
+    (void)snprintf(what, sizeof what, "%s k=%u", c->method, c->k);
+    ft_test_app_init(&g_app, g_text, what);
 }
 
 /* ---- 1. watertight -------------------------------------------------------------- */
@@ -161,7 +142,7 @@ static void watertight_view(const ft_pose *pose, const float *tmpl_uv, uint32_t 
 {
     ft_camera cam;
     ft_frame_stats fs;
-    frame(pose, &cam, &fs); /* the real draw: uploads the tiles, sets every uniform */
+    ft_test_frame(&g_app, pose, &cam, &fs); /* the real draw: uploads the tiles, sets every uniform */
     const ft_gl *gl = g_app.renderer.gl;
     const ft_bintree_method *bm = &g_app.renderer.method.u.bintree;
     const uint32_t tiles = bm->sel.tiles;
@@ -333,12 +314,12 @@ static void test_watertight(const char *dem)
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)nt * 6u * sizeof(float)), flat,
                        GL_STATIC_DRAW);
         const ft_pose views[] = {
-            pose_of(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
-            pose_of(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
-            pose_of(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
-            pose_of(42.20, 1.10, 2400.0, 60.0, -12.0, -20.0),
-            pose_of(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),
-            pose_of(42.02, 1.97, 3000.0, 225.0, -15.0, 0.0), /* near the grid corner */
+            ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
+            ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
+            ft_test_pose(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
+            ft_test_pose(42.20, 1.10, 2400.0, 60.0, -12.0, -20.0),
+            ft_test_pose(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),
+            ft_test_pose(42.02, 1.97, 3000.0, 225.0, -15.0, 0.0), /* near the grid corner */
         };
         tf_totals tot;
         memset(&tot, 0, sizeof tot);
@@ -388,11 +369,11 @@ static void test_cracks(const char *backend, const char *dem)
      * enough that the top edge of the frustum meets the ground well inside
      * the grid (about 20 km away at most; the grid is about 80 x 110 km). */
     const ft_pose covered[] = {
-        pose_of(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
-        pose_of(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
-        pose_of(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
-        pose_of(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
-        pose_of(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
+        ft_test_pose(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
+        ft_test_pose(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
+        ft_test_pose(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
+        ft_test_pose(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
+        ft_test_pose(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
     };
     static const uint32_t ks[] = {2, 3, 4};
     static const double taus[] = {0.5, 2.0, 8.0};
@@ -413,7 +394,7 @@ static void test_cracks(const char *backend, const char *dem)
             for (size_t v = 0; v < sizeof covered / sizeof covered[0]; ++v) {
                 ft_camera cam;
                 ft_frame_stats fs;
-                frame(&covered[v], &cam, &fs);
+                ft_test_frame(&g_app, &covered[v], &cam, &fs);
                 const uint32_t n = clear_pixels();
                 tiles_sum += fs.tiles;
                 CHECK(fs.tiles > 0u);
@@ -428,8 +409,8 @@ static void test_cracks(const char *backend, const char *dem)
             /* the counter works: a view above the horizon shows the clear colour */
             ft_camera cam;
             ft_frame_stats fs;
-            const ft_pose sky = pose_of(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
-            frame(&sky, &cam, &fs);
+            const ft_pose sky = ft_test_pose(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
+            ft_test_frame(&g_app, &sky, &cam, &fs);
             CHECK(clear_pixels() > 1000u);
             printf("cracks %s k=%u tau=%.1f: %u tiles over %zu covered views, 0 expected clear "
                    "pixels\n",
@@ -448,7 +429,7 @@ static void test_cracks(const char *backend, const char *dem)
 static ft_pose path_pose(int f)
 {
     const double s = (double)f / (PATH_FRAMES - 1);
-    return pose_of(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
+    return ft_test_pose(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
                    -8.0 - 4.0 * f, (f % 3) * 8.0 - 8.0);
 }
 
@@ -494,7 +475,7 @@ static void test_error_bound(const char *dem)
         ft_frame_stats fs;
         ft_error_stats es;
         ft_pose p = path_pose(f);
-        frame(&p, &cam, &fs);
+        ft_test_frame(&g_app, &p, &cam, &fs);
         REQUIRE(ft_app_measure(&g_app, &cam, &es, &err) == FT_OK);
         brute_max[f] = es.max_px;
     }
@@ -515,7 +496,7 @@ static void test_error_bound(const char *dem)
             ft_frame_stats fs;
             ft_error_stats es;
             ft_pose p = path_pose(f);
-            frame(&p, &cam, &fs);
+            ft_test_frame(&g_app, &p, &cam, &fs);
             REQUIRE(ft_app_measure(&g_app, &cam, &es, &err) == FT_OK);
             CHECK(es.nonfinite_px == 0u);
             CHECK(es.terrain_px > 1000u);
@@ -545,12 +526,7 @@ int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
     const char *mode = argv[1], *dem = argv[2];
-    FILE *probe = fopen(dem, "rb");
-    if (probe == NULL) {
-        printf("%s missing: skipped (needs ../shared/data)\n", dem);
-        return FT_TEST_SKIP;
-    }
-    fclose(probe);
+    if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
     if (strcmp(mode, "es2") == 0) {
         test_cracks("egl-gles2", dem);
         return ft_test_result("test_bintree_gl es2");

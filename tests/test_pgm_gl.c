@@ -34,7 +34,7 @@
 #include <string.h>
 
 #include "app.h"
-#include "test_util.h"
+#include "test_app_util.h"
 
 /* float rounding in the shader: the mirror is double (0.0007 px seen) */
 #define FT_MIRROR_PX 0.01
@@ -61,22 +61,11 @@ typedef struct setup {
 
 static void app_init(const setup *c)
 {
-    ft_scene s;
-    ft_error err;
+    char what[64];
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, c->w, c->h, c->dem,
                    c->format, c->metric, c->cols, c->rows);
-    ft_scene_defaults(&s);
-    ft_status st = ft_scene_parse(&s, g_text, "test scene", &err);
-    if (st == FT_OK) st = ft_app_init(&g_app, &s, &err);
-    if (st != FT_OK) fprintf(stderr, "init (%s %ux%u): %s\n", c->method, c->cols, c->rows, err.text);
-    REQUIRE(st == FT_OK);
-}
-
-static ft_pose pose_of(double lat, double lon, double alt, double heading, double pitch,
-                       double roll)
-{
-    ft_pose p = {lat, lon, alt, heading, pitch, roll};
-    return p;
+    (void)snprintf(what, sizeof what, "%s %ux%u", c->method, c->cols, c->rows);
+    ft_test_app_init(&g_app, g_text, what);
 }
 
 /* Camera for pose with any fov (the scene's fovy is only the default). */
@@ -227,12 +216,12 @@ static void test_mirror(const char *dem)
         const char *format;
     } grids[] = {{200, 800, "auto"}, {430, 430, "auto"}, {200, 800, "packed"}};
     const ft_pose views[] = {
-        pose_of(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
-        pose_of(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
-        pose_of(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
-        pose_of(42.20, 1.10, 2400.0, 60.0, 3.0, -20.0),  /* above the horizon */
-        pose_of(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),   /* nadir */
-        pose_of(42.60, 1.40, 30000.0, 300.0, -30.0, 0.0),
+        ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
+        ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
+        ft_test_pose(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
+        ft_test_pose(42.20, 1.10, 2400.0, 60.0, 3.0, -20.0),  /* above the horizon */
+        ft_test_pose(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),   /* nadir */
+        ft_test_pose(42.60, 1.40, 30000.0, 300.0, -30.0, 0.0),
     };
     for (size_t g = 0; g < sizeof grids / sizeof grids[0]; ++g) {
         setup c = {"pgm", "egl-gles3", dem, grids[g].format, 320, 240, grids[g].cols,
@@ -375,7 +364,7 @@ static void test_sweep(const char *backend, const char *dem)
                     const double lon = 1.15 + 0.7 * fmod(k * 0.61, 1.0);
                     const double heading = fmod(k * 47.0, 360.0);
                     const double roll = (k % 4 == 0) ? 0.0 : fmod(k * 29.0, 120.0) - 60.0;
-                    const ft_pose p = pose_of(lat, lon, ground_at(lat, lon) + heights[hi],
+                    const ft_pose p = ft_test_pose(lat, lon, ground_at(lat, lon) + heights[hi],
                                               heading, pitches[pi], roll);
                     (void)snprintf(what, sizeof what, "pitch %.0f fov %.0f height %.0f m roll %.0f",
                                    pitches[pi], fovs[fi], heights[hi], roll);
@@ -388,7 +377,7 @@ static void test_sweep(const char *backend, const char *dem)
         for (int u = 0; u < 8; ++u) {
             const double lat = 42.3 + 0.05 * u, lon = 1.3 + 0.04 * u;
             const double alt = (u < 4) ? ground_at(lat, lon) - 50.0 : -500.0;
-            const ft_pose p = pose_of(lat, lon, alt, 40.0 * u, -45.0 + 30.0 * (u % 4), 0.0);
+            const ft_pose p = ft_test_pose(lat, lon, alt, 40.0 * u, -45.0 + 30.0 * (u % 4), 0.0);
             (void)snprintf(what, sizeof what, "eye %s, pitch %.0f",
                            (u < 4) ? "50 m under the ground" : "at z = -500 m", p.pitch_deg);
             sweep_view(&p, 60.0, es3, cap, n, &tot, what);
@@ -423,13 +412,13 @@ static void test_cracks(const char *backend, const char *dem)
     /* views the terrain covers completely (the frustum's top edge meets the
      * ground well inside the grid, about 80 x 110 km) */
     const ft_pose covered[] = {
-        pose_of(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
-        pose_of(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
-        pose_of(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
-        pose_of(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
-        pose_of(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
-        pose_of(42.50, 1.50, 3500.0, 100.0, -35.0, 0.0),
-        pose_of(42.30, 1.30, 5000.0, 10.0, -50.0, 20.0),
+        ft_test_pose(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
+        ft_test_pose(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
+        ft_test_pose(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
+        ft_test_pose(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
+        ft_test_pose(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
+        ft_test_pose(42.50, 1.50, 3500.0, 100.0, -35.0, 0.0),
+        ft_test_pose(42.30, 1.30, 5000.0, 10.0, -50.0, 20.0),
     };
     static const struct {
         uint32_t cols, rows;
@@ -458,7 +447,7 @@ static void test_cracks(const char *backend, const char *dem)
         ft_camera cam;
         ft_frame_stats fs;
         camera_for(&covered[0], 60.0, &cam);
-        const ft_pose sky = pose_of(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
+        const ft_pose sky = ft_test_pose(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
         camera_for(&sky, 60.0, &cam);
         draw(&cam, &fs);
         read_rgba();
@@ -476,7 +465,7 @@ static void test_cracks(const char *backend, const char *dem)
 static ft_pose path_pose(int f)
 {
     const double s = (double)f / (PATH_FRAMES - 1);
-    return pose_of(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
+    return ft_test_pose(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
                    -8.0 - 4.0 * f, (f % 3) * 8.0 - 8.0);
 }
 
@@ -519,12 +508,7 @@ int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
     const char *mode = argv[1], *dem = argv[2];
-    FILE *probe = fopen(dem, "rb");
-    if (probe == NULL) {
-        printf("%s missing: skipped (needs ../shared/data)\n", dem);
-        return FT_TEST_SKIP;
-    }
-    fclose(probe);
+    if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
     if (strcmp(mode, "es2") == 0) {
         test_cracks("egl-gles2", dem);
         test_sweep("egl-gles2", dem);

@@ -37,7 +37,7 @@
 #include <string.h>
 
 #include "app.h"
-#include "test_util.h"
+#include "test_app_util.h"
 
 #define W_PX 256u
 #define H_PX 192u
@@ -68,39 +68,10 @@ typedef struct setup {
 
 static void app_init(const setup *c)
 {
-    ft_scene s;
-    ft_error err;
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, W_PX, H_PX,
                    c->fovy_deg, c->dem, c->metric, c->cols, c->rows,
                    c->view_dist ? "view" : "uniform", c->ray_casting, c->gamma, W_PX * H_PX);
-    ft_scene_defaults(&s);
-    ft_status st = ft_scene_parse(&s, g_text, "test scene", &err);
-    if (st == FT_OK) st = ft_app_init(&g_app, &s, &err);
-    if (st != FT_OK) fprintf(stderr, "init (%s): %s\n", c->method, err.text);
-    REQUIRE(st == FT_OK);
-}
-
-static ft_pose pose_of(double lat, double lon, double alt, double heading, double pitch,
-                       double roll)
-{
-    ft_pose p = {lat, lon, alt, heading, pitch, roll};
-    return p;
-}
-
-static void frame(const ft_pose *p, ft_camera *cam, ft_frame_stats *fs)
-{
-    ft_error err;
-    ft_status st = ft_app_render(&g_app, p, cam, fs, &err);
-    if (st != FT_OK) fprintf(stderr, "frame: %s\n", err.text);
-    REQUIRE(st == FT_OK);
-}
-
-static void measure(const ft_camera *cam, ft_error_stats *es)
-{
-    ft_error err;
-    ft_status st = ft_app_measure(&g_app, cam, es, &err);
-    if (st != FT_OK) fprintf(stderr, "measure: %s\n", err.text);
-    REQUIRE(st == FT_OK);
+    ft_test_app_init(&g_app, g_text, c->method);
 }
 
 /* Per-pixel split of the last measured frame (pgrid): the largest metric
@@ -174,7 +145,7 @@ static split split_errors(const ft_camera *cam)
 static ft_pose path_pose(int f)
 {
     const double s = (double)f / (PATH_FRAMES - 1);
-    return pose_of(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
+    return ft_test_pose(42.30 + 0.30 * s, 1.25 + 0.45 * s, 3500.0 + 1500.0 * s, 40.0 + 25.0 * f,
                    -8.0 - 4.0 * f, (f % 3) * 8.0 - 8.0);
 }
 
@@ -201,8 +172,8 @@ static void test_error_bound(const char *dem)
         ft_frame_stats fs;
         ft_error_stats es;
         ft_pose p = path_pose(f);
-        frame(&p, &cam, &fs);
-        measure(&cam, &es);
+        ft_test_frame(&g_app, &p, &cam, &fs);
+        ft_test_measure(&g_app, &cam, &es);
         brute_max[f] = es.max_px;
         brute_mean[f] = es.mean_px;
     }
@@ -224,8 +195,8 @@ static void test_error_bound(const char *dem)
             ft_frame_stats fs;
             ft_error_stats es;
             ft_pose p = path_pose(f);
-            frame(&p, &cam, &fs);
-            measure(&cam, &es);
+            ft_test_frame(&g_app, &p, &cam, &fs);
+            ft_test_measure(&g_app, &cam, &es);
             const uint32_t cover = es.only_method_px + es.only_ref_px;
             printf("  gamma %.1f f%d: max %.3f mean %.4f cover %u+%u rc %u achieved %.3f%s "
                    "[%.3f/%.4f]\n",
@@ -268,8 +239,8 @@ static void test_distribution(const char *dem)
                 ft_frame_stats fs;
                 ft_error_stats es;
                 ft_pose p = path_pose(f);
-                frame(&p, &cam, &fs);
-                measure(&cam, &es);
+                ft_test_frame(&g_app, &p, &cam, &fs);
+                ft_test_measure(&g_app, &cam, &es);
                 CHECK(es.nonfinite_px == 0u);
                 CHECK(fs.tiles == 0u);
                 mean[d][f] = es.mean_px;
@@ -315,17 +286,17 @@ static void test_sweep(const char *dem, double lat, double lon)
             /* the ground under the eye, from a probe frame's camera */
             ft_camera cam;
             ft_frame_stats fs;
-            ft_pose probe = pose_of(lat, lon, 5000.0, 30.0, -30.0, 0.0);
-            frame(&probe, &cam, &fs);
+            ft_pose probe = ft_test_pose(lat, lon, 5000.0, 30.0, -30.0, 0.0);
+            ft_test_frame(&g_app, &probe, &cam, &fs);
             const double ground = ft_terrain_height_at(&g_app.terrain, cam.eye_m[0], cam.eye_m[1]);
             uint32_t worst_cover = 0;
             for (size_t pi = 0; pi < sizeof pitches / sizeof pitches[0]; ++pi) {
                 for (size_t hi = 0; hi < sizeof clear_m / sizeof clear_m[0]; ++hi) {
                     ft_error_stats es;
-                    ft_pose p = pose_of(lat, lon, ground + clear_m[hi], 30.0, pitches[pi],
+                    ft_pose p = ft_test_pose(lat, lon, ground + clear_m[hi], 30.0, pitches[pi],
                                         (pi % 2) ? 10.0 : 0.0);
-                    frame(&p, &cam, &fs);
-                    measure(&cam, &es);
+                    ft_test_frame(&g_app, &p, &cam, &fs);
+                    ft_test_measure(&g_app, &cam, &es);
                     ++frames;
                     const uint32_t ref_hits = es.terrain_px - es.only_method_px + es.only_ref_px;
                     /* the reported bound: never NaN; +inf is the documented "over
@@ -386,11 +357,11 @@ static void test_cracks(const char *backend, const char *dem)
 {
     /* views the terrain covers completely (as in test_bintree_gl) */
     const ft_pose covered[] = {
-        pose_of(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
-        pose_of(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
-        pose_of(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
-        pose_of(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
-        pose_of(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
+        ft_test_pose(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
+        ft_test_pose(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
+        ft_test_pose(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
+        ft_test_pose(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
+        ft_test_pose(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
     };
     const int es2 = strcmp(backend, "egl-gles2") == 0;
     static const uint32_t grids[][2] = {{150u, 600u}, {430u, 430u}};
@@ -411,7 +382,7 @@ static void test_cracks(const char *backend, const char *dem)
                 for (size_t v = 0; v < sizeof covered / sizeof covered[0]; ++v) {
                     ft_camera cam;
                     ft_frame_stats fs;
-                    frame(&covered[v], &cam, &fs);
+                    ft_test_frame(&g_app, &covered[v], &cam, &fs);
                     const uint32_t n = clear_pixels();
                     if (n > 0u) {
                         fprintf(stderr, "%s rc %d %ux%u %s view %zu: %u clear-colour pixels\n",
@@ -436,7 +407,7 @@ static void test_cracks(const char *backend, const char *dem)
                     if (!es2) {
                         /* the position pass too: terrain at every pixel */
                         ft_error_stats es;
-                        measure(&cam, &es);
+                        ft_test_measure(&g_app, &cam, &es);
                         const uint32_t miss = W_PX * H_PX - es.terrain_px;
                         if (miss > worst_pos) worst_pos = miss;
                         CHECK(miss == 0u);
@@ -450,8 +421,8 @@ static void test_cracks(const char *backend, const char *dem)
                 }
                 ft_camera cam;
                 ft_frame_stats fs;
-                const ft_pose sky = pose_of(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
-                frame(&sky, &cam, &fs);
+                const ft_pose sky = ft_test_pose(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
+                ft_test_frame(&g_app, &sky, &cam, &fs);
                 CHECK(clear_pixels() > 1000u); /* the counter works */
                 printf("cracks %s ray casting %d %ux%u %s: no clear pixel in %zu covered views; "
                        "reported bound %.3f..%.3f px; %u px ray cast\n",
@@ -469,12 +440,7 @@ int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
     const char *mode = argv[1], *dem = argv[2];
-    FILE *probe = fopen(dem, "rb");
-    if (probe == NULL) {
-        printf("%s missing: skipped (needs ../shared/data)\n", dem);
-        return FT_TEST_SKIP;
-    }
-    fclose(probe);
+    if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
     if (strcmp(mode, "sweep") == 0) {
         /* the sweep over another DEM, around (argv[3], argv[4]) */
         REQUIRE(argc >= 5);

@@ -202,6 +202,9 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
         return st;
     }
     m->err_prog_built = 1;
+    m->u_err_k_gamma = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_err");
+    m->u_err_fwd = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_fwd");
+    m->u_err_envelope = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_envelope");
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
         st = ft_renderer_link_program(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl", "a_corner",
@@ -379,10 +382,9 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
         gl->UniformMatrix4fv(e->u_view_proj, 1, GL_FALSE, cam->view_proj);
         gl->Uniform3f(e->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
                       (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
-        gl->Uniform2f(gl->GetUniformLocation(e->program, "u_pgrid_err"), (float)cam->px_per_rad_k,
-                      (float)m->gamma_px);
-        gl->Uniform3f(gl->GetUniformLocation(e->program, "u_pgrid_fwd"), (float)cam->forward[0],
-                      (float)cam->forward[1], (float)cam->forward[2]);
+        gl->Uniform2f(m->u_err_k_gamma, (float)cam->px_per_rad_k, (float)m->gamma_px);
+        gl->Uniform3f(m->u_err_fwd, (float)cam->forward[0], (float)cam->forward[1],
+                      (float)cam->forward[2]);
         set_grid_uniforms(m, gl, e->program);
         ft_method_draw_stats dummy;
         memset(&dummy, 0, sizeof dummy);
@@ -394,7 +396,7 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
              * mesh's skyline missed (or, from under the ground, a surface
              * the mesh leaves out): the pixel takes the larger code (GLES 3
              * MAX blending); depth writes off, the mesh's depth decides */
-            const GLint env = gl->GetUniformLocation(e->program, "u_pgrid_envelope");
+            const GLint env = m->u_err_envelope;
             gl->DepthMask(GL_FALSE);
             gl->Enable(GL_BLEND);
             gl->BlendEquation(GL_MAX);

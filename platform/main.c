@@ -134,6 +134,15 @@ static ft_status write_stats_text(const char *path, int len, const char *what, f
     return ft_plat_file_finish_write(&f, err);
 }
 
+/* The frame's depth buffer as the stats name it: "32f", "24" or "16". */
+static const char *depth_format_name(const ft_frame_stats *st)
+{
+    if (st->depth_float) {
+        return "32f";
+    }
+    return st->depth_bits == 24u ? "24" : (st->depth_bits == 16u ? "16" : "none");
+}
+
 static ft_status write_stats(const char *path, const ft_app *app, const ft_camera *cam,
                              const ft_frame_stats *last, double median_ms, unsigned frames,
                              const char *error_json, ft_error *err)
@@ -141,6 +150,10 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
     char pools[2048];
     const ft_terrain *t = &app->terrain;
     (void)json_pools(&app->arena, pools, sizeof pools);
+    char res_text[32] = "null"; /* JSON has no infinity (no depth buffer) */
+    if (isfinite(last->depth_res_far_m)) {
+        (void)snprintf(res_text, sizeof res_text, "%.4f", last->depth_res_far_m);
+    }
     int n = snprintf(
         g_stats_text, sizeof g_stats_text,
         "{\n  \"scene\": \"%s\",\n  \"method\": \"%s\",\n  \"backend\": \"%s\",\n"
@@ -152,7 +165,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
         " \"tau_achieved_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
-        " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f},\n"
+        " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
+        " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
         "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
         "  \"error\": %s,\n  \"pools\": [%s\n  ]\n}\n",
         app->scene.name, ft_method_name(app->scene.method), ft_backend_name(app->scene.backend),
@@ -161,7 +175,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, last->tau_achieved_px, last->budget_hit, last->select_ms,
-        last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms,
+        last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
+        depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
         (unsigned long long)app->scene.gpu_texture_bytes, error_json, pools);
     return write_stats_text(path, n, "render", err);
@@ -385,13 +400,16 @@ static int cmd_render(int argc, char **argv)
         (void)snprintf(error_json, sizeof error_json,
                        "{\"max_px\": %s, \"p999_px\": %.4f, \"mean_px\": %.4f, "
                        "\"terrain_px\": %u, \"only_method_px\": %u, \"only_ref_px\": %u, "
-                       "\"nonfinite_px\": %u, \"outside_grid_px\": %u}",
+                       "\"occlusion_px\": %u, \"occlusion_max_px\": %.4f, "
+                       "\"behind_eye_px\": %u, \"nonfinite_px\": %u, \"outside_grid_px\": %u}",
                        max_text, es.p999_px, es.mean_px, es.terrain_px, es.only_method_px,
-                       es.only_ref_px, es.nonfinite_px, es.outside_grid_px);
+                       es.only_ref_px, es.occlusion_px, es.occlusion_max_px, es.behind_eye_px,
+                       es.nonfinite_px, es.outside_grid_px);
         if (!quiet) {
             printf("screen-space error vs reference: max %.3f px, p99.9 %.3f px, mean %.4f px; "
-                   "coverage mismatch %u + %u px\n",
-                   es.max_px, es.p999_px, es.mean_px, es.only_method_px, es.only_ref_px);
+                   "coverage mismatch %u + %u px; occlusion mismatch %u px (worst %.2f px)\n",
+                   es.max_px, es.p999_px, es.mean_px, es.only_method_px, es.only_ref_px,
+                   es.occlusion_px, es.occlusion_max_px);
         }
     }
 #endif
@@ -416,6 +434,10 @@ static int cmd_render(int argc, char **argv)
         printf("frame: %llu triangles in %u draws, %.2f ms (first frame; median of later "
                "frames %.2f ms)\n",
                (unsigned long long)st.triangles, st.draw_calls, times_ms[0], median);
+        printf("depth: %s-bit %s buffer, near %.2f m, far %.0f m, one depth step at the far "
+               "plane %.3f m\n",
+               st.depth_float ? "32" : depth_format_name(&st),
+               st.depth_float ? "float" : "fixed-point", st.near_m, st.far_m, st.depth_res_far_m);
         if (st.tiles > 0u && scene.method == FT_METHOD_BINTREE) {
             printf("bintree: %u tiles, error bound %.3f px%s, selection %.3f ms\n", st.tiles,
                    st.tau_achieved_px, st.budget_hit ? " (tile budget hit: tau raised)" : "",

@@ -12,14 +12,18 @@
  * ft_bt_vertex_morph, is the same rule on the CPU): the vertex is the
  * midpoint of a coarse edge e0-e1 and enters the mesh when one diamond c
  * splits; its height slides from (h(e0) + h(e1)) / 2 to h(g) as
- *   rho = K * err(c) / |P - eye|  goes from split (the selection's split
- * threshold, f * tau) to tau. Every tile that draws the vertex therefore
+ *   rho = K * err(c) / (|P - eye| cos^2 theta)  goes from split (the
+ * selection's split threshold, f * tau) to tau; theta is P's angle off the
+ * view axis (capped at the frustum corner's), the stretch a perspective
+ * image gives an angle there, as the selection's box bound does. Every tile that draws the vertex therefore
  * computes the same position from the same inputs: no cracks, even mid-morph.
  *
  * Padding: coordinates are clamped into the real grid; clamped vertices do
  * not morph. All arithmetic on grid coordinates is on integers below 2^24
  * (exact in highp float; divisions are by powers of two). */
 precision highp float;
+
+#include "curvature.glsl"
 
 uniform sampler2D u_heights;
 uniform vec2 u_grid_size;
@@ -32,6 +36,7 @@ uniform sampler2D u_bt_err;   /* saturated diamond error (m) on the split-vertex
 uniform vec2 u_bt_err_pack;   /* like u_pack, for u_bt_err */
 uniform vec3 u_bt_lattice;    /* (2^k, lattice side, N = 2^n) */
 uniform vec4 u_bt_morph;      /* (K px, split px, tau - split px, on) */
+uniform vec4 u_bt_axis;       /* (view axis (world, unit), cos of the frustum corner) */
 
 FT_IN_VS vec2 a_uv;
 #if FT_ES3
@@ -146,14 +151,16 @@ void main()
         vec2 e0, e1;
         float err_m = ft_morph_error(g_raw, e0, e1);
         if (err_m >= 0.0) {
-            vec3 p_true = u_origin_rel_eye_m + vec3(g * u_cell_m, h);
-            float rho = u_bt_morph.x * err_m / max(length(p_true), 1e-3);
+            vec3 p_true = ft_earth_curve(u_origin_rel_eye_m + vec3(g * u_cell_m, h));
+            float dist = max(length(p_true), 1e-3);
+            float c = max(dot(p_true, u_bt_axis.xyz) / dist, u_bt_axis.w);
+            float rho = u_bt_morph.x * err_m / (dist * c * c);
             w = clamp((rho - u_bt_morph.y) / u_bt_morph.z, 0.0, 1.0);
             h = mix(0.5 * (ft_height(e0) + ft_height(e1)), h, w);
         }
     }
     v_morph = w;
     v_height_m = h;
-    v_pos_rel_eye_m = u_origin_rel_eye_m + vec3(g * u_cell_m, h);
+    v_pos_rel_eye_m = ft_earth_curve(u_origin_rel_eye_m + vec3(g * u_cell_m, h));
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }

@@ -1,6 +1,7 @@
 /* pgm.vert.glsl - persistent grid mapping (method 'pgm'): one vertex of the
  * persistent grid, rows uniform on the sampling image plane. The placement
  * is shaders/pgm_grid.glsl (src/pgm.h). */
+#include "curvature.glsl"
 #include "pgm_grid.glsl"
 
 float ft_row_y(float t, float y)

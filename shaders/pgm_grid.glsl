@@ -171,6 +171,6 @@ void ft_pgm_emit(vec2 pc, vec3 s, float morph)
     v_normal = normalize(vec3(-s.y * inv_cell.x, -s.z * inv_cell.y, 1.0));
     v_morph = morph;
     v_height_m = s.x;
-    v_pos_rel_eye_m = vec3(pc, s.x + u_origin_rel_eye_m.z);
+    v_pos_rel_eye_m = ft_earth_curve(vec3(pc, s.x + u_origin_rel_eye_m.z));
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }

@@ -8,6 +8,7 @@
  *    the min/max atlas (levels >= 2) or the heights (levels 0, 1), passed on
  *    as v_delta_m (interpolated: a convex bound of the mesh's error).
  * The placement is shaders/pgm_grid.glsl (shared with 'pgm'). */
+#include "curvature.glsl"
 #include "pgm_grid.glsl"
 
 uniform vec4 u_pgrid_dist;       /* (mode, s0, s1, dep_s) */
@@ -108,14 +109,18 @@ void main()
         vec2 bmin = min(min(min(c0, c1), min(c2, c3)), pc);
         vec2 bmax = max(max(max(c0, c1), max(c2, c3)), pc);
         vec2 mm = ft_region_minmax((bmin - lo) * inv_cell, (bmax - lo) * inv_cell);
-        v_delta_m = max(max(mm.y - s.x, s.x - mm.x), 0.0);
+        /* the mesh interpolates the curvature drop linearly: over an edge of
+         * length L the chord lies up to k L^2 / 4 under the curved surface */
+        vec2 ext = bmax - bmin;
+        float chord_m = 0.25 * u_earth_drop_per_m2 * dot(ext, ext);
+        v_delta_m = max(max(mm.y - s.x, s.x - mm.x), 0.0) + chord_m;
         /* the envelopes (error pass, src/pgrid.h 3): every vertex at the max
          * (u_pgrid_envelope 1) or the min (-1) of its region, which holds all
          * the cells around it, so each triangle lies on or above (below) the
          * surface over its footprint; between them the two hold every pixel
          * the true surface can cover, from above or from under the ground */
         if (u_pgrid_envelope > 0.5) {
-            s.x = max(mm.y, s.x);
+            s.x = max(mm.y, s.x) + chord_m;
         } else if (u_pgrid_envelope < -0.5) {
             s.x = min(mm.x, s.x);
         }

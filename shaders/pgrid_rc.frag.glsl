@@ -11,7 +11,12 @@
  * cell. Output: colour (ramp x Lambert, as terrain.frag.glsl) or the
  * position (xyz rel. eye, w 1) and gl_FragDepth of the hit; a miss writes
  * the sky (u_rc_sky, depth 1). Pixels under the threshold are discarded, so
- * the mesh stays there. Bounded loop (FT_RC_STEPS visits). */
+ * the mesh stays there. Bounded loop (FT_RC_STEPS visits).
+ * Earth curvature (src/terrain.h): the terrain r metres from the eye is
+ * drawn k r^2 lower; the ray is bent up by the same amount instead,
+ * z(t) = o.z + d.z t + bend t^2 with bend = k |dw.xy|^2, as
+ * src/reference.c does: the cell solve stays a quadratic and the ray's z
+ * over a texel is convex (its minimum at an end or at -d.z / (2 bend)). */
 #ifdef GL_FRAGMENT_PRECISION_HIGH
 precision highp float;
 #else
@@ -46,6 +51,7 @@ uniform float u_ramp_height_m[FT_RAMP_STOPS];
 uniform vec3 u_ramp_rgb[FT_RAMP_STOPS];
 uniform vec3 u_sun_dir;
 uniform vec2 u_light;
+uniform float u_earth_drop_per_m2; /* k: 1 / (2 R) or 0 */
 
 float ft_decode(vec4 t, vec2 pack)
 {
@@ -98,18 +104,20 @@ float texmax(float level, vec2 ij)
  * the patch is never extrapolated out to the eye: the coefficients stay of
  * the order of the cell's heights and float keeps millimetres. A sign change
  * the closed form loses to round-off is refined by bisection. */
-bool solve_cell(vec2 ij, vec3 o, vec3 d, float ta, float tb, bool entry_hit, out float th)
+bool solve_cell(vec2 ij, vec3 o, vec3 d, float bend, float ta, float tb, bool entry_hit,
+                out float th)
 {
     float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
     float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
     /* local u = u0 + s d.x, v likewise; H = h00 + a u + b v + c u v */
     float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
     vec3 pa = o + ta * d;
+    pa.z += bend * ta * ta;
     float u0 = pa.x - ij.x, v0 = pa.y - ij.y;
     float len = tb - ta;
     /* f(s) = pa.z + s d.z - H(u0 + s dx, v0 + s dy) = A s^2 + B s + C */
-    float A = -c * d.x * d.y;
-    float B = d.z - a * d.x - b * d.y - c * (u0 * d.y + v0 * d.x);
+    float A = bend - c * d.x * d.y;
+    float B = (d.z + 2.0 * bend * ta) - a * d.x - b * d.y - c * (u0 * d.y + v0 * d.x);
     float C = pa.z - (h00 + a * u0 + b * v0 + c * u0 * v0);
     float fa = C;
     float fb = (A * len + B) * len + C;
@@ -194,6 +202,7 @@ void main()
     /* grid frame: x, y in cells, z metres; t stays metres along dw */
     vec3 d = vec3(dw.x / u_cell_m.x, dw.y / u_cell_m.y, dw.z);
     vec3 o = u_rc_eye_g;
+    float bend = u_earth_drop_per_m2 * dot(dw.xy, dw.xy);
     vec2 gmax = u_grid_size - 1.0;
     /* clip to the grid's box [0, gmax] */
     float t0 = 0.0, t1 = 1e30;
@@ -213,7 +222,7 @@ void main()
     bool entry_hit = true; /* false: the ray starts under the surface */
     if (t0 <= t1) {
         vec3 p0 = o + t0 * d;
-        entry_hit = p0.z >= hbil(p0.xy);
+        entry_hit = p0.z + bend * t0 * t0 >= hbil(p0.xy);
     }
     if (t0 <= t1) {
         float t = t0;
@@ -236,7 +245,11 @@ void main()
             float te = min(min(tx, ty), t1);
             te = max(te, t);
             float zmax = texmax(level, c);
-            float zlo = min(p.z, o.z + te * d.z);
+            float zlo = min(p.z + bend * t * t, o.z + te * (d.z + bend * te));
+            float t_low = -d.z / max(2.0 * bend, 1e-30); /* the bent ray's lowest point */
+            if (bend > 0.0 && t_low > t && t_low < te) {
+                zlo = min(zlo, o.z + t_low * (d.z + bend * t_low));
+            }
             if (zlo > zmax) {
                 /* above the whole box: skip it, and go up a level */
                 t = te + max(abs(te), 1.0) * 1e-7;
@@ -248,7 +261,7 @@ void main()
                 continue;
             }
             float tt;
-            if (solve_cell(c, o, d, t, te, entry_hit, tt)) {
+            if (solve_cell(c, o, d, bend, t, te, entry_hit, tt)) {
                 th = tt;
                 hit = true;
                 break;

@@ -6,6 +6,8 @@
  * CPU, so huge world coordinates never reach float. */
 precision highp float;
 
+#include "curvature.glsl"
+
 uniform sampler2D u_heights;
 uniform vec2 u_grid_size;        /* samples (width, height) */
 uniform vec2 u_patch_origin;     /* grid coordinates of template vertex (0,0) */
@@ -51,6 +53,6 @@ void main()
     v_normal = normalize(vec3(-dhx, -dhy, 1.0));
 
     v_height_m = h;
-    v_pos_rel_eye_m = u_origin_rel_eye_m + vec3(g * u_cell_m, h);
+    v_pos_rel_eye_m = ft_earth_curve(u_origin_rel_eye_m + vec3(g * u_cell_m, h));
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }

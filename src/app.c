@@ -69,7 +69,7 @@ static void plan(ft_app *app)
     if (s->metric_enabled) {
         size_t px = (size_t)s->width_px * s->height_px;
         ft_arena_plan(a, FT_POOL_REFERENCE, px * sizeof(ft_ref_pixel));
-        ft_arena_plan(a, FT_POOL_METRIC, px * sizeof(float));
+        ft_arena_plan(a, FT_POOL_METRIC, ft_metric_scratch_bytes(s->width_px, s->height_px));
     }
 #endif
 #if FT_WITH_PNG
@@ -137,6 +137,8 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
     if (st != FT_OK) {
         goto fail_file;
     }
+    app->terrain.curv_drop_per_m2 =
+        ft_terrain_curvature_drop(app->scene.curvature, app->terrain.unit);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {
         app->arena.pools[i].budget_bytes = (size_t)app->scene.budget_bytes[i];
     }
@@ -179,8 +181,9 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
         st = ft_arena_take(&app->arena, FT_POOL_REFERENCE, px * sizeof(ft_ref_pixel),
                            (void **)&app->ref, err);
         if (st == FT_OK) {
-            st = ft_arena_take(&app->arena, FT_POOL_METRIC, px * sizeof(float),
-                               (void **)&app->metric_scratch, err);
+            st = ft_arena_take(&app->arena, FT_POOL_METRIC,
+                               ft_metric_scratch_bytes(app->scene.width_px, app->scene.height_px),
+                               &app->metric_scratch, err);
         }
         if (st != FT_OK) {
             goto fail_renderer;
@@ -265,7 +268,7 @@ ft_status ft_app_measure(ft_app *app, const ft_camera *cam, ft_error_stats *out,
         return s;
     }
     return ft_metric_compute(&app->terrain, cam, app->renderer.pos, app->ref, app->metric_scratch,
-                             px, out, err);
+                             ft_metric_scratch_bytes(cam->width_px, cam->height_px), out, err);
 }
 #endif
 

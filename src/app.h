@@ -40,7 +40,7 @@ typedef struct ft_app {
     int renderer_ready;
 #if FT_WITH_REFERENCE
     ft_ref_pixel *ref;     /* FT_POOL_REFERENCE (metric.enabled) */
-    float *metric_scratch; /* FT_POOL_METRIC (metric.enabled) */
+    void *metric_scratch;  /* FT_POOL_METRIC (metric.enabled): ft_metric_scratch_bytes */
 #endif
     uint64_t init_ns;
     char pool_table[FT_POOL_TABLE_TEXT_MAX];

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bintree_template.h"
+#include "view_scale.h"
 
 /* ---- sizes ---------------------------------------------------------------- */
 
@@ -369,6 +370,8 @@ void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull,
     v->cell_m[0] = t->cell_x_m;
     v->cell_m[1] = t->cell_y_m;
     v->k_px = cam->px_per_rad_k;
+    v->corner_cos = ft_view_corner_cos(cam);
+    v->curv_drop_per_m2 = t->curv_drop_per_m2;
     v->cull = cull;
     v->morph = morph;
     const double tv = tan(0.5 * cam->fovy_rad);
@@ -389,7 +392,15 @@ typedef struct bt_node {
     uint32_t level;
 } bt_node;
 
-/* World-metre box (relative to sample (0,0)) of grid box b. */
+/* Distance from e to the interval [lo, hi] (0 inside). */
+static double gap_1d(double e, double lo, double hi)
+{
+    return (e < lo) ? lo - e : ((e > hi) ? e - hi : 0.0);
+}
+
+/* World-metre box (relative to sample (0,0)) of grid box b, as drawn: its
+ * z range lowered by the curvature drop k r^2 over the box (r from the
+ * eye: at least the box's nearest, at most its farthest xy corner). */
 static void box_to_m(const ft_bt_view *v, const float *b, double lo[3], double hi[3])
 {
     lo[0] = (double)b[0] * v->cell_m[0];
@@ -398,18 +409,43 @@ static void box_to_m(const ft_bt_view *v, const float *b, double lo[3], double h
     hi[1] = (double)b[3] * v->cell_m[1];
     lo[2] = b[4];
     hi[2] = b[5];
+    if (v->curv_drop_per_m2 > 0.0) {
+        double near2 = 0.0, far2 = 0.0;
+        for (int i = 0; i < 2; ++i) {
+            double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
+            double f = fmax(fabs(v->eye_m[i] - lo[i]), fabs(v->eye_m[i] - hi[i]));
+            near2 += g * g;
+            far2 += f * f;
+        }
+        lo[2] -= v->curv_drop_per_m2 * far2;
+        hi[2] -= v->curv_drop_per_m2 * near2;
+    }
 }
 
-static double box_distance_m(const ft_bt_view *v, const float *b)
+/* Screen-space size in pixels of a diamond error err_m over grid box b:
+ * K (err + chord) * gain / distance, with the distance from the eye to the
+ * drawn box, the off-axis gain bounded over it (view_scale.h), and the
+ * chord k L^2 / 4 by which a straight edge of length L (at most the box's
+ * xy diagonal) lies under the curved surface. */
+static double box_error_px(const ft_bt_view *v, double err_m, const float *b)
 {
-    double lo[3], hi[3], d2 = 0.0;
+    double lo[3], hi[3], d2 = 0.0, l2 = 0.0;
     box_to_m(v, b, lo, hi);
     for (int i = 0; i < 3; ++i) {
-        double e = v->eye_m[i];
-        double d = (e < lo[i]) ? lo[i] - e : ((e > hi[i]) ? e - hi[i] : 0.0);
-        d2 += d * d;
+        double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
+        d2 += g * g;
+        lo[i] -= v->eye_m[i];
+        hi[i] -= v->eye_m[i];
     }
-    return sqrt(d2);
+    l2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]);
+    double e = err_m + 0.25 * v->curv_drop_per_m2 * l2;
+    if (!(e > 0.0)) {
+        return 0.0;
+    }
+    if (!(d2 > 0.0)) {
+        return INFINITY;
+    }
+    return v->k_px * e * ft_view_offaxis_gain(v->forward, v->corner_cos, lo, hi) / sqrt(d2);
 }
 
 /* 1 if the box is wholly outside one frustum side plane or behind the eye. */
@@ -492,7 +528,7 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
         }
         if (t.level < bt->leaf_level) {
             float e = bt->err_m[lat_index(bt, c[0], c[1])];
-            if (e > 0.0f && v->k_px * (double)e > thr_px * box_distance_m(v, dbox)) {
+            if (box_error_px(v, (double)e, dbox) > thr_px) {
                 stack[sp++] = (bt_node){{c[0], c[1]},
                                         {t.right[0], t.right[1]},
                                         {t.apex[0], t.apex[1]},
@@ -541,8 +577,7 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
     if (bt->leaf_level > 0u) {
         const int32_t h = (int32_t)bt->side_cells / 2;
         size_t li = lat_index(bt, h, h);
-        double d = box_distance_m(v, bt->box + li * FT_BT_BOX_FLOATS);
-        st->tau_achieved_px = (d > 0.0) ? v->k_px * bt->err_m[li] / d : INFINITY;
+        st->tau_achieved_px = box_error_px(v, bt->err_m[li], bt->box + li * FT_BT_BOX_FLOATS);
     } else {
         st->tau_achieved_px = 0.0; /* roots are the full-resolution grid */
     }

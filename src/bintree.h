@@ -104,6 +104,8 @@ typedef struct ft_bt_view {
     double forward[3];
     double plane_n[4][3];  /* frustum side planes: inside iff dot(n, p - eye) >= 0 */
     double k_px;
+    double corner_cos;       /* view_scale.h: off-axis gain is capped at the corner's */
+    double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
     int cull;
     int morph;
 } ft_bt_view;

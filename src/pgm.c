@@ -239,7 +239,22 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
 {
     memset(s, 0, sizeof *s);
     memcpy(s->eye_m, c->eye_m, sizeof s->eye_m);
-    s->base_z_m = (double)t->min_height_m;
+    /* the farthest grid corner bounds how far any sampled ground lies */
+    double far2 = 1.0;
+    for (int k = 0; k < 4; ++k) {
+        const double gx = (k & 1) ? (double)(t->width - 1u) : 0.0;
+        const double gy = (k & 2) ? (double)(t->height - 1u) : 0.0;
+        const double dx = t->origin_world_x_m + gx * t->cell_x_m - c->eye_m[0];
+        const double dy = t->origin_world_y_m + gy * t->cell_y_m - c->eye_m[1];
+        far2 = (dx * dx + dy * dy > far2) ? dx * dx + dy * dy : far2;
+    }
+    s->far_m = sqrt(far2);
+    /* Every drawn point lies on or above the base plane: the terrain minimum,
+     * less the largest earth-curvature drop over the grid (terrain.h). A
+     * plane through the undropped minimum would leave dropped terrain at the
+     * view's edges (a nadir view from 100 km, FOV 150 from 3 km) outside the
+     * grid. */
+    s->base_z_m = (double)t->min_height_m - t->curv_drop_per_m2 * far2;
     /* Under the base plane only rising rays can meet the terrain (it is all
      * above the plane), and a ray rising at elevation e meets the plane where
      * the mirrored ray falling at depression e does: mirror the eye and the
@@ -286,15 +301,6 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
     s->half_y_tan = tan(a);
 
     /* eps: the top edge never looks farther than the farthest grid corner */
-    double far2 = 1.0;
-    for (int k = 0; k < 4; ++k) {
-        const double gx = (k & 1) ? (double)(t->width - 1u) : 0.0;
-        const double gy = (k & 2) ? (double)(t->height - 1u) : 0.0;
-        const double dx = t->origin_world_x_m + gx * t->cell_x_m - c->eye_m[0];
-        const double dy = t->origin_world_y_m + gy * t->cell_y_m - c->eye_m[1];
-        far2 = (dx * dx + dy * dy > far2) ? dx * dx + dy * dy : far2;
-    }
-    s->far_m = sqrt(far2);
     const double eps_far = atan2(h, s->far_m);
     s->eps_rad = (eps_far > FT_PGM_EPS_MIN_RAD) ? eps_far : FT_PGM_EPS_MIN_RAD;
 
@@ -513,7 +519,8 @@ void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t co
     out->height_m = hgt;
     out->pos_rel_eye_m[0] = px;
     out->pos_rel_eye_m[1] = py;
-    out->pos_rel_eye_m[2] = hgt - s->eye_m[2];
+    /* drawn lowered by the earth's curvature, as shaders/curvature.glsl */
+    out->pos_rel_eye_m[2] = hgt - s->eye_m[2] - t->curv_drop_per_m2 * (px * px + py * py);
 }
 
 int ft_pgm_atlas_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,

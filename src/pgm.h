@@ -123,7 +123,7 @@
 
 typedef struct ft_pgm_sampling {
     double eye_m[3];          /* viewing eye (world) */
-    double base_z_m;          /* base plane height (terrain minimum) */
+    double base_z_m;          /* base plane: terrain minimum less the largest curvature drop */
     double lift_m;            /* sampling eye = viewing eye + (0, 0, lift_m) */
     int mirrored;             /* eye below the base plane: view mirrored through it */
     double height_m;          /* h: sampling eye above the base plane, >= FT_PGM_MIN_HEIGHT_M */
@@ -150,7 +150,7 @@ typedef struct ft_pgm_vertex {
     uint32_t level;         /* avg pyramid level L */
     double parent_w;        /* weight of level L + 1 */
     double height_m;        /* mix(h_L, h_L+1, w) */
-    double pos_rel_eye_m[3];
+    double pos_rel_eye_m[3]; /* as drawn: lowered by the curvature drop (terrain.h) */
 } ft_pgm_vertex;
 
 /* dep_s from dep_v, the half angle a and eps (closed form, see the top). */

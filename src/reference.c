@@ -37,11 +37,22 @@
 
 #include "shade.h"
 
-/* Ray in grid space. */
+/* Ray in grid space. With earth curvature the terrain at horizontal
+ * distance r from the eye is drawn k r^2 lower; equivalently the ray rises
+ * by k r^2 over the unlowered terrain: z(t) = o.z + d.z t + bend t^2, with
+ * bend = k |dir_xy|^2 (world direction, r = t |dir_xy|). The bend keeps the
+ * cell solve a quadratic and the ray's z range over a t-interval convex. */
 typedef struct ref_ray {
     double o[3]; /* origin: grid x, grid y, z metres */
     double d[3]; /* direction per unit t: 1/cell_x, 1/cell_y, metres */
+    double bend; /* metres per t^2 (0 on a flat earth) */
 } ref_ray;
+
+/* Height of the (bent) ray at t, over the unlowered terrain. */
+static double ray_z(const ref_ray *r, double t)
+{
+    return r->o[2] + t * (r->d[2] + r->bend * t);
+}
 
 typedef struct ref_hit {
     double t;
@@ -166,10 +177,10 @@ static int solve_cell(const ft_terrain *t, const ref_ray *r, uint32_t i, uint32_
     double a = h[0], b = h[1] - h[0], c = h[2] - h[0], e = h[3] - h[1] - h[2] + h[0];
     double ua = r->o[0] + r->d[0] * ta - (double)i;
     double va = r->o[1] + r->d[1] * ta - (double)j;
-    double za = r->o[2] + r->d[2] * ta;
+    double za = ray_z(r, ta);
     double du = r->d[0], dv = r->d[1];
-    double A = -e * du * dv;
-    double B = r->d[2] - (b + e * va) * du - (c + e * ua) * dv;
+    double A = r->bend - e * du * dv;
+    double B = (r->d[2] + 2.0 * r->bend * ta) - (b + e * va) * du - (c + e * ua) * dv;
     double C = za - (a + b * ua + c * va + e * ua * va);
     double sb = tb - ta;
     if (!(sb >= 0.0)) sb = 0.0;
@@ -211,7 +222,8 @@ static int cast(const ft_terrain *t, const ref_ray *r, ref_hit *hit)
         top = t->pyr.minmax_levels - 1u;
         double zmin = t->pyr.minmax[top].min_m[0], zmax = t->pyr.minmax[top].max_m[0];
         double pad = 1e-3 + 1e-6 * fmax(fabs(zmin), fabs(zmax));
-        if (!clip_slab(r->o[2], r->d[2], zmin - pad, zmax + pad, &t0, &t1)) {
+        /* a bent ray is not a line: the texel tests below bound it instead */
+        if (r->bend == 0.0 && !clip_slab(r->o[2], r->d[2], zmin - pad, zmax + pad, &t0, &t1)) {
             return 0;
         }
     }
@@ -277,8 +289,12 @@ static int cast(const ft_terrain *t, const ref_ray *r, ref_hit *hit)
             lo_h = fmin(fmin(h[0], h[1]), fmin(h[2], h[3]));
             hi_h = fmax(fmax(h[0], h[1]), fmax(h[2], h[3]));
         }
-        double za = r->o[2] + r->d[2] * t_cur, zb = r->o[2] + r->d[2] * tb;
+        double za = ray_z(r, t_cur), zb = ray_z(r, tb);
         double zlo = fmin(za, zb), zhi = fmax(za, zb);
+        if (r->bend > 0.0) { /* convex: its minimum may lie inside */
+            double t_min = -r->d[2] / (2.0 * r->bend);
+            if (t_min > t_cur && t_min < tb) zlo = fmin(zlo, ray_z(r, t_min));
+        }
         double ztol = 1e-7 + 1e-12 * (fabs(zlo) + fabs(zhi));
         int skip = zlo > hi_h + ztol || zhi < lo_h - ztol;
 
@@ -344,7 +360,8 @@ static int make_ray(const ft_terrain *t, const double origin_m[3], const double 
     r->d[0] = dir[0] / t->cell_x_m;
     r->d[1] = dir[1] / t->cell_y_m;
     r->d[2] = dir[2];
-    return isfinite(r->o[0]) && isfinite(r->o[1]);
+    r->bend = t->curv_drop_per_m2 * (dir[0] * dir[0] + dir[1] * dir[1]);
+    return isfinite(r->o[0]) && isfinite(r->o[1]) && isfinite(r->bend) && r->bend >= 0.0;
 }
 
 int ft_reference_ray(const ft_terrain *t, const double origin_m[3], const double dir[3],
@@ -419,7 +436,7 @@ ft_status ft_reference_render(const ft_terrain *t, const ft_camera *c, ft_ref_pi
             double hy = ((hh[2] - hh[0]) + e * h.u) / t->cell_y_m;
             double nl = sqrt(hx * hx + hy * hy + 1.0);
             float nrm[3] = {(float)(-hx / nl), (float)(-hy / nl), (float)(1.0 / nl)};
-            double z = c->eye_m[2] + dir[2] * h.t;
+            double z = ray_z(&r, h.t); /* the terrain's own height at the hit */
             ft_shade_rgba8((float)z, nrm, o->rgba);
         }
     }

@@ -7,6 +7,12 @@
  * min/max cell pyramids (terrain.h) so empty space is skipped. Iterative,
  * bounded loops, no recursion, no allocation: output goes to caller storage.
  * The surface exists only over the grid's extent [0, w-1] x [0, h-1].
+ * Earth curvature (t->curv_drop_per_m2 = k > 0): the surface is drawn
+ * lowered by k r^2 at horizontal distance r from the ray's origin (the
+ * eye), as every method draws it; the caster bends the ray up by the same
+ * amount instead (reference.c), which keeps the cell solve a quadratic.
+ * Hit positions and distances stay along the straight ray (what the display
+ * shows); the shading uses the terrain's own height.
  *
  * Hit rule: the first point along the ray (t >= 0) where the ray meets the
  * surface, from either side. An eye above the surface gets the usual hit; an

@@ -125,6 +125,8 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_bt_err_pack);
     FT_UNIFORM(u_bt_lattice);
     FT_UNIFORM(u_bt_morph);
+    FT_UNIFORM(u_bt_axis);
+    FT_UNIFORM(u_earth_drop_per_m2);
     FT_UNIFORM(u_pgm_atlas);
     FT_UNIFORM(u_pgm_atlas_size);
     FT_UNIFORM(u_pgm_atlas_pack);
@@ -166,6 +168,7 @@ static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, co
     gl->Uniform2f(p->u_cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
     gl->Uniform4f(p->u_clamp_box, 0.0f, 0.0f, (float)(t->width - 1u), (float)(t->height - 1u));
     gl->Uniform1f(p->u_patch_stride, 1.0f);
+    gl->Uniform1f(p->u_earth_drop_per_m2, (float)t->curv_drop_per_m2);
     gl->Uniform2f(p->u_pack, gt->pack_min_m,
                   gt->format == FT_HEIGHT_FORMAT_PACKED ? gt->pack_range_m : 0.0f);
     if (p->u_ramp_height_m >= 0) {
@@ -234,17 +237,77 @@ static ft_status upload_terrain(ft_renderer *r, const ft_scene *s, ft_arena *a, 
 
 /* ---- targets ------------------------------------------------------------------ */
 
+/* Depth formats, most precise first. 32-bit float is core in GLES 3.0 (and
+ * desktop GL 3.0, OSMesa); its far-plane resolution equals 24-bit fixed
+ * point with the standard mapping (ft_camera_depth_step_m), and finer near
+ * the eye. 24-bit needs GLES 3 or OES_depth24 on GLES 2; 16-bit is core
+ * everywhere. */
+typedef struct depth_format {
+    GLenum internal_format;
+    uint32_t bits;
+    int is_float;
+} depth_format;
+
+static const depth_format k_depth_formats[3] = {
+    {GL_DEPTH_COMPONENT32F, 32u, 1},
+    {GL_DEPTH_COMPONENT24, 24u, 0},
+    {GL_DEPTH_COMPONENT16, 16u, 0},
+};
+
+static void drain_gl_errors(const ft_gl *gl)
+{
+    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; ++i) {
+        /* GL keeps one flag per error kind */
+    }
+}
+
+/* Gives rb_depth storage in the first format with which the colour target
+ * (and the position target, when there is one) is complete, and records it
+ * in r->depth_bits / r->depth_float. */
+static ft_status pick_depth_format(ft_renderer *r, GLsizei w, GLsizei h, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    const int es3 = (gl->api == FT_GL_API_ES3);
+    GLenum st = GL_FRAMEBUFFER_COMPLETE;
+    for (size_t k = 0; k < sizeof k_depth_formats / sizeof k_depth_formats[0]; ++k) {
+        const depth_format *f = &k_depth_formats[k];
+        if ((f->is_float && !es3) || (f->bits == 24u && !gl->caps.has_depth24)) {
+            continue;
+        }
+        gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_depth);
+        gl->RenderbufferStorage(GL_RENDERBUFFER, f->internal_format, w, h);
+        if (gl->GetError() != GL_NO_ERROR) {
+            drain_gl_errors(gl);
+            continue; /* the driver refused the format itself */
+        }
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
+        gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                    r->rb_depth);
+        st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (st == GL_FRAMEBUFFER_COMPLETE && r->fbo_pos != 0u) {
+            gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_pos);
+            gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                        r->rb_depth);
+            st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+        }
+        if (st == GL_FRAMEBUFFER_COMPLETE) {
+            r->depth_bits = f->bits;
+            r->depth_float = f->is_float;
+            return FT_OK;
+        }
+    }
+    return ft_fail(err, FT_ERR_GPU,
+                   "%s framebuffer %ux%u incomplete with every depth format (32F, 24, 16): 0x%04x",
+                   r->fbo_pos != 0u ? "colour or RGBA32F position" : "colour", r->width_px,
+                   r->height_px, (unsigned)st);
+}
+
 static ft_status make_targets(ft_renderer *r, ft_error *err)
 {
     const ft_gl *gl = r->gl;
     const GLsizei w = (GLsizei)r->width_px, h = (GLsizei)r->height_px;
     const int es3 = (gl->api == FT_GL_API_ES3);
 
-    gl->GenRenderbuffers(1, &r->rb_depth);
-    gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_depth);
-    gl->RenderbufferStorage(GL_RENDERBUFFER,
-                            gl->caps.has_depth24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT16,
-                            w, h);
     /* Colour as a texture: ES2 core has no RGBA8 renderbuffer, but RGBA
      * UNSIGNED_BYTE textures are colour-renderable everywhere. */
     gl->GenTextures(1, &r->rb_color);
@@ -256,14 +319,7 @@ static ft_status make_targets(ft_renderer *r, ft_error *err)
     gl->GenFramebuffers(1, &r->fbo_color);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->rb_color, 0);
-    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                r->rb_depth);
-    GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (st != GL_FRAMEBUFFER_COMPLETE) {
-        return ft_fail(err, FT_ERR_GPU, "colour framebuffer %ux%u incomplete: 0x%04x",
-                       r->width_px, r->height_px, (unsigned)st);
-    }
-    r->gpu_bytes += (uint64_t)w * (uint64_t)h * (4u + 4u);
+    r->gpu_bytes += (uint64_t)w * (uint64_t)h * (4u + 4u); /* colour + depth (32F, 24 as 32) */
 
     r->has_pos_target = 0;
     if (r->scene->metric_enabled && gl->caps.has_float_color_buffer) {
@@ -274,15 +330,20 @@ static ft_status make_targets(ft_renderer *r, ft_error *err)
         gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_pos);
         gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                                     r->rb_pos);
-        gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                    r->rb_depth);
-        st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
-        if (st != GL_FRAMEBUFFER_COMPLETE) {
-            return ft_fail(err, FT_ERR_GPU, "RGBA32F position framebuffer incomplete: 0x%04x",
-                           (unsigned)st);
-        }
         r->has_pos_target = 1;
         r->gpu_bytes += (uint64_t)w * (uint64_t)h * 16u;
+    }
+    /* Errors so far are the targets' own: report them before the depth
+     * format probe clears the ones it causes. */
+    ft_status s = ft_gl_check(gl, "render targets", err);
+    if (s != FT_OK) {
+        return s;
+    }
+    /* One depth buffer, shared by both targets. */
+    gl->GenRenderbuffers(1, &r->rb_depth);
+    s = pick_depth_format(r, w, h, err);
+    if (s != FT_OK) {
+        return s;
     }
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
     return ft_gl_check(gl, "render targets", err);
@@ -399,15 +460,13 @@ ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fo
     double eye[3];
     ft_terrain_geo_to_world(t, pose->lat_deg, pose->lon_deg, &eye[0], &eye[1]);
     eye[2] = pose->alt_m;
-    double box_min[2] = {t->origin_world_x_m, t->origin_world_y_m};
-    double box_max[2] = {t->origin_world_x_m + t->cell_x_m * (double)(t->width - 1u),
-                         t->origin_world_y_m + t->cell_y_m * (double)(t->height - 1u)};
     const double d2r = FT_PI / 180.0;
     const double ty = tan(0.5 * fovy_deg * d2r);
     const double tx = ty * (double)width_px / (double)(height_px > 0u ? height_px : 1u);
     double near_m, far_m;
-    ft_camera_pick_depth_range(eye, t->min_height_m, t->max_height_m, box_min, box_max,
-                               1.0 / sqrt(1.0 + tx * tx + ty * ty), &near_m, &far_m);
+    /* the terrain as drawn: lowered by the earth-curvature drop */
+    ft_camera_depth_range_for_terrain(t, eye, 1.0 / sqrt(1.0 + tx * tx + ty * ty),
+                                      t->curv_drop_per_m2, &near_m, &far_m);
     return ft_camera_init(cam, eye, pose->heading_deg * d2r, pose->pitch_deg * d2r,
                           pose->roll_deg * d2r, fovy_deg * d2r, width_px, height_px, near_m,
                           far_m, err);
@@ -493,6 +552,12 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     st->tiles = ms.tiles;
     st->tau_achieved_px = ms.tau_achieved_px;
     st->budget_hit = ms.budget_hit;
+    st->depth_bits = r->depth_bits;
+    st->depth_float = r->depth_float;
+    st->near_m = cam->near_m;
+    st->far_m = cam->far_m;
+    st->depth_res_far_m =
+        ft_camera_depth_step_m(cam->near_m, cam->far_m, r->depth_bits, r->depth_float, cam->far_m);
     r->frames += 1u;
     return ft_gl_check(gl, "frame draw", err);
 }

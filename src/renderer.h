@@ -27,7 +27,8 @@ typedef struct ft_terrain_program {
     GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
     GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
     GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
-    GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph; /* bintree geomorph */
+    GLint u_earth_drop_per_m2; /* curvature (shaders/curvature.glsl) */
+    GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph, u_bt_axis; /* bintree geomorph */
     /* pgm: avg-pyramid atlas, sampling camera, grid band (shaders/pgm.vert.glsl) */
     GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
     GLint u_pgm_fwd, u_pgm_right, u_pgm_up, u_pgm_rect, u_pgm_eye;
@@ -60,6 +61,13 @@ typedef struct ft_frame_stats {
     double cpu_ms;   /* frame submission on the CPU */
     double gpu_ms;   /* submission + glFinish (measurement mode) */
     double gpu_timer_ms; /* GPU time of the draw from a timer query; -1 if none */
+    /* depth buffer of the frame: bits, float or fixed point, the camera's
+     * near/far, and the eye-depth span of one depth step at the far plane
+     * (ft_camera_depth_step_m): the worst depth resolution of the frame */
+    uint32_t depth_bits;
+    int depth_float;
+    double near_m, far_m;
+    double depth_res_far_m;
 } ft_frame_stats;
 
 typedef struct ft_renderer {
@@ -70,6 +78,8 @@ typedef struct ft_renderer {
     uint32_t width_px, height_px;
     GLuint vao; /* one VAO when the context has them (core profile needs one) */
     GLuint fbo_color, rb_color, rb_depth;
+    uint32_t depth_bits; /* the depth buffer the targets got: 32 (float), 24 or 16 */
+    int depth_float;     /* 1: GL_DEPTH_COMPONENT32F */
     GLuint fbo_pos, rb_pos;
     int has_pos_target;
     ft_gpu_terrain gt;

@@ -63,6 +63,7 @@ void ft_scene_defaults(ft_scene *s)
     s->pose.heading_deg = 10.0;
     s->pose.pitch_deg = -18.0;
     s->pose.roll_deg = 0.0;
+    s->curvature = FT_CURVATURE_AUTO;
     s->height_format = FT_HEIGHT_FORMAT_AUTO;
     s->gpu_texture_bytes = 64ull << 20;
     s->brute_patch_cells = 64;
@@ -345,6 +346,13 @@ static int on_key(void *user, const char *section, const char *key, const char *
                 return fail_key(c, section, key, value, "path too long");
             }
             (void)snprintf(s->dem_path, sizeof s->dem_path, "%s", value);
+            return 1;
+        }
+        if (strcmp(key, "curvature") == 0) {
+            if (strcmp(value, "auto") == 0) s->curvature = FT_CURVATURE_AUTO;
+            else if (strcmp(value, "sphere") == 0) s->curvature = FT_CURVATURE_SPHERE;
+            else if (strcmp(value, "flat") == 0) s->curvature = FT_CURVATURE_FLAT;
+            else return fail_key(c, section, key, value, "expected auto, sphere or flat");
             return 1;
         }
         if (strcmp(key, "synth_side") == 0) {

@@ -23,6 +23,11 @@
  *   terrain.synth_side    [3, 16385]   terrain.synth_spacing_m (0, 1e5]
  *   terrain.synth_relief_m [0, 9000]   terrain.synth_seed, terrain.synth_octaves [1,16]
  *   terrain.synth_anchor_lat_deg, terrain.synth_anchor_lon_deg
+ *   terrain.curvature     auto | sphere | flat: earth curvature (terrain.h): every
+ *                         method, ray caster and the metric's truth lower a point
+ *                         d metres from the eye by d^2 / (2 R); auto = sphere for
+ *                         a grid in degrees (SRTM, EPSG:4326), flat for one in
+ *                         metres (projected or local, e.g. the synthetic terrain)
  *   gpu.height_format     auto | float | packed
  *   gpu.texture_bytes     budget for all GPU textures and buffers
  *   gpu.pyramid_textures  0 | 1: also upload the avg/min/max pyramids as textures
@@ -147,6 +152,7 @@ typedef struct ft_scene {
     ft_pose pose;
     char dem_path[FT_SCENE_PATH_MAX];
     ft_synth_desc synth;
+    ft_curvature curvature; /* terrain.curvature */
     ft_height_format height_format;
     uint64_t gpu_texture_bytes;
     int pyramid_textures; /* gpu.pyramid_textures: upload avg/min/max pyramids too */

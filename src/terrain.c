@@ -63,7 +63,10 @@ void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg
     *y_m = t->origin_world_y_m + (lat_deg - t->anchor_lat_deg) * m_per_deg_lat();
 }
 
-double ft_terrain_height_at(const ft_terrain *t, double x_m, double y_m)
+/* The cell holding world (x, y) (clamped into the grid), its 4 heights and
+ * the local coordinates in it. */
+static void locate_cell(const ft_terrain *t, double x_m, double y_m, double h[4], double *fx,
+                        double *fy)
 {
     double gx = (x_m - t->origin_world_x_m) / t->cell_x_m;
     double gy = (y_m - t->origin_world_y_m) / t->cell_y_m;
@@ -77,13 +80,30 @@ double ft_terrain_height_at(const ft_terrain *t, double x_m, double y_m)
     uint32_t iy = (uint32_t)gy;
     if (ix > t->width - 2u) ix = t->width - 2u;
     if (iy > t->height - 2u) iy = t->height - 2u;
-    double fx = gx - (double)ix;
-    double fy = gy - (double)iy;
+    *fx = gx - (double)ix;
+    *fy = gy - (double)iy;
     const float *row0 = t->heights_m + (size_t)iy * t->width;
     const float *row1 = row0 + t->width;
-    double h00 = row0[ix], h10 = row0[ix + 1u];
-    double h01 = row1[ix], h11 = row1[ix + 1u];
-    return (h00 * (1.0 - fx) + h10 * fx) * (1.0 - fy) + (h01 * (1.0 - fx) + h11 * fx) * fy;
+    h[0] = row0[ix];
+    h[1] = row0[ix + 1u];
+    h[2] = row1[ix];
+    h[3] = row1[ix + 1u];
+}
+
+double ft_terrain_height_at(const ft_terrain *t, double x_m, double y_m)
+{
+    double h[4], fx, fy;
+    locate_cell(t, x_m, y_m, h, &fx, &fy);
+    return (h[0] * (1.0 - fx) + h[1] * fx) * (1.0 - fy) + (h[2] * (1.0 - fx) + h[3] * fx) * fy;
+}
+
+void ft_terrain_gradient_at(const ft_terrain *t, double x_m, double y_m, double *dhdx,
+                            double *dhdy)
+{
+    double h[4], fx, fy;
+    locate_cell(t, x_m, y_m, h, &fx, &fy);
+    *dhdx = ((h[1] - h[0]) * (1.0 - fy) + (h[3] - h[2]) * fy) / t->cell_x_m;
+    *dhdy = ((h[2] - h[0]) * (1.0 - fx) + (h[3] - h[1]) * fx) / t->cell_y_m;
 }
 
 int ft_terrain_contains(const ft_terrain *t, double x_m, double y_m)
@@ -92,4 +112,10 @@ int ft_terrain_contains(const ft_terrain *t, double x_m, double y_m)
     double gy = (y_m - t->origin_world_y_m) / t->cell_y_m;
     return gx >= 0.0 && gy >= 0.0 && gx <= (double)(t->width - 1u) &&
            gy <= (double)(t->height - 1u);
+}
+
+double ft_terrain_curvature_drop(ft_curvature mode, ft_spacing_unit unit)
+{
+    int sphere = (mode == FT_CURVATURE_SPHERE) || (mode == FT_CURVATURE_AUTO && unit == FT_UNIT_DEGREE);
+    return sphere ? 1.0 / (2.0 * FT_EARTH_RADIUS_M) : 0.0;
 }

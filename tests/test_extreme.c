@@ -3,7 +3,9 @@
  * under the terrain, 1 m above it, at 100 km, at 1e7 m coordinates, FOV 1 and
  * 170 deg, roll 180, pitch +-90, heading wrap, a 1000 m cliff between two
  * samples, a single-sample needle, a flat sea, an all-void tile, a 3x3 grid,
- * outside the grid, and poses predicted over 1 us and 1 s at 400 deg/s.
+ * outside the grid, poses predicted over 1 us and 1 s at 400 deg/s, and the
+ * curved sea horizon from 10 km (earth curvature on: every method must put
+ * the horizon at acos(R / (R + h)) below level, within 0.05 deg).
  *
  * The all-void tile is refused at load with its reason, for every method
  * (drawing it as 0 m would show terrain nobody measured).
@@ -41,13 +43,17 @@
 #define CASES_MAX 40
 
 static ft_app g_app;
-static char g_text[4096];
+static char g_text[8192];
 static char g_dem[4][512];
 
-typedef enum terrain_id { T_REAL, T_E7, T_CLIFF, T_NEEDLE, T_SEA, T_VOID, T_TINY, T_COUNT } terrain_id;
+typedef enum terrain_id {
+    T_REAL, T_E7, T_CLIFF, T_NEEDLE, T_SEA, T_VOID, T_TINY, T_OCEAN, T_COUNT
+} terrain_id;
 
 static const char *const k_terrain_name[T_COUNT] = {"N42E001", "1e7 m", "cliff", "needle",
-                                                    "sea",     "void",  "3x3"};
+                                                    "sea",     "void",  "3x3",   "ocean"};
+
+#define OCEAN_EYE_M 10000.0 /* the horizon case's altitude */
 
 typedef struct ext_case {
     const char *name;
@@ -84,6 +90,8 @@ static const ext_case k_cases[] = {
     {"grid corner", T_REAL, 0.0, 0.0, 300, 0, 45, -10.0, 0, 60, 0},
     {"pose predicted 1 us at 400 deg/s", T_REAL, 0.5, 0.5, 800, 0, 10, -20.0, 0, 60, 1},
     {"pose predicted 1 s at 400 deg/s", T_REAL, 0.5, 0.5, 800, 0, 10, -20.0, 0, 60, 2},
+    /* the horizon (3.2081 deg down) falls 12 rows under the centre (0.017 deg a row) */
+    {"sea horizon from 10 km (FOV 4)", T_OCEAN, 0.5, 0.5, 0, OCEAN_EYE_M, 0, -3.0, 0, 4, 0},
 };
 #define N_CASES (sizeof k_cases / sizeof k_cases[0])
 
@@ -148,19 +156,20 @@ static void write_void_hgt(const char *path)
 }
 
 /* 1 ready, 0 failed, -1 the method is not in this build (skipped) */
-static int init_app(const char *method, const char *dem, uint32_t template_k)
+static int init_app(const char *method, const char *dem, uint32_t template_k, int sphere)
 {
     ft_scene s;
     ft_error err;
     (void)snprintf(g_text, sizeof g_text,
                    "[scene]\nmethod = %s\nbackend = egl-gles3\n"
                    "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 60\n"
-                   "[terrain]\ndem = %s\n[gpu]\ntexture_bytes = 64M\npyramid_textures = 1\n"
+                   "[terrain]\ndem = %s\ncurvature = %s\n"
+                   "[gpu]\ntexture_bytes = 64M\npyramid_textures = 1\n"
                    "[metric]\nenabled = 1\n[bintree]\ntiles_max = 16384\ntemplate_k = %u\n"
                    "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
                    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 4M\n"
-                   "metric_bytes = 512K\ngpu_staging_bytes = 8M\nmethod_bytes = 16M\n",
-                   method, dem, template_k);
+                   "metric_bytes = 1M\ngpu_staging_bytes = 8M\nmethod_bytes = 16M\n",
+                   method, dem, sphere ? "sphere" : "auto", template_k);
     ft_scene_defaults(&s);
     ft_status st = ft_scene_parse(&s, g_text, "extreme scene", &err);
     if (st == FT_OK) st = ft_app_init(&g_app, &s, &err);
@@ -256,11 +265,33 @@ static int within_bounds(ft_method_kind m, const ft_frame_stats *fs, const ft_er
 
 static result g_res[CASES_MAX][FT_METHOD_COUNT];
 
+/* The drawn horizon (first terrain row of the position pass in the middle
+ * column) against acos(R / (R + h)) below level; 1 within 0.05 deg. */
+static int horizon_ok(const ft_camera *cam, const char *method)
+{
+    const float *pos = g_app.renderer.pos;
+    const uint32_t w = cam->width_px, h = cam->height_px;
+    uint32_t first = h;
+    for (uint32_t y = 0; y < h && first == h; ++y) {
+        if (pos[((size_t)y * w + w / 2u) * 4u + 3u] > 0.5f) first = y;
+    }
+    const double r = FT_EARTH_RADIUS_M, pi = 3.14159265358979323846;
+    const double expect_deg = -acos(r / (r + OCEAN_EYE_M)) * 180.0 / pi;
+    const double pitch_deg = asin(cam->forward[2]) * 180.0 / pi;
+    /* the boundary between the last sky and the first sea row's centres */
+    const double got_deg =
+        pitch_deg + atan((0.5 * h - (double)first) / cam->px_per_rad_k) * 180.0 / pi;
+    printf("sea horizon from 10 km / %s: %.4f deg (expected %.4f)\n", method, got_deg,
+           expect_deg);
+    return first > 0u && first < h && fabs(got_deg - expect_deg) <= 0.05;
+}
+
 static void run_cases(ft_method_kind m, terrain_id tid, const char *dem)
 {
     /* a 3x3 grid is a 2-cell domain: the bintree template can bisect it
      * once (template_k <= n; a larger k is a documented init error) */
-    const int ready = init_app(ft_method_name(m), dem, tid == T_TINY ? 1u : 3u);
+    const int ready = init_app(ft_method_name(m), dem, tid == T_TINY ? 1u : 3u,
+                               tid == T_OCEAN);
     if (ready <= 0) {
         for (size_t c = 0; c < N_CASES; ++c) {
             if (k_cases[c].terrain == tid) g_res[c][m].ok = ready < 0 ? 3 : 0;
@@ -308,7 +339,8 @@ static void run_cases(ft_method_kind m, terrain_id tid, const char *dem)
         r->terrain_px = es.terrain_px;
         r->mismatch_px = es.only_method_px + es.only_ref_px;
         r->nonfinite_px = es.nonfinite_px;
-        const int bounded = within_bounds(m, &fs, &es);
+        int bounded = within_bounds(m, &fs, &es);
+        if (tid == T_OCEAN) bounded &= horizon_ok(&cam, ft_method_name(m));
         r->ok = finite && es.nonfinite_px == 0u && r->frame_ms < FT_EXTREME_FRAME_MS_MAX &&
                 bounded;
         if (!r->ok) {
@@ -343,11 +375,13 @@ int main(int argc, char **argv)
     (void)snprintf(paths[T_SEA], sizeof paths[0], "%s/extreme_sea.ftt", out);
     (void)snprintf(paths[T_VOID], sizeof paths[0], "%s/N10E010.hgt", out);
     (void)snprintf(paths[T_TINY], sizeof paths[0], "%s/extreme_tiny.ftt", out);
+    (void)snprintf(paths[T_OCEAN], sizeof paths[0], "%s/extreme_ocean.ftt", out);
     write_ftt(paths[T_E7], 129, 10.0, 1.0e7, 5.0e6, T_E7);
     write_ftt(paths[T_CLIFF], 65, 30.0, 0.0, 0.0, T_CLIFF);
     write_ftt(paths[T_NEEDLE], 65, 30.0, 0.0, 0.0, T_NEEDLE);
     write_ftt(paths[T_SEA], 65, 30.0, 0.0, 0.0, T_SEA);
     write_ftt(paths[T_TINY], 3, 30.0, 0.0, 0.0, T_TINY);
+    write_ftt(paths[T_OCEAN], 1025, 800.0, 0.0, 0.0, T_OCEAN); /* 819 km of sea */
     write_void_hgt(paths[T_VOID]);
     (void)g_dem;
 

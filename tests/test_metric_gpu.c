@@ -35,7 +35,7 @@ static const char k_scene_common[] =
     "[gpu]\ntexture_bytes = 32M\n[metric]\nenabled = 1\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 2000000\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
-    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 2M\nmetric_bytes = 512K\n"
+    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 2M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 0\nmethod_bytes = 128K\npng_bytes = 512K\n";
 
 static char g_text[4096];
@@ -141,7 +141,8 @@ int main(int argc, char **argv)
         ft_error_stats bad;
         REQUIRE(ft_renderer_camera(&g_app.renderer, &g_app.scene.pose, &cam, &err) == FT_OK);
         REQUIRE(ft_metric_compute(&t2, &cam, g_app.renderer.pos, NULL, g_app.metric_scratch,
-                                  px, &bad, &err) == FT_OK);
+                                  ft_metric_scratch_bytes(cam.width_px, cam.height_px), &bad,
+                                  &err) == FT_OK);
         /* the nearest terrain is about 570 m away: 5 m there is about 1.8 px at K = 208 */
         double k = 240.0 / (2.0 * tan(30.0 * 3.14159265358979323846 / 180.0));
         printf("plane measured against truth + 5 m: max %.3f px, mean %.3f px (K = %.1f)\n",

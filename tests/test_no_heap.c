@@ -88,7 +88,7 @@ static const char k_scene[] =
     "[bintree]\ntemplate_k = 3\ntiles_max = 4096\ntau_px = 1.0\nmorph = 1\n"
     "[pgm]\ngrid_cols = 200\ngrid_rows = 800\n"
     "[budget]\nheights_bytes = 512K\npyramids_bytes = 2M\nframe_rgba_bytes = 256K\n"
-    "frame_pos_bytes = 1M\nreference_bytes = 2M\nmetric_bytes = 256K\n"
+    "frame_pos_bytes = 1M\nreference_bytes = 2M\nmetric_bytes = 1M\n"
     "gpu_staging_bytes = 512K\nmethod_bytes = 1M\npng_bytes = 512K\n";
 
 static ft_app g_app;

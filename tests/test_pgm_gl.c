@@ -50,7 +50,7 @@ static const char k_scene_fmt[] =
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[pgm]\ngrid_cols = %u\ngrid_rows = %u\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
-    "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 1M\n"
+    "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\n";
 
 typedef struct setup {

@@ -106,6 +106,9 @@ typedef struct bench_row {
     char err_max_where[48]; /* "valley frame 12" */
     uint32_t cov_max_px;
     double cov_mean_px;
+    uint32_t occl_max_px;     /* occlusion-mismatch pixels, worst frame */
+    double occl_mean_px;      /* ... mean over the measured frames */
+    double occl_err_max_px;   /* worst occlusion error (already inside err_max_px) */
     uint64_t nonfinite_px;
     double tri_mean;
     int budget_hits;
@@ -532,7 +535,8 @@ static ft_status measure(int path, int slot, const ft_camera *cam, ft_error_stat
         ft_status s = ft_renderer_draw_positions(&g_app.renderer, cam, err);
         if (s != FT_OK) return s;
         return ft_metric_compute(&g_app.terrain, cam, g_app.renderer.pos, c->ref,
-                                 g_app.metric_scratch, px, es, err);
+                                 g_app.metric_scratch,
+                                 ft_metric_scratch_bytes(cam->width_px, cam->height_px), es, err);
     }
     ft_status s = ft_app_measure(&g_app, cam, es, err);
     if (s != FT_OK || c == NULL) return s;
@@ -602,7 +606,7 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     ft_camera cam;
     ft_frame_stats st;
     int ok = ft_app_render(&g_app, &g_paths[0].pose[0], &cam, &st, &err) == FT_OK; /* warm-up */
-    double tri = 0.0, err_sum = 0.0, cov_sum = 0.0;
+    double tri = 0.0, err_sum = 0.0, cov_sum = 0.0, occl_sum = 0.0;
     int timed = 0;
     row->err_max_px = 0.0;
     for (int p = 0; p < g_path_count && ok; ++p) {
@@ -634,6 +638,9 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
             uint32_t cov = es.only_method_px + es.only_ref_px;
             if (cov > row->cov_max_px) row->cov_max_px = cov;
             cov_sum += cov;
+            if (es.occlusion_px > row->occl_max_px) row->occl_max_px = es.occlusion_px;
+            occl_sum += es.occlusion_px;
+            row->occl_err_max_px = fmax(row->occl_err_max_px, es.occlusion_max_px);
             err_sum += es.mean_px;
             row->nonfinite_px += es.nonfinite_px;
             ++row->measured;
@@ -658,6 +665,7 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     row->sel_med_ms = quantile(g_select_ms, timed, 0.5);
     row->err_mean_px = row->measured ? err_sum / row->measured : NAN;
     row->cov_mean_px = row->measured ? cov_sum / row->measured : NAN;
+    row->occl_mean_px = row->measured ? occl_sum / row->measured : NAN;
     if (row->measured == 0) row->err_max_px = row->err_p999_px = NAN;
 }
 
@@ -699,7 +707,7 @@ static int write_csv(const char *path)
     fputs("method,setting,paths,frames,time_median_ms,time_p99_ms,time_max_ms,ratio_to_brute,"
           "select_median_ms,err_max_px,err_p999_px,err_mean_px,coverage_mismatch_px,"
           "coverage_mismatch_mean_px,nonfinite_px,measured_frames,triangles_mean,budget_hits,"
-          "init_ms\n",
+          "init_ms,occlusion_mismatch_px,occlusion_mismatch_mean_px,occlusion_err_max_px\n",
           f);
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
@@ -719,6 +727,9 @@ static int write_csv(const char *path)
         csv_num(f, w->tri_mean, 0);
         fprintf(f, ",%d", w->budget_hits);
         csv_num(f, w->init_ms, 1);
+        fprintf(f, ",%u", w->occl_max_px);
+        csv_num(f, w->occl_mean_px, 1);
+        csv_num(f, w->occl_err_max_px, 2);
         fputc('\n', f);
     }
     int ok = fclose(f) == 0;
@@ -838,7 +849,9 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
             o->every);
     fprintf(f, "- frame time = LOD selection + draw + readback (until the GPU is done); "
                "error = worst measured frame (max, p99.9), mean of the frames' means; coverage "
-               "= pixels terrain in one image and sky in the other (worst frame)\n");
+               "= pixels terrain in one image and sky in the other (worst frame); occlusion = pixels "
+               "terrain in both but on different surfaces (worst frame; their error, the "
+               "distance to the nearest agreeing pixel, is inside max and p99.9)\n");
     fprintf(f, "- bench run time: %.1f s\n\nPaths (centre %.4f, %.4f; every pose at least "
                "%.0f m above the highest ground within %.0f m):\n\n",
             run_s, base->pose.lat_deg, base->pose.lon_deg, o->clearance_m, BENCH_CLEAR_RADIUS_M);
@@ -847,15 +860,17 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
                 g_paths[p].desc, g_paths[p].raised, o->frames);
     }
     fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | max px | "
-               "p99.9 px | mean px | coverage px | triangles | worst frame |\n"
-               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+               "p99.9 px | mean px | coverage px | occlusion px | triangles | worst frame |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
         if (!w->ok) continue;
-        fprintf(f, "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.4f | %u | %.0f | %s |\n",
+        fprintf(f,
+                "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.4f | %u | %u | %.0f | "
+                "%s |\n",
                 w->method, w->setting.label, w->t_med_ms, w->t_p99_ms, w->t_max_ms,
                 bm > 0.0 ? w->t_med_ms / bm : NAN, w->err_max_px, w->err_p999_px, w->err_mean_px,
-                w->cov_max_px, w->tri_mean, w->err_max_where);
+                w->cov_max_px, w->occl_max_px, w->tri_mean, w->err_max_where);
     }
     if (g_path_count > 1) {
         fprintf(f, "\nPer path: median frame time ms / max error px / p99.9 px\n\n"

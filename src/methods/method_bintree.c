@@ -17,6 +17,7 @@
 #include "gpu_texture.h"
 #include "method.h"
 #include "renderer.h"
+#include "view_scale.h"
 
 #define FT_BT_FLOATS_PER_TILE 6u
 
@@ -167,6 +168,8 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
                   (float)m->bt.side_cells);
     gl->Uniform4f(p->u_bt_morph, (float)cam->px_per_rad_k, (float)split, (float)band,
                   (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
+    gl->Uniform4f(p->u_bt_axis, (float)cam->forward[0], (float)cam->forward[1],
+                  (float)cam->forward[2], (float)ft_view_corner_cos(cam));
 
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);

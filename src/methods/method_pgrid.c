@@ -330,6 +330,7 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
                   (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
                   (float)cam->eye_m[2]);
     gl->Uniform2f(U("u_cell_m"), (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform1f(U("u_earth_drop_per_m2"), (float)t->curv_drop_per_m2);
     gl->Uniform3f(U("u_rc_fwd"), (float)cam->forward[0], (float)cam->forward[1],
                   (float)cam->forward[2]);
     gl->Uniform3f(U("u_rc_right"), (float)cam->right[0], (float)cam->right[1],

@@ -184,12 +184,14 @@ size_t ft_arena_format_table(const ft_arena *a, char *buf, size_t cap)
         size_t used = (p->high_water_bytes > p->need_bytes) ? p->high_water_bytes : p->need_bytes;
         used_total += used;
         budget_total += p->budget_bytes;
-        w = snprintf(buf + (n < cap ? n : cap - 1), n < cap ? cap - n : 1,
+        /* past the end only count (snprintf(NULL, 0) measures): the result is
+         * the length the whole table needs, like snprintf's own */
+        w = snprintf(n < cap ? buf + n : NULL, n < cap ? cap - n : 0,
                      "%-20s %14zu %14zu  %s\n", k_pool_key[i], used, p->budget_bytes,
                      k_pool_what[i]);
         n += (w > 0) ? (size_t)w : 0;
     }
-    w = snprintf(buf + (n < cap ? n : cap - 1), n < cap ? cap - n : 1, "%-20s %14zu %14zu\n",
+    w = snprintf(n < cap ? buf + n : NULL, n < cap ? cap - n : 0, "%-20s %14zu %14zu\n",
                  "total", used_total, budget_total);
     n += (w > 0) ? (size_t)w : 0;
     return n;

@@ -477,6 +477,45 @@ static void print_replay_help(void)
 
 static ft_pose_feed g_feed;
 
+/* The position prediction's counters and the rejects per quantity, as JSON
+ * members (replay and run share them). Returns 0 when cap is too small. */
+static size_t json_position(const ft_pose_feed *f, uint32_t frames_predicted,
+                            uint32_t frames_velocity_stale, char *buf, size_t cap)
+{
+    uint64_t vel_rejects = 0u;
+    for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
+        if ((FT_QTY_VELOCITY_MASK & FT_QTY_BIT(q)) != 0u) {
+            vel_rejects += f->dec.rejects_by_qty[q];
+        }
+    }
+    int w = snprintf(buf, cap,
+                     "  \"position\": {\"frames_predicted\": %u, \"frames_velocity_stale\": %u, "
+                     "\"snaps\": %llu, \"offset_max_m\": %.4f, \"velocity_rejects\": %llu, "
+                     "\"velocity_required\": %d},\n  \"rejects_by_quantity\": {",
+                     frames_predicted, frames_velocity_stale,
+                     (unsigned long long)f->ps.snap_count, f->ps.offset_max_m,
+                     (unsigned long long)vel_rejects,
+                     (f->annunciate_mask & FT_QTY_VELOCITY_MASK) != 0u);
+    if (w < 0 || (size_t)w >= cap) {
+        return 0u;
+    }
+    size_t n = (size_t)w;
+    for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
+        w = snprintf(buf + n, cap - n, "%s\"%s\": %llu", q ? ", " : "",
+                     ft_pose_qty_name((ft_pose_qty)q),
+                     (unsigned long long)f->dec.rejects_by_qty[q]);
+        if (w < 0 || (size_t)w >= cap - n) {
+            return 0u;
+        }
+        n += (size_t)w;
+    }
+    w = snprintf(buf + n, cap - n, "},\n");
+    if (w < 0 || (size_t)w >= cap - n) {
+        return 0u;
+    }
+    return n + (size_t)w;
+}
+
 static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
                                     const ft_pose_feed *f, ft_error *err)
 {
@@ -491,11 +530,16 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         }
         n += (size_t)w;
     }
+    char position[1024];
+    if (json_position(f, r->frames_pos_predicted, r->frames_velocity_stale, position,
+                      sizeof position) == 0u) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "replay stats: position counters too long");
+    }
     int len = snprintf(
         g_stats_text, sizeof g_stats_text,
         "{\n  \"lines\": %llu,\n  \"lines_bad\": %llu,\n  \"lines_unsupported\": %llu,\n"
         "  \"gaps\": %llu,\n  \"can_frames\": %llu,\n  \"values_applied\": %llu,\n"
-        "  \"messages_lost\": %llu,\n  \"rejects\": {%s},\n"
+        "  \"messages_lost\": %llu,\n  \"rejects\": {%s},\n%s"
         "  \"frames\": %u,\n  \"frames_annunciated\": %u,\n  \"first_annunciated\": %lld,\n"
         "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
         "  \"draw_ms_max\": %.3f,\n  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
@@ -504,7 +548,7 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
         (unsigned long long)f->frames_in, (unsigned long long)f->values_applied,
-        (unsigned long long)f->dec.lost, rejects, r->frames, r->frames_annunciated,
+        (unsigned long long)f->dec.lost, rejects, position, r->frames, r->frames_annunciated,
         r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
         r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
         r->degrade.over_budget, r->degrade.enabled, r->degrade.raises, r->degrade.lowers,
@@ -608,6 +652,10 @@ static int cmd_replay(int argc, char **argv)
                r.degrade.budget_ms, r.degrade.over_budget, r.draw_ms_max,
                r.degrade.enabled ? "on" : "off", r.degrade.raises, r.degrade.lowers,
                r.degrade_scale_max, r.tau_max_px);
+        printf("replay: position predicted from the velocity on %u frames (velocity stale on "
+               "%u), %llu snaps, largest offset converged %.3f m\n",
+               r.frames_pos_predicted, r.frames_velocity_stale,
+               (unsigned long long)g_feed.ps.snap_count, g_feed.ps.offset_max_m);
     }
     ft_app_shutdown(&g_app);
     return rc;
@@ -644,9 +692,14 @@ static ft_live g_live;
 static ft_status write_run_stats(const char *path, const ft_live_result *r, const ft_pose_feed *f,
                                  ft_error *err)
 {
+    char position[1024];
+    if (json_position(f, r->frames_pos_predicted, r->frames_velocity_stale, position,
+                      sizeof position) == 0u) {
+        return ft_fail(err, FT_ERR_OVERSIZED, "run stats: position counters too long");
+    }
     int len = snprintf(
         g_stats_text, sizeof g_stats_text,
-        "{\n  \"frames\": %u,\n  \"deadline_misses\": %u,\n  \"frame_ms_max\": %.3f,\n"
+        "{\n  \"frames\": %u,\n  \"deadline_misses\": %u,\n  \"frame_ms_max\": %.3f,\n%s"
         "  \"frames_annunciated\": %u,\n  \"frames_frozen\": %u,\n  \"frames_test\": %u,\n"
         "  \"frames_backup\": %u,\n  \"source_switches\": %u,\n"
         "  \"can_frames\": [%llu, %llu],\n  \"can_dropped\": [%llu, %llu],\n"
@@ -660,7 +713,8 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
         "  \"tau_max_px\": %.4f,\n"
         "  \"jobs\": {\"run\": %llu, \"deferred_frames\": %llu, \"refused\": %llu, \"high_water\": %u}\n}\n",
-        r->frames, r->deadline_misses, r->frame_ms_max, r->frames_annunciated, r->frames_frozen,
+        r->frames, r->deadline_misses, r->frame_ms_max, position, r->frames_annunciated,
+        r->frames_frozen,
         r->frames_test, r->frames_backup, r->source_switches,
         (unsigned long long)r->can_frames[0], (unsigned long long)r->can_frames[1],
         (unsigned long long)r->can_dropped[0], (unsigned long long)r->can_dropped[1],

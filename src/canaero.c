@@ -102,6 +102,9 @@ void ft_canaero_default_map(ft_can_map *m)
         {1037u, FT_QTY_LON, 1.0, -180.0, 180.0, 500u, 0u},
         {320u, FT_QTY_ALT, 1.0, -1000.0, 25000.0, 500u, 0u},
         {1038u, FT_QTY_ALT, 1.0, -1000.0, 25000.0, 500u, 1u},
+        {1039u, FT_QTY_GROUND_SPEED, 1.0, 0.0, 1000.0, 500u, 0u},
+        {1040u, FT_QTY_TRACK, 1.0, -360.0, 360.0, 500u, 0u},
+        {314u, FT_QTY_ALT_RATE, 1.0, -500.0, 500.0, 500u, 0u},
     };
     _Static_assert(sizeof k_defaults / sizeof k_defaults[0] <= FT_CAN_MAP_MAX,
                    "default map fits");
@@ -141,9 +144,13 @@ static uint32_t be32(const uint8_t *p)
            (uint32_t)p[3];
 }
 
-static ft_can_outcome reject(ft_canaero *dec, ft_can_result *out, ft_can_reject r)
+/* qty < 0: the frame has no quantity (unknown id). */
+static ft_can_outcome reject(ft_canaero *dec, ft_can_result *out, ft_can_reject r, int qty)
 {
     ++dec->rejects[r];
+    if (qty >= 0 && qty < (int)FT_QTY_COUNT) {
+        ++dec->rejects_by_qty[qty];
+    }
     if (out != NULL) {
         out->outcome = FT_CAN_REJECTED;
         out->reason = r;
@@ -172,7 +179,7 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
         return FT_CAN_REJECTED;
     }
     if (f == NULL) {
-        return reject(dec, out, FT_CAN_REJECT_UNKNOWN_ID);
+        return reject(dec, out, FT_CAN_REJECT_UNKNOWN_ID, -1);
     }
     /* 1. id */
     int idx = -1;
@@ -185,11 +192,13 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
         }
     }
     if (idx < 0) {
-        return reject(dec, out, FT_CAN_REJECT_UNKNOWN_ID);
+        return reject(dec, out, FT_CAN_REJECT_UNKNOWN_ID, -1);
     }
+    const ft_can_map_entry *me = &dec->map.e[idx];
+    const int qty = (int)me->qty;
     /* 2. header present; 3. type; 4. DLC for the type. */
     if (f->dlc < 4u || f->dlc > 8u) {
-        return reject(dec, out, FT_CAN_REJECT_DLC);
+        return reject(dec, out, FT_CAN_REJECT_DLC, qty);
     }
     uint8_t type = f->data[1];
     uint8_t code = f->data[3];
@@ -201,16 +210,15 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
     }
     if (type != FT_CAN_TYPE_FLOAT && type != FT_CAN_TYPE_LONG && type != FT_CAN_TYPE_SHORT &&
         type != FT_CAN_TYPE_DOUBLEH && type != FT_CAN_TYPE_DOUBLEL) {
-        return reject(dec, out, FT_CAN_REJECT_TYPE);
+        return reject(dec, out, FT_CAN_REJECT_TYPE, qty);
     }
     if (!dlc_ok_for_type(type, f->dlc)) {
-        return reject(dec, out, FT_CAN_REJECT_DLC);
+        return reject(dec, out, FT_CAN_REJECT_DLC, qty);
     }
     /* 5. message code: duplicate or gap. */
     ft_can_id_state *st = &dec->st[idx];
-    const ft_can_map_entry *me = &dec->map.e[idx];
     if (st->has_code && code == st->last_code) {
-        return reject(dec, out, FT_CAN_REJECT_COUNTER_REPEAT);
+        return reject(dec, out, FT_CAN_REJECT_COUNTER_REPEAT, qty);
     }
     if (st->has_code) {
         /* uint8 arithmetic wraps 255 -> 0 for free. */
@@ -231,6 +239,7 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
     if (type == FT_CAN_TYPE_DOUBLEH) {
         if (st->has_high) {
             ++dec->rejects[FT_CAN_REJECT_DOUBLE_HALF_MISSING]; /* previous high abandoned */
+            ++dec->rejects_by_qty[qty];
         }
         st->has_high = 1u;
         st->high_code = code;
@@ -246,10 +255,11 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
         int paired = st->has_high && (uint8_t)(st->high_code + 1u) == code;
         if (st->has_high && !paired) {
             ++dec->rejects[FT_CAN_REJECT_DOUBLE_HALF_MISSING]; /* high abandoned */
+            ++dec->rejects_by_qty[qty];
         }
         if (!paired) {
             st->has_high = 0u;
-            return reject(dec, out, FT_CAN_REJECT_DOUBLE_HALF_MISSING);
+            return reject(dec, out, FT_CAN_REJECT_DOUBLE_HALF_MISSING, qty);
         }
         uint64_t bits = ((uint64_t)st->high_bits << 32) | (uint64_t)be32(d);
         st->has_high = 0u;
@@ -258,6 +268,7 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
     } else {
         if (st->has_high) {
             ++dec->rejects[FT_CAN_REJECT_DOUBLE_HALF_MISSING]; /* high abandoned */
+            ++dec->rejects_by_qty[qty];
             st->has_high = 0u;
         }
         if (type == FT_CAN_TYPE_FLOAT) {
@@ -280,10 +291,10 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
     /* 7. finite, 8. range (after scale: the range is in the quantity's unit). */
     double value = raw * me->scale;
     if (!isfinite(raw) || !isfinite(value)) {
-        return reject(dec, out, FT_CAN_REJECT_NONFINITE);
+        return reject(dec, out, FT_CAN_REJECT_NONFINITE, qty);
     }
     if (value < me->min_value || value > me->max_value) {
-        return reject(dec, out, FT_CAN_REJECT_RANGE);
+        return reject(dec, out, FT_CAN_REJECT_RANGE, qty);
     }
     ++dec->accepted;
     if (out != NULL) {

@@ -87,7 +87,8 @@ const char *ft_can_reject_text(ft_can_reject r); /* "wrong DLC for the data type
 
 /* ---- mapping table --------------------------------------------------------- */
 
-#define FT_CAN_MAP_MAX 16u
+/* Room for a primary and a backup source of every quantity. */
+#define FT_CAN_MAP_MAX 24u
 
 typedef struct ft_can_map_entry {
     uint16_t can_id;     /* 11-bit */
@@ -104,8 +105,8 @@ typedef struct ft_can_map {
     uint32_t count;
 } ft_can_map;
 
-/* The CANaerospace default identifiers (units as the standard sends them:
- * deg, deg/s, m), scale 1:
+/* The CANaerospace 1.7 default identifiers (units as the standard sends
+ * them: deg, deg/s, m, m/s), scale 1:
  *   311 body pitch angle    pitch       -90 ..    90 deg    100 ms
  *   312 body roll angle     roll       -180 ..   180 deg    100 ms
  *   321 heading angle       heading    -360 ..   360 deg    100 ms
@@ -116,12 +117,21 @@ typedef struct ft_can_map {
  *  1037 GPS longitude       lon        -180 ..   180 deg    500 ms
  *   320 baro corr. altitude alt       -1000 .. 25000 m      500 ms  priority 0
  *  1038 GPS height          alt       -1000 .. 25000 m      500 ms  priority 1
+ *  1039 GPS ground speed    ground_speed  0 ..  1000 m/s    500 ms
+ *  1040 GPS true track      track      -360 ..   360 deg    500 ms
+ *   314 altitude rate       alt_rate   -500 ..   500 m/s    500 ms
  * Heading accepts -360..360 because senders differ (0..360 or +-180); the
  * pose wraps it. 500 deg/s is beyond any airframe's sustained rate, so a
  * larger rate is a fault, not flight. 25000 m is above the service ceiling
  * of the aircraft this display targets; -1000 m covers the Dead Sea and the
  * geoid below the ellipsoid. 1038 is height above the ellipsoid, a backup
- * for the baro altitude only while 320 is silent (see ft_pose_state_apply). */
+ * for the baro altitude only while 320 is silent (see ft_pose_state_apply).
+ * The velocity feeds the position prediction (pose_state.h): 1000 m/s is
+ * beyond the ground speed of any airframe this display targets (and the
+ * fastest path fixterrain-flightgen accepts); a negative ground speed is not
+ * a speed. 500 m/s vertical is beyond any sustained climb or dive. Track
+ * accepts -360..360 for the same reason as heading. Their timeout is the
+ * position's: a GPS sends velocity with every fix. */
 void ft_canaero_default_map(ft_can_map *m);
 
 /* Appends one entry after checking it: id <= 0x7FF and not already mapped,
@@ -145,6 +155,9 @@ typedef struct ft_canaero {
     ft_can_map map;
     ft_can_id_state st[FT_CAN_MAP_MAX];
     uint64_t rejects[FT_CAN_REJECT_COUNT];
+    /* The same rejects by the quantity of the frame's id (steps 2..8; an
+     * unknown id has no quantity and is only in rejects[]). */
+    uint64_t rejects_by_qty[FT_QTY_COUNT];
     uint64_t accepted;       /* frames that produced a value */
     uint64_t pending;        /* DOUBLEH halves stored */
     uint64_t lost;           /* all ids */

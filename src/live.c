@@ -164,6 +164,10 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
     const ft_scene *s = &app->scene;
     ft_status st = ft_pose_feed_init(feed, &s->can_map, s->pose_horizon_ms, &s->pose, err);
     if (st == FT_OK) {
+        st = ft_pose_feed_set_position(feed, s->pose_converge_ms, s->pose_snap_m,
+                                       s->pose_velocity_required, err);
+    }
+    if (st == FT_OK) {
         st = open_inputs(lv, s, err);
     }
     static ft_file pose_file;
@@ -275,6 +279,8 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         r->frames_frozen += (uint32_t)frozen;
         r->frames_test += (uint32_t)test;
         r->frames_backup += (uint32_t)source;
+        r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
+        r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);
         if (poses && st == FT_OK) {
             char row[FT_POSE_ROW_MAX];
             ft_pose_view shown = v;

@@ -57,6 +57,8 @@ typedef struct ft_live_desc {
 
 typedef struct ft_live_result {
     uint32_t frames, frames_annunciated, frames_frozen, frames_test, frames_backup;
+    uint32_t frames_pos_predicted;  /* position predicted from a velocity */
+    uint32_t frames_velocity_stale; /* a velocity quantity stale or never received */
     uint32_t deadline_misses;
     uint32_t source_switches;
     uint64_t can_frames[2];  /* primary, backup */

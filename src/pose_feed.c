@@ -9,9 +9,21 @@ ft_status ft_pose_feed_init(ft_pose_feed *f, const ft_can_map *map, uint32_t hor
 {
     memset(f, 0, sizeof *f);
     f->fallback = *fallback;
+    f->annunciate_mask = FT_POSE_FEED_ANNUNCIATE_MASK;
     ft_status st = ft_canaero_init(&f->dec, map, err);
     if (st == FT_OK) {
         st = ft_pose_state_init(&f->ps, horizon_ms, err);
+    }
+    return st;
+}
+
+ft_status ft_pose_feed_set_position(ft_pose_feed *f, uint32_t converge_ms, double snap_m,
+                                    int velocity_required, ft_error *err)
+{
+    ft_status st = ft_pose_state_set_convergence(&f->ps, converge_ms, snap_m, err);
+    if (st == FT_OK) {
+        f->annunciate_mask = FT_POSE_FEED_ANNUNCIATE_MASK |
+                             (velocity_required ? (uint32_t)FT_QTY_VELOCITY_MASK : 0u);
     }
     return st;
 }
@@ -50,9 +62,12 @@ void ft_pose_feed_view(const ft_pose_feed *f, uint64_t t_ns, ft_pose_view *out)
     out->stale_mask = e.stale_mask;
     out->predicted = e.predicted;
     out->predict_s = e.predict_s;
-    out->annunciate = (e.stale_mask & FT_POSE_FEED_ANNUNCIATE_MASK) != 0u;
+    out->pos_predicted = e.position_predicted;
+    out->pos_offset_m = e.offset_m;
+    out->annunciate = (e.stale_mask & f->annunciate_mask) != 0u;
     if (out->annunciate) {
-        (void)ft_pose_state_stale(&f->ps, t_ns, out->reason, sizeof out->reason);
+        (void)ft_pose_state_stale_in(&f->ps, t_ns, f->annunciate_mask, out->reason,
+                                     sizeof out->reason);
     }
 }
 
@@ -70,10 +85,13 @@ size_t ft_pose_row_format(char *buf, size_t cap, uint32_t frame, uint64_t t_ns,
                           double tau_px)
 {
     const ft_pose *p = &v->pose;
-    int n = snprintf(buf, cap, "%u,%llu.%09llu,%.9f,%.9f,%.4f,%.6f,%.6f,%.6f,%d,%u,%d,%d,%d,%.4f,%.4f,\"%s\"\n",
+    int n = snprintf(buf, cap,
+                     "%u,%llu.%09llu,%.9f,%.9f,%.4f,%.6f,%.6f,%.6f,%d,%u,%d,%d,%d,%.4f,%.4f,%d,%.4f,"
+                     "\"%s\"\n",
                      frame, (unsigned long long)(t_ns / 1000000000u),
                      (unsigned long long)(t_ns % 1000000000u), p->lat_deg, p->lon_deg, p->alt_m,
                      p->heading_deg, p->pitch_deg, p->roll_deg, v->annunciate, v->stale_mask,
-                     v->predicted, frozen, source, lod_scale, tau_px, v->reason);
+                     v->predicted, frozen, source, lod_scale, tau_px, v->pos_predicted,
+                     v->pos_offset_m, v->reason);
     return (n < 0 || (size_t)n >= cap) ? 0u : (size_t)n;
 }

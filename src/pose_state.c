@@ -1,5 +1,6 @@
-/* pose_state.c - pose assembly and attitude prediction (contract in
- * pose_state.h). Pure arithmetic on caller storage: no heap, no OS. */
+/* pose_state.c - pose assembly, attitude and position prediction, position
+ * convergence (contract in pose_state.h). Pure arithmetic on caller storage:
+ * no heap, no OS. */
 #include "pose_state.h"
 
 #include <inttypes.h>
@@ -185,6 +186,23 @@ ft_quat ft_quat_integrate_body_rate(ft_quat q, const double omega_rad_s[3], doub
     return quat_normalise(ft_quat_mul(quat_normalise(q), e));
 }
 
+void ft_wgs84_radii_m(double lat_deg, double *meridian_m, double *prime_vertical_m)
+{
+    /* WGS-84: semi-major axis a and first eccentricity squared e^2 = f (2 - f),
+     * f = 1 / 298.257223563 */
+    const double a = 6378137.0;
+    const double e2 = 6.69437999014e-3;
+    const double s = isfinite(lat_deg) ? sin(lat_deg * FT_DEG2RAD) : 0.0;
+    const double w = 1.0 - e2 * s * s; /* >= 1 - e^2 > 0 */
+    const double n = a / sqrt(w);
+    if (meridian_m != NULL) {
+        *meridian_m = n * (1.0 - e2) / w;
+    }
+    if (prime_vertical_m != NULL) {
+        *prime_vertical_m = n;
+    }
+}
+
 /* ---- pose state ------------------------------------------------------------ */
 
 ft_status ft_pose_state_init(ft_pose_state *ps, uint32_t horizon_ms, ft_error *err)
@@ -200,6 +218,27 @@ ft_status ft_pose_state_init(ft_pose_state *ps, uint32_t horizon_ms, ft_error *e
     ft_pose_state zero = {0};
     *ps = zero;
     ps->horizon_ms = horizon_ms;
+    ps->converge_ms = FT_POSE_CONVERGE_DEFAULT_MS;
+    ps->snap_m = FT_POSE_SNAP_DEFAULT_M;
+    return FT_OK;
+}
+
+ft_status ft_pose_state_set_convergence(ft_pose_state *ps, uint32_t converge_ms, double snap_m,
+                                        ft_error *err)
+{
+    if (ps == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "pose state: no storage");
+    }
+    if (converge_ms > FT_POSE_CONVERGE_MAX_MS ||
+        !(snap_m >= FT_POSE_SNAP_MIN_M && snap_m <= FT_POSE_SNAP_MAX_M)) {
+        return ft_fail(err, FT_ERR_ARG,
+                       "pose state: convergence %" PRIu32 " ms (0..%u) or snap distance %g m "
+                       "(%g..%g) out of range",
+                       converge_ms, FT_POSE_CONVERGE_MAX_MS, snap_m, FT_POSE_SNAP_MIN_M,
+                       FT_POSE_SNAP_MAX_M);
+    }
+    ps->converge_ms = converge_ms;
+    ps->snap_m = snap_m;
     return FT_OK;
 }
 
@@ -214,6 +253,192 @@ static int sample_stale(const ft_pose_sample *s, uint64_t t_ns)
         return 1;
     }
     return age_ns(s, t_ns) > (uint64_t)s->timeout_ms * FT_NS_PER_MS;
+}
+
+/* ---- position prediction and convergence ------------------------------------ */
+
+static int moves_position(ft_pose_qty q)
+{
+    return q == FT_QTY_LAT || q == FT_QTY_LON || q == FT_QTY_ALT || q == FT_QTY_GROUND_SPEED ||
+           q == FT_QTY_TRACK || q == FT_QTY_ALT_RATE;
+}
+
+/* The time a sample goes stale; saturates instead of wrapping. */
+static uint64_t stop_ns(const ft_pose_sample *s)
+{
+    const uint64_t life_ns = (uint64_t)s->timeout_ms * FT_NS_PER_MS;
+    return s->t_ns > UINT64_MAX - life_ns ? UINT64_MAX : s->t_ns + life_ns;
+}
+
+typedef struct pos_pred {
+    double lat_deg, lon_deg, alt_m; /* 0 where never received */
+    int valid[3];                   /* lat, lon, alt received */
+    int axes;                       /* FT_POSE_PRED_*: velocity fresh at t */
+    double predict_s;               /* longest extrapolation applied */
+    int clamped;                    /* a component reached the horizon */
+} pos_pred;
+
+/* Extrapolation time of a component sampled at t_sample_ns when the
+ * prediction runs until t_end_ns: none backwards, at most the horizon. */
+static double extrap_s(uint64_t t_sample_ns, uint64_t t_end_ns, uint64_t horizon_ns, pos_pred *o)
+{
+    if (t_end_ns <= t_sample_ns) {
+        return 0.0;
+    }
+    uint64_t dt_ns = t_end_ns - t_sample_ns;
+    if (dt_ns > horizon_ns) {
+        dt_ns = horizon_ns;
+        o->clamped = 1;
+    }
+    const double dt_s = (double)dt_ns * 1e-9;
+    if (dt_s > o->predict_s) {
+        o->predict_s = dt_s;
+    }
+    return dt_s;
+}
+
+/* The predicted position at t (contract in pose_state.h), without the
+ * convergence offset. */
+static void predict_position(const ft_pose_state *ps, uint64_t t_ns, pos_pred *o)
+{
+    const ft_pose_sample *la = &ps->s[FT_QTY_LAT], *lo = &ps->s[FT_QTY_LON];
+    const ft_pose_sample *al = &ps->s[FT_QTY_ALT];
+    pos_pred zero = {0};
+    *o = zero;
+    o->valid[0] = la->valid != 0u;
+    o->valid[1] = lo->valid != 0u;
+    o->valid[2] = al->valid != 0u;
+    o->lat_deg = la->valid ? la->value : 0.0;
+    o->lon_deg = lo->valid ? lo->value : 0.0;
+    o->alt_m = al->valid ? al->value : 0.0;
+    if (ps->horizon_ms == 0u) {
+        return;
+    }
+    const uint64_t horizon_ns = (uint64_t)ps->horizon_ms * FT_NS_PER_MS;
+    const ft_pose_sample *gs = &ps->s[FT_QTY_GROUND_SPEED], *tr = &ps->s[FT_QTY_TRACK];
+    const ft_pose_sample *vs = &ps->s[FT_QTY_ALT_RATE];
+    if (gs->valid && tr->valid && (la->valid || lo->valid)) {
+        const uint64_t gs_stop_ns = stop_ns(gs), tr_stop_ns = stop_ns(tr);
+        const uint64_t h_stop_ns = gs_stop_ns < tr_stop_ns ? gs_stop_ns : tr_stop_ns;
+        const uint64_t t_end_ns = t_ns < h_stop_ns ? t_ns : h_stop_ns;
+        if (t_ns <= h_stop_ns) {
+            o->axes |= FT_POSE_PRED_HORIZONTAL;
+        }
+        const double track_rad = tr->value * FT_DEG2RAD;
+        const double v_n_mps = gs->value * cos(track_rad), v_e_mps = gs->value * sin(track_rad);
+        const double lat_fix_deg = o->lat_deg;
+        double meridian_m = 0.0, normal_m = 0.0;
+        ft_wgs84_radii_m(lat_fix_deg, &meridian_m, &normal_m);
+        if (la->valid) {
+            const double dt_s = extrap_s(la->t_ns, t_end_ns, horizon_ns, o);
+            const double lat_deg = lat_fix_deg + v_n_mps * dt_s / (meridian_m + o->alt_m) * FT_RAD2DEG;
+            o->lat_deg = lat_deg > 90.0 ? 90.0 : (lat_deg < -90.0 ? -90.0 : lat_deg);
+        }
+        const double cos_lat = cos(lat_fix_deg * FT_DEG2RAD);
+        if (lo->valid && cos_lat > FT_POSE_POLE_COS_MIN) {
+            const double dt_s = extrap_s(lo->t_ns, t_end_ns, horizon_ns, o);
+            o->lon_deg = ft_wrap_deg_pm180(
+                o->lon_deg + v_e_mps * dt_s / ((normal_m + o->alt_m) * cos_lat) * FT_RAD2DEG);
+        }
+    }
+    if (vs->valid && al->valid) {
+        const uint64_t v_stop_ns = stop_ns(vs);
+        const uint64_t t_end_ns = t_ns < v_stop_ns ? t_ns : v_stop_ns;
+        if (t_ns <= v_stop_ns) {
+            o->axes |= FT_POSE_PRED_VERTICAL;
+        }
+        o->alt_m += vs->value * extrap_s(al->t_ns, t_end_ns, horizon_ns, o);
+    }
+}
+
+/* The convergence offset left at t (metres north, east, up). */
+static void offset_at(const ft_pose_state *ps, uint64_t t_ns, double off_m[3])
+{
+    double w = 1.0;
+    if (ps->converge_ms == 0u) {
+        w = 0.0;
+    } else if (t_ns > ps->offset_t_ns) {
+        w = exp(-(double)(t_ns - ps->offset_t_ns) / ((double)ps->converge_ms * 1e6));
+    }
+    for (int k = 0; k < 3; ++k) {
+        off_m[k] = ps->offset_m[k] * w;
+    }
+}
+
+/* Metres north/east to degrees at the position in o (radii at its latitude). */
+static void metres_to_deg(const pos_pred *o, double north_m, double east_m, double *dlat_deg,
+                          double *dlon_deg)
+{
+    double meridian_m = 0.0, normal_m = 0.0;
+    ft_wgs84_radii_m(o->lat_deg, &meridian_m, &normal_m);
+    const double cos_lat = cos(o->lat_deg * FT_DEG2RAD);
+    *dlat_deg = north_m / (meridian_m + o->alt_m) * FT_RAD2DEG;
+    *dlon_deg = cos_lat > FT_POSE_POLE_COS_MIN
+                    ? east_m / ((normal_m + o->alt_m) * cos_lat) * FT_RAD2DEG
+                    : 0.0;
+}
+
+/* The drawn position at t: prediction + convergence offset. */
+static void drawn_position(const ft_pose_state *ps, uint64_t t_ns, pos_pred *o, double *off_norm_m)
+{
+    predict_position(ps, t_ns, o);
+    double off_m[3];
+    offset_at(ps, t_ns, off_m);
+    double dlat_deg = 0.0, dlon_deg = 0.0;
+    metres_to_deg(o, off_m[0], off_m[1], &dlat_deg, &dlon_deg);
+    if (o->valid[0]) {
+        const double lat_deg = o->lat_deg + dlat_deg;
+        o->lat_deg = lat_deg > 90.0 ? 90.0 : (lat_deg < -90.0 ? -90.0 : lat_deg);
+    }
+    if (o->valid[1]) {
+        o->lon_deg = ft_wrap_deg_pm180(o->lon_deg + dlon_deg);
+    }
+    if (o->valid[2]) {
+        o->alt_m += off_m[2];
+    }
+    if (off_norm_m != NULL) {
+        *off_norm_m = sqrt(off_m[0] * off_m[0] + off_m[1] * off_m[1] + off_m[2] * off_m[2]);
+    }
+}
+
+/* After a value that moves the prediction was stored: the new offset keeps
+ * the drawn position where it was at te (drawn_before), on the axes that
+ * were predicted; a disagreement over snap_m is snapped to and counted. */
+static void position_event(ft_pose_state *ps, const pos_pred *before, uint64_t te)
+{
+    pos_pred after;
+    predict_position(ps, te, &after);
+    double meridian_m = 0.0, normal_m = 0.0;
+    ft_wgs84_radii_m(after.lat_deg, &meridian_m, &normal_m);
+    const double cos_lat = cos(after.lat_deg * FT_DEG2RAD);
+    const int horiz = (before->axes & FT_POSE_PRED_HORIZONTAL) != 0;
+    const int vert = (before->axes & FT_POSE_PRED_VERTICAL) != 0;
+    double d_m[3] = {0.0, 0.0, 0.0};
+    if (horiz && before->valid[0] && after.valid[0]) {
+        d_m[0] = (before->lat_deg - after.lat_deg) * FT_DEG2RAD * (meridian_m + after.alt_m);
+    }
+    if (horiz && before->valid[1] && after.valid[1] && cos_lat > FT_POSE_POLE_COS_MIN) {
+        d_m[1] = ft_wrap_deg_pm180(before->lon_deg - after.lon_deg) * FT_DEG2RAD *
+                 (normal_m + after.alt_m) * cos_lat;
+    }
+    if (vert && before->valid[2] && after.valid[2]) {
+        d_m[2] = before->alt_m - after.alt_m;
+    }
+    const double norm_m = sqrt(d_m[0] * d_m[0] + d_m[1] * d_m[1] + d_m[2] * d_m[2]);
+    if (!(norm_m <= ps->snap_m)) {
+        const uint64_t merge_ns = (uint64_t)FT_POSE_SNAP_MERGE_MS * FT_NS_PER_MS;
+        if (ps->snap_count == 0u || te > ps->last_snap_t_ns + merge_ns) {
+            ++ps->snap_count;
+        }
+        ps->last_snap_t_ns = te;
+        d_m[0] = d_m[1] = d_m[2] = 0.0;
+    } else if (norm_m > ps->offset_max_m && ps->converge_ms > 0u) {
+        ps->offset_max_m = norm_m;
+    }
+    for (int k = 0; k < 3; ++k) {
+        ps->offset_m[k] = ps->converge_ms > 0u ? d_m[k] : 0.0;
+    }
+    ps->offset_t_ns = te;
 }
 
 ft_status ft_pose_state_apply(ft_pose_state *ps, const ft_pose_input *in, int *applied,
@@ -247,6 +472,15 @@ ft_status ft_pose_state_apply(ft_pose_state *ps, const ft_pose_input *in, int *a
             return FT_OK;
         }
     }
+    /* The drawn position just before the value, at the event time (never
+     * before the previous event: a value may be older than another
+     * quantity's, and the offset must not be moved back). */
+    const int moves = moves_position(in->qty);
+    const uint64_t te = in->t_ns > ps->offset_t_ns ? in->t_ns : ps->offset_t_ns;
+    pos_pred before = {0};
+    if (moves) {
+        drawn_position(ps, te, &before, NULL);
+    }
     s->value = in->value;
     s->t_ns = in->t_ns;
     s->timeout_ms = in->timeout_ms;
@@ -254,6 +488,9 @@ ft_status ft_pose_state_apply(ft_pose_state *ps, const ft_pose_input *in, int *a
     s->priority = in->priority;
     s->valid = 1u;
     ++ps->applied_count;
+    if (moves) {
+        position_event(ps, &before, te);
+    }
     if (applied != NULL) {
         *applied = 1;
     }
@@ -262,6 +499,13 @@ ft_status ft_pose_state_apply(ft_pose_state *ps, const ft_pose_input *in, int *a
 
 uint32_t ft_pose_state_stale(const ft_pose_state *ps, uint64_t t_ns, char *reason, size_t cap)
 {
+    return ft_pose_state_stale_in(ps, t_ns, FT_QTY_ALL_MASK, reason, cap);
+}
+
+uint32_t ft_pose_state_stale_in(const ft_pose_state *ps, uint64_t t_ns, uint32_t mask_in,
+                                char *reason, size_t cap)
+{
+    mask_in &= FT_QTY_ALL_MASK;
     if (reason != NULL && cap > 0u) {
         reason[0] = '\0';
     }
@@ -269,13 +513,13 @@ uint32_t ft_pose_state_stale(const ft_pose_state *ps, uint64_t t_ns, char *reaso
         if (reason != NULL && cap > 0u) {
             (void)snprintf(reason, cap, "no pose state");
         }
-        return FT_QTY_ALL_MASK;
+        return mask_in;
     }
     uint32_t mask = 0u;
     int first = -1;
     unsigned more = 0u;
     for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
-        if (sample_stale(&ps->s[q], t_ns)) {
+        if ((mask_in & FT_QTY_BIT(q)) != 0u && sample_stale(&ps->s[q], t_ns)) {
             mask |= FT_QTY_BIT(q);
             if (first < 0) {
                 first = q;
@@ -382,7 +626,12 @@ void ft_pose_state_estimate(const ft_pose_state *ps, uint64_t t_ns, ft_pose_esti
     }
     out->attitude = q;
     ft_quat_to_euler_deg(q, &out->pose.heading_deg, &out->pose.pitch_deg, &out->pose.roll_deg);
-    out->pose.lat_deg = ps->s[FT_QTY_LAT].valid ? ps->s[FT_QTY_LAT].value : 0.0;
-    out->pose.lon_deg = ps->s[FT_QTY_LON].valid ? ps->s[FT_QTY_LON].value : 0.0;
-    out->pose.alt_m = ps->s[FT_QTY_ALT].valid ? ps->s[FT_QTY_ALT].value : 0.0;
+    pos_pred pos;
+    drawn_position(ps, t_ns, &pos, &out->offset_m);
+    out->pose.lat_deg = pos.lat_deg;
+    out->pose.lon_deg = pos.lon_deg;
+    out->pose.alt_m = pos.alt_m;
+    out->position_predicted = pos.axes;
+    out->position_predict_s = pos.predict_s;
+    out->position_clamped = pos.clamped;
 }

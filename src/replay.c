@@ -79,6 +79,10 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
                        "--frames-out: PNG output was left out of this build (FIXTERRAIN_WITH_PNG)");
     }
     ft_status st = ft_pose_feed_init(feed, &s->can_map, s->pose_horizon_ms, &s->pose, err);
+    if (st == FT_OK) {
+        st = ft_pose_feed_set_position(feed, s->pose_converge_ms, s->pose_snap_m,
+                                       s->pose_velocity_required, err);
+    }
     if (st != FT_OK) {
         return st;
     }
@@ -158,6 +162,8 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         if (fs.tau_achieved_px > r->tau_max_px) r->tau_max_px = fs.tau_achieved_px;
         r->frames += 1u;
         r->frames_predicted += (uint32_t)v.predicted;
+        r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
+        r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);
         if (v.annunciate) {
             r->frames_annunciated += 1u;
             if (r->first_annunciated == UINT32_MAX) r->first_annunciated = k;

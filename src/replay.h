@@ -48,6 +48,8 @@ typedef struct ft_replay_result {
     uint32_t frames_annunciated;
     uint32_t first_annunciated; /* frame index; UINT32_MAX if none */
     uint32_t frames_predicted;  /* frames whose attitude was predicted from the rates */
+    uint32_t frames_pos_predicted;  /* frames whose position was predicted from a velocity */
+    uint32_t frames_velocity_stale; /* frames with a velocity quantity stale (or never received) */
     double log_first_s, log_last_s;
     double draw_ms_max;      /* slowest frame (select + draw + readback), information only */
     ft_degrade degrade;      /* frame.budget_ms: frames over it, LOD scale steps */

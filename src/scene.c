@@ -86,6 +86,9 @@ void ft_scene_defaults(ft_scene *s)
     s->frame_degrade = 0;
     s->frame_degrade_max_scale = 8.0;
     s->pose_horizon_ms = FT_POSE_HORIZON_DEFAULT_MS;
+    s->pose_velocity_required = 0;
+    s->pose_converge_ms = FT_POSE_CONVERGE_DEFAULT_MS;
+    s->pose_snap_m = FT_POSE_SNAP_DEFAULT_M;
     (void)snprintf(s->can_iface, sizeof s->can_iface, "%s", "vcan0");
     s->can_backup_iface[0] = '\0';
     s->can_failover_ms = 200;
@@ -198,7 +201,8 @@ static const char *const k_can_qty_key[FT_QTY_COUNT] = {
     [FT_QTY_HEADING] = "heading",       [FT_QTY_LAT] = "lat",
     [FT_QTY_LON] = "lon",               [FT_QTY_ALT] = "alt",
     [FT_QTY_PITCH_RATE] = "pitch_rate", [FT_QTY_ROLL_RATE] = "roll_rate",
-    [FT_QTY_YAW_RATE] = "yaw_rate",
+    [FT_QTY_YAW_RATE] = "yaw_rate",     [FT_QTY_GROUND_SPEED] = "ground_speed",
+    [FT_QTY_TRACK] = "track",           [FT_QTY_ALT_RATE] = "alt_rate",
 };
 
 /* "ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY]" into e (qty set by the caller). */
@@ -465,6 +469,17 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return RANGE(parse_u32(value, 0, FT_POSE_HORIZON_MAX_MS, &s->pose_horizon_ms),
                          "expected 0..1000");
         }
+        if (strcmp(key, "velocity_required") == 0) {
+            return RANGE(parse_flag(value, &s->pose_velocity_required), "expected 0 or 1");
+        }
+        if (strcmp(key, "converge_ms") == 0) {
+            return RANGE(parse_u32(value, 0, FT_POSE_CONVERGE_MAX_MS, &s->pose_converge_ms),
+                         "expected 0..10000");
+        }
+        if (strcmp(key, "snap_m") == 0) {
+            return RANGE(parse_f64(value, FT_POSE_SNAP_MIN_M, FT_POSE_SNAP_MAX_M, &s->pose_snap_m),
+                         "expected 1..100000");
+        }
     } else if (strcmp(section, "can") == 0) {
         char *dst = NULL;
         if (strcmp(key, "interface") == 0) dst = s->can_iface;
@@ -633,6 +648,13 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
                        "frame.period_ms %g (1..1000) or pose_input.horizon_ms %u (0..1000) "
                        "out of range",
                        s->frame_period_ms, s->pose_horizon_ms);
+    }
+    if (s->pose_converge_ms > FT_POSE_CONVERGE_MAX_MS ||
+        !(s->pose_snap_m >= FT_POSE_SNAP_MIN_M && s->pose_snap_m <= FT_POSE_SNAP_MAX_M)) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "pose_input.converge_ms %u (0..10000) or pose_input.snap_m %g "
+                       "(1..100000) out of range",
+                       s->pose_converge_ms, s->pose_snap_m);
     }
     /* GPIO lines: each used at most once */
     int used[FT_GPIO_INPUT_COUNT + 1];

@@ -58,19 +58,28 @@
  *   frame.degrade         0 | 1: coarsen the LOD when frames exceed the budget
  *                         (src/degrade.h; off keeps replay deterministic)
  *   frame.degrade_max_scale  [1, 64]: most the LOD may be coarsened (tau x scale)
- *   pose_input.horizon_ms attitude prediction horizon from the body rates [0, 1000]
- *                         (0 = no prediction)
+ *   pose_input.horizon_ms prediction horizon [0, 1000] (0 = no prediction): attitude
+ *                         from the body rates, position from the velocity
+ *   pose_input.velocity_required  0 | 1: a stale velocity (ground speed, track,
+ *                         altitude rate) raises the annunciation (1) or only stops
+ *                         the position prediction (0)
+ *   pose_input.converge_ms [0, 10000]: time constant with which the drawn position
+ *                         converges to a fix that disagrees with the prediction
+ *                         (0 = at once)
+ *   pose_input.snap_m     [1, 100000]: a disagreement larger than this is not
+ *                         converged but snapped to (and counted)
  *   can.interface, can.backup_interface   SocketCAN interfaces (live input;
  *                         backup empty = none), can.failover_ms [1, 10000]
  *   can_map.defaults      0 | 1: start from the CANaerospace default ids (1) or
  *                         from an empty map (0; put it first in [can_map])
  *   can_map.<quantity>    ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY]: map CAN id ID
  *                         (11-bit) to quantity pitch|roll|heading|lat|lon|alt|
- *                         pitch_rate|roll_rate|yaw_rate; value = decoded * SCALE,
+ *                         pitch_rate|roll_rate|yaw_rate|ground_speed|track|
+ *                         alt_rate; value = decoded * SCALE,
  *                         valid in [MIN, MAX], stale after TIMEOUT_MS; replaces
  *                         the quantity's entry with the same id or priority (an
  *                         id mapped to another quantity is an error); at most
- *                         FT_CAN_MAP_MAX (16) entries
+ *                         FT_CAN_MAP_MAX (24) entries
  *   gpio.chip             gpiochip name or path (live input; empty = no GPIO)
  *   gpio.freeze_line      input: hold the drawn pose while active [-1 = none, 0..511]
  *   gpio.source_line      input: use can.backup_interface while active
@@ -176,6 +185,9 @@ typedef struct ft_scene {
     int frame_degrade;        /* frame.degrade */
     double frame_degrade_max_scale; /* frame.degrade_max_scale */
     uint32_t pose_horizon_ms; /* pose_input.horizon_ms */
+    int pose_velocity_required; /* pose_input.velocity_required */
+    uint32_t pose_converge_ms;  /* pose_input.converge_ms */
+    double pose_snap_m;         /* pose_input.snap_m */
     char can_iface[FT_CAN_IFACE_NAME_MAX];        /* can.interface */
     char can_backup_iface[FT_CAN_IFACE_NAME_MAX]; /* can.backup_interface */
     uint32_t can_failover_ms;                     /* can.failover_ms */

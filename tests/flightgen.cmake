@@ -9,7 +9,7 @@ target_include_directories(test_flightgen PRIVATE ${CMAKE_SOURCE_DIR}/tools)
 if(TARGET fixterrain-flightgen)
   set(FG_OUT ${CMAKE_BINARY_DIR}/test-out)
   add_test(NAME test_flightgen_cli_deterministic
-    COMMAND sh -c "\"$0\" --path orbit --duration 5 --quiet --out \"$1/fg_a.log\" && \"$0\" --path orbit --duration 5 --quiet --out \"$1/fg_b.log\" && cmp \"$1/fg_a.log\" \"$1/fg_b.log\" && test \"$(wc -l < \"$1/fg_a.log\")\" -eq 2650 && \"$0\" --path valley --duration 10 --start-time 1700000100.5 --iface can1 --nan-at 3 --quiet | grep -c '^(1700000103.500000) can1 137#010200F07FC00000$'"
+    COMMAND sh -c "\"$0\" --path orbit --duration 5 --quiet --out \"$1/fg_a.log\" && \"$0\" --path orbit --duration 5 --quiet --out \"$1/fg_b.log\" && cmp \"$1/fg_a.log\" \"$1/fg_b.log\" && test \"$(wc -l < \"$1/fg_a.log\")\" -eq 2800 && test \"$(\"$0\" --path orbit --duration 5 --quiet --no-velocity | wc -l)\" -eq 2650 && \"$0\" --path valley --duration 10 --start-time 1700000100.5 --iface can1 --nan-at 3 --quiet | grep -c '^(1700000103.500000) can1 137#010200F07FC00000$'"
             $<TARGET_FILE:fixterrain-flightgen> ${FG_OUT})
   set_tests_properties(test_flightgen_cli_deterministic PROPERTIES TIMEOUT 60)
   add_test(NAME test_flightgen_cli_errors

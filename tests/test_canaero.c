@@ -49,7 +49,7 @@ static void test_default_map(void)
 {
     ft_can_map m;
     ft_canaero_default_map(&m);
-    CHECK(m.count == 10u);
+    CHECK(m.count == 13u);
     static const struct {
         uint16_t id;
         ft_pose_qty qty;
@@ -67,6 +67,9 @@ static void test_default_map(void)
         {1037u, FT_QTY_LON, -180.0, 180.0, 500u, 0u},
         {320u, FT_QTY_ALT, -1000.0, 25000.0, 500u, 0u},
         {1038u, FT_QTY_ALT, -1000.0, 25000.0, 500u, 1u},
+        {1039u, FT_QTY_GROUND_SPEED, 0.0, 1000.0, 500u, 0u},
+        {1040u, FT_QTY_TRACK, -360.0, 360.0, 500u, 0u},
+        {314u, FT_QTY_ALT_RATE, -500.0, 500.0, 500u, 0u},
     };
     for (size_t i = 0; i < sizeof want / sizeof want[0]; ++i) {
         int found = 0;
@@ -427,6 +430,81 @@ static void test_counters(void)
     CHECK(r.lost == 0u);
 }
 
+/* The velocity ids: decoded in their units, validated and counted per reason
+ * and per quantity like every other quantity. */
+static void test_velocity_ids(void)
+{
+    ft_canaero dec;
+    init_default(&dec);
+    ft_can_result r;
+    const uint64_t t0 = UINT64_C(2000000000);
+    /* 1039 ground speed 250 m/s, 1040 true track 45 deg, 314 altitude rate -12.5 m/s */
+    ft_can_frame f = float_frame(1039u, 0u, 250.0f, t0);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
+    CHECK(r.input.qty == FT_QTY_GROUND_SPEED && r.input.value == 250.0);
+    CHECK(r.input.timeout_ms == 500u && r.input.source_id == 1039u);
+    f = float_frame(1040u, 0u, 45.0f, t0 + 1u);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
+    CHECK(r.input.qty == FT_QTY_TRACK && r.input.value == 45.0);
+    f = float_frame(314u, 0u, -12.5f, t0 + 2u);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
+    CHECK(r.input.qty == FT_QTY_ALT_RATE && r.input.value == -12.5);
+    CHECK(dec.accepted == 3u);
+
+    /* NaN, negative, infinite, out of range, wrong DLC, duplicate: rejected,
+     * by reason and by quantity */
+    f = frame(1039u, 8u, FT_CAN_TYPE_FLOAT, 1u, 0x7Fu, 0xC0u, 0u, 0u, t0 + 10u); /* NaN */
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_NONFINITE);
+    f = float_frame(1039u, 2u, -1.0f, t0 + 11u); /* negative speed */
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_RANGE);
+    f = float_frame(1039u, 3u, 1000.5f, t0 + 12u);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_RANGE);
+    f = float_frame(1040u, 1u, 361.0f, t0 + 13u);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_RANGE);
+    f = frame(1040u, 8u, FT_CAN_TYPE_FLOAT, 2u, 0xFFu, 0x80u, 0u, 0u, t0 + 14u); /* -inf */
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_NONFINITE);
+    f = float_frame(314u, 1u, 500.5f, t0 + 15u);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_RANGE);
+    f = float_frame(314u, 2u, 5.0f, t0 + 16u);
+    f.dlc = 7u;
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_DLC);
+    f = float_frame(314u, 1u, 5.0f, t0 + 17u); /* code 1 again */
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED &&
+          r.reason == FT_CAN_REJECT_COUNTER_REPEAT);
+    /* an unknown id has no quantity */
+    f = float_frame(1041u, 0u, 5.0f, t0 + 18u);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_UNKNOWN_ID);
+    CHECK(dec.rejects_by_qty[FT_QTY_GROUND_SPEED] == 3u);
+    CHECK(dec.rejects_by_qty[FT_QTY_TRACK] == 2u);
+    CHECK(dec.rejects_by_qty[FT_QTY_ALT_RATE] == 3u);
+    CHECK(dec.rejects[FT_CAN_REJECT_NONFINITE] == 2u && dec.rejects[FT_CAN_REJECT_RANGE] == 4u);
+    CHECK(dec.rejects[FT_CAN_REJECT_DLC] == 1u && dec.rejects[FT_CAN_REJECT_COUNTER_REPEAT] == 1u);
+    CHECK(dec.rejects[FT_CAN_REJECT_UNKNOWN_ID] == 1u);
+    uint64_t by_qty = 0u;
+    for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
+        by_qty += dec.rejects_by_qty[q];
+    }
+    CHECK(by_qty == 8u && dec.accepted == 3u);
+
+    /* replaceable: a map with ground speed in knots (scale 0.514444 m/s per
+     * kt) on another id, range in m/s */
+    ft_can_map m;
+    ft_canaero_default_map(&m);
+    for (uint32_t i = 0; i < m.count; ++i) {
+        if (m.e[i].can_id == 1039u) {
+            m.e[i].can_id = 1500u;
+            m.e[i].scale = 0.514444;
+        }
+    }
+    REQUIRE(ft_canaero_init(&dec, &m, NULL) == FT_OK);
+    f = float_frame(1500u, 0u, 100.0f, t0);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
+    CHECK(r.input.qty == FT_QTY_GROUND_SPEED);
+    CHECK_NEAR(r.input.value, 51.4444, 1e-9);
+    f = float_frame(1039u, 0u, 100.0f, t0);
+    CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_REJECTED && r.reason == FT_CAN_REJECT_UNKNOWN_ID);
+}
+
 /* End to end: decoded values reach the pose; rejected frames never do. */
 static void test_into_pose(void)
 {
@@ -440,7 +518,8 @@ static void test_into_pose(void)
         float v;
     } feed[] = {{311u, 5.0f},    {312u, -10.0f},  {321u, 270.0f},  {303u, 0.0f},
                 {304u, 0.0f},    {305u, 0.0f},    {1036u, 46.5f},  {1037u, -121.75f},
-                {320u, 1500.0f}, {1038u, 1530.0f}};
+                {320u, 1500.0f}, {1038u, 1530.0f}, {1039u, 0.0f},  {1040u, 0.0f},
+                {314u, 0.0f}};
     for (size_t i = 0; i < sizeof feed / sizeof feed[0]; ++i) {
         ft_can_frame f = float_frame(feed[i].id, 0u, feed[i].v, t0);
         ft_can_result r;
@@ -482,6 +561,7 @@ int main(void)
     test_double_pairs();
     test_rejects();
     test_counters();
+    test_velocity_ids();
     test_into_pose();
     return ft_test_result("test_canaero");
 }

@@ -95,18 +95,20 @@ static ft_app g_app;
 static ft_pose_feed g_feed;
 static ft_replay_result g_res;
 
-/* A 4 s CANaerospace log (attitude, rates 80 Hz; altitude 10 Hz; lat/lon
- * FLOAT) with a 0.6 s stall, written before init (stdio may allocate). */
+/* A 4 s CANaerospace log (attitude, rates 80 Hz; altitude, lat/lon FLOAT and
+ * the velocity 10 Hz, so the position is predicted too) with a 0.6 s stall,
+ * written before init (stdio may allocate). */
 static void write_log(const char *path)
 {
     FILE *f = fopen(path, "w");
     REQUIRE(f != NULL);
-    static const uint16_t ids[] = {311, 312, 321, 303, 304, 305, 320, 1036, 1037};
-    const float vals[] = {-10.0f, 5.0f, 0.0f, 0.0f, 0.0f, 20.0f, 3500.0f, 46.55f, 8.2f};
-    uint8_t code[9] = {0};
+    static const uint16_t ids[] = {311, 312, 321, 303, 304, 305, 320, 1036, 1037, 1039, 1040, 314};
+    const float vals[] = {-10.0f, 5.0f, 0.0f,  0.0f,  0.0f,   20.0f,
+                          3500.0f, 46.55f, 8.2f, 100.0f, 45.0f, 2.0f};
+    uint8_t code[12] = {0};
     for (int i = 0; i < 320; ++i) {
         if (i >= 160 && i < 208) continue; /* stall */
-        for (int q = 0; q < 9; ++q) {
+        for (int q = 0; q < 12; ++q) {
             if (q >= 6 && i % 8 != 0) continue;
             ft_candump_record rec;
             memset(&rec, 0, sizeof rec);

@@ -463,7 +463,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "method", "setting", "paths", "frames", "time_median_ms", "time_p99_ms", "time_max_ms",
         "ratio_to_brute", "select_median_ms", "err_max_px", "err_p999_px", "err_mean_px",
         "coverage_mismatch_px", "coverage_mismatch_mean_px", "nonfinite_px", "measured_frames",
-        "triangles_mean", "budget_hits", "init_ms"};
+        "triangles_mean", "budget_hits", "init_ms", "occlusion_mismatch_px",
+        "occlusion_mismatch_mean_px", "occlusion_err_max_px"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);
@@ -474,7 +475,9 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
               c_ratio = col(H, nh, "ratio_to_brute"), c_emax = col(H, nh, "err_max_px"),
               c_e999 = col(H, nh, "err_p999_px"), c_emean = col(H, nh, "err_mean_px"),
               c_cov = col(H, nh, "coverage_mismatch_px"), c_nf = col(H, nh, "nonfinite_px"),
-              c_meas = col(H, nh, "measured_frames"), c_tri = col(H, nh, "triangles_mean");
+              c_meas = col(H, nh, "measured_frames"), c_tri = col(H, nh, "triangles_mean"),
+              c_occ = col(H, nh, "occlusion_mismatch_px"),
+              c_occ_e = col(H, nh, "occlusion_err_max_px");
     CHECK(nl - 1 == nrows);
     for (int r = 0; r < nrows; ++r) {
         char want_method[64];
@@ -506,6 +509,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         CHECK(emax >= 0.0 && emax < 100.0 && e999 >= 0.0 && e999 <= emax);
         CHECK(emean >= 0.0 && emean <= emax);
         CHECK(num(c[c_cov]) >= 0.0 && num(c[c_nf]) == 0.0);
+        /* occlusion errors are inside the max */
+        CHECK(num(c[c_occ]) >= 0.0 && num(c[c_occ_e]) >= 0.0 && num(c[c_occ_e]) <= emax);
         CHECK(num(c[c_tri]) >= 1.0);
         if (strcmp(want_method, "brute") == 0) CHECK_NEAR(num(c[c_ratio]), 1.0, 1e-9);
         else CHECK(num(c[c_ratio]) > 0.0);

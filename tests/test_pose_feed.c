@@ -1,5 +1,8 @@
 /* test_pose_feed.c - the bounded line reader (candump logs, waypoint files)
- * and the pose feed: frames in, pose + annunciation out. */
+ * and the pose feed: frames in, pose + annunciation out; velocity frames
+ * through the decoder: NaN and out-of-range ones rejected and counted, the
+ * prediction stopped at the velocity's timeout, annunciated only when the
+ * velocity is required. */
 #include <string.h>
 
 #include "line_reader.h"
@@ -158,9 +161,142 @@ static void test_pose_feed(void)
     CHECK_NEAR(v.pose.pitch_deg, -5.0, 0.05);
 }
 
+/* Velocity through the real decoder: straight flight north at 100 m/s at
+ * 46.5 N (attitude and rates every 10 ms, position and velocity every 100
+ * ms). From 1 s on the velocity frames carry NaN / out-of-range values: each
+ * is rejected and counted (per reason and per quantity), never applied; the
+ * last good velocity predicts until its 500 ms timeout, then the position
+ * is held; the annunciation comes only where the scene requires velocity. */
+static void flight_frames(ft_pose_feed *pf, uint64_t t0, uint64_t t, int bad_velocity)
+{
+    const uint64_t ms = 1000000u;
+    const double m_per_deg = 111132.0; /* near enough: both feeds see the same values */
+    ft_can_frame f;
+    f = float_frame(311, 0.0f, t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(312, 0.0f, t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(321, 0.0f, t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(303, 0.0f, t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(304, 0.0f, t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(305, 0.0f, t); ft_pose_feed_frame(pf, &f);
+    if ((t - t0) % (100u * ms) != 0u) {
+        return;
+    }
+    const double dt = (double)(t - t0) * 1e-9;
+    f = float_frame(320, 2000.0f, t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(1036, (float)(46.5 + 100.0 * dt / m_per_deg), t); ft_pose_feed_frame(pf, &f);
+    f = float_frame(1037, 8.0f, t); ft_pose_feed_frame(pf, &f);
+    if (!bad_velocity) {
+        f = float_frame(1039, 100.0f, t + ms); ft_pose_feed_frame(pf, &f);
+        f = float_frame(1040, 0.0f, t + ms); ft_pose_feed_frame(pf, &f);
+        f = float_frame(314, 0.0f, t + ms); ft_pose_feed_frame(pf, &f);
+    } else {
+        float nan_f;
+        const uint32_t qnan = 0x7FC00000u;
+        memcpy(&nan_f, &qnan, sizeof nan_f);
+        f = float_frame(1039, nan_f, t + ms); ft_pose_feed_frame(pf, &f);
+        f = float_frame(1040, 400.0f, t + ms); ft_pose_feed_frame(pf, &f);
+        f = float_frame(314, -900.0f, t + ms); ft_pose_feed_frame(pf, &f);
+    }
+}
+
+/* Both feeds get the same frames with the same message codes. */
+static void feed_both(ft_pose_feed pf[2], uint64_t t0, uint64_t t, int bad)
+{
+    uint8_t codes[sizeof g_code];
+    memcpy(codes, g_code, sizeof codes);
+    flight_frames(&pf[0], t0, t, bad);
+    memcpy(g_code, codes, sizeof codes);
+    flight_frames(&pf[1], t0, t, bad);
+}
+
+static void init_both(ft_pose_feed pf[2])
+{
+    ft_can_map map;
+    ft_canaero_default_map(&map);
+    const ft_pose fallback = {10.0, 20.0, 500.0, 1.0, 2.0, 3.0};
+    ft_error err;
+    for (int k = 0; k < 2; ++k) {
+        REQUIRE(ft_pose_feed_init(&pf[k], &map, 100, &fallback, &err) == FT_OK);
+        REQUIRE(ft_pose_feed_set_position(&pf[k], 300u, 100.0, k, &err) == FT_OK);
+    }
+}
+
+static void test_velocity_feed(void)
+{
+    static ft_pose_feed pf[2]; /* [0] velocity not required, [1] required */
+    ft_error err;
+    init_both(pf);
+    CHECK(ft_pose_feed_set_position(&pf[0], 300u, 0.0, 0, &err) == FT_ERR_ARG);
+    const uint64_t ms = 1000000u, t0 = 5000u * ms;
+    /* no velocity ever received: annunciated only where it is required */
+    feed_both(pf, t0, t0, 1);
+    ft_pose_view v0, v1;
+    ft_pose_feed_view(&pf[0], t0 + 5u * ms, &v0);
+    ft_pose_feed_view(&pf[1], t0 + 5u * ms, &v1);
+    CHECK(!v0.annunciate && v0.pos_predicted == 0 && v0.reason[0] == '\0');
+    CHECK(v1.annunciate && strcmp(v1.reason, "no ground speed received (+2 more)") == 0);
+
+    init_both(pf);
+    /* the last good velocity is sent at 0.901 s: stale after 1.401 s */
+    const uint64_t stop = t0 + 901u * ms + 500u * ms;
+    int stale_frames = 0, ann_frames[2] = {0, 0}, pred_frames = 0;
+    double prev_lat = 0.0;
+    for (uint64_t t = t0; t <= t0 + 2000u * ms; t += 10u * ms) {
+        feed_both(pf, t0, t, t >= t0 + 1000u * ms);
+        const uint64_t td = t + 5u * ms; /* display time between two frames */
+        ft_pose_feed_view(&pf[0], td, &v0);
+        ft_pose_feed_view(&pf[1], td, &v1);
+        /* both draw the same position: the requirement only annunciates */
+        CHECK(v0.pose.lat_deg == v1.pose.lat_deg && v0.pose.alt_m == v1.pose.alt_m);
+        if (td <= stop) {
+            CHECK(v0.pos_predicted == 3);
+            pred_frames += v0.pos_predicted == 3;
+            CHECK(!v0.annunciate && !v1.annunciate);
+        } else {
+            CHECK(v0.pos_predicted == 0);
+            CHECK((v0.stale_mask & FT_QTY_VELOCITY_MASK) == FT_QTY_VELOCITY_MASK);
+            ++stale_frames;
+            ann_frames[0] += v0.annunciate;
+            ann_frames[1] += v1.annunciate;
+            CHECK(v1.annunciate && strstr(v1.reason, "no ground speed for") != NULL);
+            const ft_pose_sample *lat = &pf[0].ps.s[FT_QTY_LAT];
+            if (lat->t_ns > stop) {
+                /* a fix after the velocity went stale: drawn as it is */
+                CHECK(v0.pose.lat_deg == lat->value);
+            } else if (stale_frames > 1) {
+                /* held where the prediction stopped: what moves is what is
+                 * left of the convergence of earlier fixes (FLOAT latitudes
+                 * are rounded to 0.4 m here), at most 2 cm a frame */
+                CHECK_NEAR(v0.pose.lat_deg, prev_lat, 2e-7);
+            }
+        }
+        prev_lat = v0.pose.lat_deg;
+    }
+    printf("velocity feed: %d predicted frames, %d frames with a stale velocity: annunciated %d "
+           "(not required) / %d (required); rejects ground speed %llu, track %llu, altitude "
+           "rate %llu\n",
+           pred_frames, stale_frames, ann_frames[0], ann_frames[1],
+           (unsigned long long)pf[0].dec.rejects_by_qty[FT_QTY_GROUND_SPEED],
+           (unsigned long long)pf[0].dec.rejects_by_qty[FT_QTY_TRACK],
+           (unsigned long long)pf[0].dec.rejects_by_qty[FT_QTY_ALT_RATE]);
+    CHECK(stale_frames > 0 && ann_frames[0] == 0 && ann_frames[1] == stale_frames);
+    for (int k = 0; k < 2; ++k) {
+        /* 11 bad fixes (1.0 .. 2.0 s), each with 3 bad velocity frames */
+        CHECK(pf[k].dec.rejects_by_qty[FT_QTY_GROUND_SPEED] == 11u);
+        CHECK(pf[k].dec.rejects_by_qty[FT_QTY_TRACK] == 11u);
+        CHECK(pf[k].dec.rejects_by_qty[FT_QTY_ALT_RATE] == 11u);
+        CHECK(pf[k].dec.rejects[FT_CAN_REJECT_NONFINITE] == 11u);
+        CHECK(pf[k].dec.rejects[FT_CAN_REJECT_RANGE] == 22u);
+        CHECK(ft_pose_feed_rejected(&pf[k]) == 33u);
+        CHECK(pf[k].ps.s[FT_QTY_GROUND_SPEED].value == 100.0);
+        CHECK(pf[k].ps.snap_count == 0u);
+    }
+}
+
 int main(void)
 {
     test_line_reader();
     test_pose_feed();
+    test_velocity_feed();
     return ft_test_result("test_pose_feed");
 }

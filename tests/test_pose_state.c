@@ -1,7 +1,11 @@
 /* test_pose_state.c - Euler/quaternion conversions, the exponential-map
- * extrapolator on stiff cases, horizon clamp, staleness and source priority. */
+ * extrapolator on stiff cases, horizon clamp, staleness and source priority;
+ * position prediction from the velocity against closed forms (horizon,
+ * stale velocity, convergence of a 5 m fix, snap of a 500 m jump) and the
+ * tangent-plane step against the WGS-84 geodesic. */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "pose_state.h"
@@ -316,7 +320,8 @@ static void test_estimate_and_horizon(void)
     CHECK(e.predicted == 1 && e.horizon_clamped == 0);
     CHECK_NEAR(e.predict_s, 0.09, 1e-15);
     CHECK_NEAR(e.pose.heading_deg, 359.9, 1e-9);
-    CHECK(e.stale_mask == 0u);
+    CHECK(e.stale_mask == FT_QTY_VELOCITY_MASK); /* never received: position held */
+    CHECK(e.position_predicted == 0);
     CHECK_NEAR(e.pose.lat_deg, 46.85, 0.0);
     CHECK_NEAR(e.pose.lon_deg, -121.76, 0.0);
     CHECK_NEAR(e.pose.alt_m, 3000.0, 0.0);
@@ -405,7 +410,7 @@ static void test_staleness(void)
 
     /* Nothing received yet. */
     CHECK(ft_pose_state_stale(&ps, t0, reason, sizeof reason) == FT_QTY_ALL_MASK);
-    CHECK(strcmp(reason, "no pitch received (+8 more)") == 0);
+    CHECK(strcmp(reason, "no pitch received (+11 more)") == 0);
     ft_pose_estimate e;
     ft_pose_state_estimate(&ps, t0, &e);
     CHECK(e.stale_mask == FT_QTY_ALL_MASK && e.predicted == 0);
@@ -416,6 +421,11 @@ static void test_staleness(void)
     apply_ok(&ps, FT_QTY_LAT, 1.0, t0, 500u);
     apply_ok(&ps, FT_QTY_LON, 2.0, t0, 500u);
     apply_ok(&ps, FT_QTY_ALT, 3.0, t0, 500u);
+    CHECK(ft_pose_state_stale(&ps, t0, reason, sizeof reason) == FT_QTY_VELOCITY_MASK);
+    CHECK(strcmp(reason, "no ground speed received (+2 more)") == 0);
+    apply_ok(&ps, FT_QTY_GROUND_SPEED, 0.0, t0, 500u);
+    apply_ok(&ps, FT_QTY_TRACK, 0.0, t0, 500u);
+    apply_ok(&ps, FT_QTY_ALT_RATE, 0.0, t0, 500u);
     CHECK(ft_pose_state_stale(&ps, t0, reason, sizeof reason) == 0u);
     CHECK(reason[0] == '\0');
     /* Exactly at the timeout is still fresh; one ns later it is stale. */
@@ -501,6 +511,353 @@ static void test_apply_rules(void)
     CHECK(strcmp(ft_pose_qty_name(FT_QTY_COUNT), "?") == 0);
 }
 
+/* ---- position prediction and convergence ------------------------------------ */
+
+/* North and east metres from (lat0, lon0) to (lat, lon), radii at lat0. */
+static void ne_m(double lat0, double lon0, double h, double lat, double lon, double *n_m,
+                 double *e_m)
+{
+    double m = 0.0, nv = 0.0;
+    ft_wgs84_radii_m(lat0, &m, &nv);
+    *n_m = (lat - lat0) * D2R * (m + h);
+    *e_m = remainder(lon - lon0, 360.0) * D2R * (nv + h) * cos(lat0 * D2R);
+}
+
+/* A straight flight at constant velocity (north, east, up m/s) from
+ * (lat0, lon0, alt0) at t0, in the tangent plane at the start. */
+typedef struct straight {
+    double lat0, lon0, alt0, v_n, v_e, v_u;
+    uint64_t t0;
+} straight;
+
+static void straight_at(const straight *f, uint64_t t_ns, double *lat, double *lon, double *alt)
+{
+    double m = 0.0, nv = 0.0;
+    ft_wgs84_radii_m(f->lat0, &m, &nv);
+    const double dt = t_ns >= f->t0 ? (double)(t_ns - f->t0) * 1e-9 : -(double)(f->t0 - t_ns) * 1e-9;
+    *lat = f->lat0 + f->v_n * dt / (m + f->alt0) / D2R;
+    *lon = f->lon0 + f->v_e * dt / ((nv + f->alt0) * cos(f->lat0 * D2R)) / D2R;
+    *alt = f->alt0 + f->v_u * dt;
+}
+
+/* A fix (lat, lon 1 ms later, alt 2 ms later) of the flight, moved by
+ * (dn, de) metres, then its velocity 3 ms later. */
+static void send_fix(ft_pose_state *ps, const straight *f, uint64_t t_ns, double dn_m, double de_m,
+                     int with_velocity)
+{
+    double lat, lon, alt, m = 0.0, nv = 0.0;
+    ft_wgs84_radii_m(f->lat0, &m, &nv);
+    straight_at(f, t_ns, &lat, &lon, &alt);
+    apply_ok(ps, FT_QTY_LAT, lat + dn_m / (m + f->alt0) / D2R, t_ns, 500u);
+    straight_at(f, t_ns + MS_NS, &lat, &lon, &alt);
+    apply_ok(ps, FT_QTY_LON, lon + de_m / ((nv + f->alt0) * cos(f->lat0 * D2R)) / D2R,
+             t_ns + MS_NS, 500u);
+    straight_at(f, t_ns + 2u * MS_NS, &lat, &lon, &alt);
+    apply_ok(ps, FT_QTY_ALT, alt, t_ns + 2u * MS_NS, 500u);
+    if (with_velocity) {
+        apply_ok(ps, FT_QTY_GROUND_SPEED, hypot(f->v_n, f->v_e), t_ns + 3u * MS_NS, 500u);
+        apply_ok(ps, FT_QTY_TRACK, ft_wrap_deg_0_360(atan2(f->v_e, f->v_n) / D2R),
+                 t_ns + 3u * MS_NS, 500u);
+        apply_ok(ps, FT_QTY_ALT_RATE, f->v_u, t_ns + 3u * MS_NS, 500u);
+    }
+}
+
+static void test_position_prediction(void)
+{
+    ft_pose_state ps;
+    REQUIRE(ft_pose_state_init(&ps, 100u, NULL) == FT_OK);
+    const uint64_t t0 = UINT64_C(1700000000) * UINT64_C(1000000000);
+    const double lat0 = 46.5, lon0 = 8.0, alt0 = 1000.0;
+    double m = 0.0, nv = 0.0;
+    ft_wgs84_radii_m(lat0, &m, &nv);
+    /* radii against their closed forms at the equator and the pole */
+    double m_eq = 0.0, n_eq = 0.0, m_po = 0.0, n_po = 0.0;
+    ft_wgs84_radii_m(0.0, &m_eq, &n_eq);
+    ft_wgs84_radii_m(90.0, &m_po, &n_po);
+    CHECK_NEAR(n_eq, 6378137.0, 1e-6);
+    CHECK_NEAR(m_eq, 6335439.327, 1e-3);
+    CHECK_NEAR(m_po, n_po, 1e-6);
+    CHECK_NEAR(n_po, 6399593.626, 1e-3);
+
+    apply_ok(&ps, FT_QTY_LAT, lat0, t0, 500u);
+    apply_ok(&ps, FT_QTY_LON, lon0, t0 + MS_NS, 500u);
+    apply_ok(&ps, FT_QTY_ALT, alt0, t0 + 2u * MS_NS, 500u);
+    ft_pose_estimate e;
+    /* no velocity yet: held, as without prediction */
+    ft_pose_state_estimate(&ps, t0 + 50u * MS_NS, &e);
+    CHECK(e.position_predicted == 0 && e.position_predict_s == 0.0);
+    CHECK(e.pose.lat_deg == lat0 && e.pose.lon_deg == lon0 && e.pose.alt_m == alt0);
+    /* 250 m/s on track 045, climbing 10 m/s: each component from its own time */
+    apply_ok(&ps, FT_QTY_GROUND_SPEED, 250.0, t0 + 3u * MS_NS, 500u);
+    apply_ok(&ps, FT_QTY_TRACK, 45.0, t0 + 3u * MS_NS, 500u);
+    apply_ok(&ps, FT_QTY_ALT_RATE, 10.0, t0 + 3u * MS_NS, 500u);
+    ft_pose_state_estimate(&ps, t0 + 50u * MS_NS, &e);
+    const double v_n = 250.0 * cos(45.0 * D2R), v_e = 250.0 * sin(45.0 * D2R);
+    CHECK(e.position_predicted == (FT_POSE_PRED_HORIZONTAL | FT_POSE_PRED_VERTICAL));
+    CHECK_NEAR(e.position_predict_s, 0.050, 1e-12);
+    CHECK(e.position_clamped == 0);
+    CHECK_NEAR(e.pose.lat_deg, lat0 + v_n * 0.050 / (m + alt0) / D2R, 1e-12);
+    CHECK_NEAR(e.pose.lon_deg, lon0 + v_e * 0.049 / ((nv + alt0) * cos(lat0 * D2R)) / D2R, 1e-12);
+    CHECK_NEAR(e.pose.alt_m, alt0 + 10.0 * 0.048, 1e-9);
+    CHECK(e.offset_m < 1e-9);
+    /* beyond the horizon (100 ms) the prediction holds its value there */
+    ft_pose_state_estimate(&ps, t0 + 180u * MS_NS, &e);
+    CHECK(e.position_clamped == 1);
+    CHECK_NEAR(e.position_predict_s, 0.1, 1e-12);
+    CHECK_NEAR(e.pose.lat_deg, lat0 + v_n * 0.1 / (m + alt0) / D2R, 1e-12);
+    CHECK_NEAR(e.pose.alt_m, alt0 + 1.0, 1e-9);
+    /* horizon 0: nothing predicted */
+    ps.horizon_ms = 0u;
+    ft_pose_state_estimate(&ps, t0 + 50u * MS_NS, &e);
+    CHECK(e.position_predicted == 0 && e.pose.lat_deg == lat0 && e.pose.alt_m == alt0);
+    ps.horizon_ms = 100u;
+
+    /* bad velocity values change nothing */
+    ft_pose_input in = in_of(FT_QTY_GROUND_SPEED, NAN, t0 + 10u * MS_NS, 500u);
+    CHECK(ft_pose_state_apply(&ps, &in, NULL, NULL) == FT_ERR_NUMERIC);
+    in = in_of(FT_QTY_TRACK, INFINITY, t0 + 10u * MS_NS, 500u);
+    CHECK(ft_pose_state_apply(&ps, &in, NULL, NULL) == FT_ERR_NUMERIC);
+    ft_pose_state_estimate(&ps, t0 + 50u * MS_NS, &e);
+    CHECK_NEAR(e.pose.lat_deg, lat0 + v_n * 0.050 / (m + alt0) / D2R, 1e-12);
+    CHECK(ps.s[FT_QTY_GROUND_SPEED].value == 250.0);
+
+    /* set_convergence checks its ranges */
+    ft_error err = {0};
+    CHECK(ft_pose_state_set_convergence(&ps, FT_POSE_CONVERGE_MAX_MS + 1u, 100.0, &err) ==
+          FT_ERR_ARG);
+    CHECK(ft_pose_state_set_convergence(&ps, 300u, 0.5, &err) == FT_ERR_ARG);
+    CHECK(ft_pose_state_set_convergence(&ps, 300u, NAN, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "snap") != NULL);
+    CHECK(ps.converge_ms == FT_POSE_CONVERGE_DEFAULT_MS && ps.snap_m == FT_POSE_SNAP_DEFAULT_M);
+}
+
+/* The velocity goes silent mid-flight: the prediction stops at its timeout
+ * (the position held where it was then), the next fix is drawn at once. */
+static void test_position_stale_velocity(void)
+{
+    ft_pose_state ps;
+    REQUIRE(ft_pose_state_init(&ps, 100u, NULL) == FT_OK);
+    const uint64_t t0 = UINT64_C(1700000000) * UINT64_C(1000000000);
+    const straight f = {46.5, 8.0, 1000.0, 200.0, -50.0, 5.0, t0};
+    send_fix(&ps, &f, t0, 0.0, 0.0, 1); /* velocity at t0 + 3 ms, stale after t0 + 503 ms */
+    for (uint64_t k = 1u; k <= 4u; ++k) {
+        send_fix(&ps, &f, t0 + k * 100u * MS_NS, 0.0, 0.0, 0);
+    }
+    ft_pose_estimate e, e2;
+    double lat, lon, alt;
+    /* still fresh at 450 ms: on the flight */
+    ft_pose_state_estimate(&ps, t0 + 450u * MS_NS, &e);
+    straight_at(&f, t0 + 450u * MS_NS, &lat, &lon, &alt);
+    double dn, de;
+    ne_m(lat, lon, alt, e.pose.lat_deg, e.pose.lon_deg, &dn, &de);
+    CHECK(e.position_predicted == 3);
+    CHECK(fabs(dn) < 1e-3 && fabs(de) < 1e-3 && fabs(e.pose.alt_m - alt) < 1e-6);
+    /* stale at 503 ms: from then on the drawn position stays put */
+    send_fix(&ps, &f, t0 + 500u * MS_NS, 0.0, 0.0, 0);
+    ft_pose_state_estimate(&ps, t0 + 503u * MS_NS, &e);
+    CHECK(e.position_predicted == 3);
+    straight_at(&f, t0 + 503u * MS_NS, &lat, &lon, &alt);
+    ne_m(lat, lon, alt, e.pose.lat_deg, e.pose.lon_deg, &dn, &de);
+    if (!(fabs(dn) < 1e-3 && fabs(de) < 1e-3 && fabs(e.pose.alt_m - alt) < 1e-6)) {
+        fprintf(stderr, "at the velocity timeout: dn %.3e de %.3e dalt %.3e m\n", dn, de,
+                e.pose.alt_m - alt);
+        CHECK(0);
+    }
+    /* (what is left of the convergence of earlier fixes, micrometres here,
+     * still decays: equal within 1e-4 m) */
+    for (uint64_t t_ms = 504u; t_ms < 600u; t_ms += 16u) {
+        ft_pose_state_estimate(&ps, t0 + t_ms * MS_NS, &e2);
+        CHECK(e2.position_predicted == 0);
+        CHECK((e2.stale_mask & FT_QTY_VELOCITY_MASK) == FT_QTY_VELOCITY_MASK);
+        ne_m(e.pose.lat_deg, e.pose.lon_deg, alt, e2.pose.lat_deg, e2.pose.lon_deg, &dn, &de);
+        CHECK(fabs(dn) < 1e-4 && fabs(de) < 1e-4 && fabs(e2.pose.alt_m - e.pose.alt_m) < 1e-4);
+    }
+    /* the next fix: drawn as it is, no convergence, no snap */
+    send_fix(&ps, &f, t0 + 600u * MS_NS, 0.0, 0.0, 0);
+    ft_pose_state_estimate(&ps, t0 + 610u * MS_NS, &e);
+    CHECK(e.position_predicted == 0 && e.offset_m == 0.0);
+    CHECK(e.pose.lat_deg == ps.s[FT_QTY_LAT].value && e.pose.lon_deg == ps.s[FT_QTY_LON].value &&
+          e.pose.alt_m == ps.s[FT_QTY_ALT].value);
+    CHECK(ps.snap_count == 0u);
+    /* the velocity returns: prediction again from the held fix */
+    send_fix(&ps, &f, t0 + 700u * MS_NS, 0.0, 0.0, 1);
+    ft_pose_state_estimate(&ps, t0 + 750u * MS_NS, &e);
+    straight_at(&f, t0 + 750u * MS_NS, &lat, &lon, &alt);
+    ne_m(lat, lon, alt, e.pose.lat_deg, e.pose.lon_deg, &dn, &de);
+    CHECK(e.position_predicted == 3);
+    CHECK(fabs(dn) < 1e-3 && fabs(de) < 1e-3 && fabs(e.pose.alt_m - alt) < 1e-6);
+}
+
+/* A fix 5 m off (a persistent GPS bias from then on): reached smoothly,
+ * drawn = truth + 5 (1 - exp(-(t - te) / tau)); a 500 m jump (GPS reset):
+ * snapped to and counted once per fix; converge_ms 0: at once. */
+static void test_position_convergence(void)
+{
+    ft_pose_state ps;
+    REQUIRE(ft_pose_state_init(&ps, 100u, NULL) == FT_OK);
+    REQUIRE(ft_pose_state_set_convergence(&ps, 300u, 100.0, NULL) == FT_OK);
+    const uint64_t t0 = UINT64_C(1700000000) * UINT64_C(1000000000);
+    const double v = 120.0, tau_s = 0.3;
+    const straight f = {46.5, 8.0, 1000.0, v, 0.0, 0.0, t0};
+    const uint64_t period_ns = 16666667u, t_bias = t0 + 1000u * MS_NS;
+    const double period_s = (double)period_ns * 1e-9;
+    double prev_n = 0.0, prev_e = 0.0, max_step = 0.0, max_closed_err = 0.0, max_err_before = 0.0;
+    uint64_t next_fix = t0;
+    int have_prev = 0;
+    for (uint64_t t = t0 + 5u * MS_NS; t < t0 + 3000u * MS_NS; t += period_ns) {
+        while (next_fix <= t) {
+            send_fix(&ps, &f, next_fix, next_fix >= t_bias ? 5.0 : 0.0, 0.0, 1);
+            next_fix += 100u * MS_NS;
+        }
+        ft_pose_estimate e;
+        ft_pose_state_estimate(&ps, t, &e);
+        double n, ea;
+        ne_m(f.lat0, f.lon0, f.alt0, e.pose.lat_deg, e.pose.lon_deg, &n, &ea);
+        double lat, lon, alt, tn, te_m;
+        straight_at(&f, t, &lat, &lon, &alt);
+        ne_m(f.lat0, f.lon0, f.alt0, lat, lon, &tn, &te_m);
+        const double want = t < t_bias ? 0.0
+                                       : 5.0 * (1.0 - exp(-(double)(t - t_bias) * 1e-9 / tau_s));
+        const double err = fabs(n - tn - want) + fabs(ea - te_m);
+        if (t < t_bias) {
+            max_err_before = fmax(max_err_before, err);
+        } else {
+            max_closed_err = fmax(max_closed_err, err);
+        }
+        if (have_prev) {
+            max_step = fmax(max_step, hypot(n - prev_n, ea - prev_e));
+        }
+        prev_n = n;
+        prev_e = ea;
+        have_prev = 1;
+    }
+    printf("convergence of a 5 m fix: closed-form error %.2e m (before %.2e m), largest frame "
+           "step %.4f m (speed x period %.4f m, bound %.4f m), offset max %.4f m\n",
+           max_closed_err, max_err_before, max_step, v * period_s,
+           v * period_s + 5.0 * period_s / tau_s, ps.offset_max_m);
+    CHECK(max_err_before < 1e-3);
+    CHECK(max_closed_err < 1e-3);
+    CHECK(max_step <= v * period_s + 5.0 * period_s / tau_s + 1e-3);
+    CHECK(max_step <= 1.5 * v * period_s);
+    CHECK(ps.snap_count == 0u);
+    CHECK_NEAR(ps.offset_max_m, 5.0, 1e-3);
+
+    /* GPS reset: 500 m north and 300 m east. Latitude and longitude come 1 ms
+     * apart: one snap. The drawn position is the new fix's prediction at once. */
+    const uint64_t t_reset = next_fix;
+    send_fix(&ps, &f, t_reset, 505.0, 300.0, 1);
+    CHECK(ps.snap_count == 1u);
+    ft_pose_estimate e;
+    ft_pose_state_estimate(&ps, t_reset + 10u * MS_NS, &e);
+    CHECK(e.offset_m == 0.0);
+    double n, ea, lat, lon, alt, tn, te_m;
+    ne_m(f.lat0, f.lon0, f.alt0, e.pose.lat_deg, e.pose.lon_deg, &n, &ea);
+    straight_at(&f, t_reset + 10u * MS_NS, &lat, &lon, &alt);
+    ne_m(f.lat0, f.lon0, f.alt0, lat, lon, &tn, &te_m);
+    CHECK_NEAR(n - tn, 505.0, 1e-3);
+    CHECK_NEAR(ea - te_m, 300.0, 1e-3);
+    CHECK_NEAR(ps.offset_max_m, 5.0, 1e-3); /* a snap is not a convergence */
+    /* the next fixes agree with it: nothing more */
+    send_fix(&ps, &f, t_reset + 100u * MS_NS, 505.0, 300.0, 1);
+    CHECK(ps.snap_count == 1u);
+    /* and a reset back 1 s later is a second snap */
+    for (uint64_t k = 2u; k <= 10u; ++k) {
+        send_fix(&ps, &f, t_reset + k * 100u * MS_NS, 505.0, 300.0, 1);
+    }
+    CHECK(ps.snap_count == 1u);
+    send_fix(&ps, &f, t_reset + 1100u * MS_NS, 0.0, 0.0, 1);
+    CHECK(ps.snap_count == 2u);
+
+    /* converge_ms 0: a 5 m fix is drawn at once */
+    REQUIRE(ft_pose_state_init(&ps, 100u, NULL) == FT_OK);
+    REQUIRE(ft_pose_state_set_convergence(&ps, 0u, 100.0, NULL) == FT_OK);
+    send_fix(&ps, &f, t0, 0.0, 0.0, 1);
+    send_fix(&ps, &f, t0 + 100u * MS_NS, 5.0, 0.0, 1);
+    ft_pose_state_estimate(&ps, t0 + 101u * MS_NS, &e);
+    ne_m(f.lat0, f.lon0, f.alt0, e.pose.lat_deg, e.pose.lon_deg, &n, &ea);
+    straight_at(&f, t0 + 101u * MS_NS, &lat, &lon, &alt);
+    ne_m(f.lat0, f.lon0, f.alt0, lat, lon, &tn, &te_m);
+    CHECK_NEAR(n - tn, 5.0, 1e-3);
+    CHECK(ps.snap_count == 0u && ps.offset_max_m == 0.0 && e.offset_m == 0.0);
+    /* without velocity nothing converges either (position held as before) */
+    REQUIRE(ft_pose_state_init(&ps, 100u, NULL) == FT_OK);
+    send_fix(&ps, &f, t0, 0.0, 0.0, 0);
+    send_fix(&ps, &f, t0 + 100u * MS_NS, 0.0, 0.0, 0);
+    ft_pose_state_estimate(&ps, t0 + 150u * MS_NS, &e);
+    CHECK(e.pose.lat_deg == ps.s[FT_QTY_LAT].value && e.offset_m == 0.0);
+}
+
+/* The tangent-plane step against the geodesic it approximates (a constant
+ * velocity vector, no lateral acceleration), integrated on the WGS-84
+ * ellipsoid with RK4: the flat step's own error over the horizon. */
+static void geodesic(double lat_deg, double lon_deg, double az_deg, double s_m, double *lat_out,
+                     double *lon_out)
+{
+    double y[3] = {lat_deg * D2R, lon_deg * D2R, az_deg * D2R};
+    const int steps = 2000;
+    const double h = s_m / steps;
+    for (int i = 0; i < steps; ++i) {
+        double k[4][3], yt[3];
+        for (int st = 0; st < 4; ++st) {
+            static const double c[4] = {0.0, 0.5, 0.5, 1.0};
+            for (int j = 0; j < 3; ++j) {
+                yt[j] = y[j] + (st == 0 ? 0.0 : c[st] * h * k[st - 1][j]);
+            }
+            double m = 0.0, nv = 0.0;
+            ft_wgs84_radii_m(yt[0] / D2R, &m, &nv);
+            k[st][0] = cos(yt[2]) / m;
+            k[st][1] = sin(yt[2]) / (nv * cos(yt[0]));
+            k[st][2] = sin(yt[2]) * tan(yt[0]) / nv;
+        }
+        for (int j = 0; j < 3; ++j) {
+            y[j] += h / 6.0 * (k[0][j] + 2.0 * k[1][j] + 2.0 * k[2][j] + k[3][j]);
+        }
+    }
+    *lat_out = y[0] / D2R;
+    *lon_out = y[1] / D2R;
+}
+
+static void test_position_horizon_error(void)
+{
+    const uint64_t t0 = UINT64_C(1700000000) * UINT64_C(1000000000);
+    static const double lats[] = {0.0, 45.0, 70.0};
+    static const double tracks[] = {0.0, 45.0, 90.0, 270.0};
+    static const uint32_t horizons_ms[] = {100u, 1000u};
+    const double v = 250.0;
+    for (size_t hi = 0; hi < 2u; ++hi) {
+        double worst = 0.0;
+        for (size_t li = 0; li < 3u; ++li) {
+            for (size_t ti = 0; ti < 4u; ++ti) {
+                ft_pose_state ps;
+                REQUIRE(ft_pose_state_init(&ps, horizons_ms[hi], NULL) == FT_OK);
+                apply_ok(&ps, FT_QTY_LAT, lats[li], t0, 2000u);
+                apply_ok(&ps, FT_QTY_LON, 8.0, t0, 2000u);
+                apply_ok(&ps, FT_QTY_ALT, 0.0, t0, 2000u);
+                apply_ok(&ps, FT_QTY_GROUND_SPEED, v, t0, 2000u);
+                apply_ok(&ps, FT_QTY_TRACK, tracks[ti], t0, 2000u);
+                ft_pose_estimate e;
+                const double dt_s = horizons_ms[hi] * 1e-3;
+                ft_pose_state_estimate(&ps, t0 + (uint64_t)horizons_ms[hi] * MS_NS, &e);
+                double lat, lon, dn, de;
+                geodesic(lats[li], 8.0, tracks[ti], v * dt_s, &lat, &lon);
+                ne_m(lat, lon, 0.0, e.pose.lat_deg, e.pose.lon_deg, &dn, &de);
+                const double err = hypot(dn, de);
+                const double bound =
+                    (v * dt_s) * (v * dt_s) * (fabs(tan(lats[li] * D2R)) + 0.01) / 6.3e6;
+                if (!(err <= bound)) {
+                    fprintf(stderr, "lat %g track %g %u ms: error %.3e m > %.3e m\n", lats[li],
+                            tracks[ti], horizons_ms[hi], err, bound);
+                    CHECK(0);
+                }
+                worst = fmax(worst, err);
+            }
+        }
+        printf("tangent-plane step against the WGS-84 geodesic, 250 m/s over %u ms, lat 0..70: "
+               "worst %.2e m\n",
+               horizons_ms[hi], worst);
+    }
+}
+
 int main(void)
 {
     test_wrap();
@@ -511,5 +868,9 @@ int main(void)
     test_estimate_and_horizon();
     test_staleness();
     test_apply_rules();
+    test_position_prediction();
+    test_position_stale_velocity();
+    test_position_convergence();
+    test_position_horizon_error();
     return ft_test_result("test_pose_state");
 }

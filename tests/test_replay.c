@@ -19,7 +19,11 @@
  * within 0.05 deg on every frame that is not annunciated; no frame is
  * missing; the pose records of two runs are byte-identical (determinism);
  * a log with a 2-hour gap resumes after it; a log without a valid frame is
- * an error that says so. */
+ * an error that says so. Then a fixterrain-flightgen orbit at 250 m/s with
+ * velocity, a 500 m GPS reset and the velocity output stopping, replayed at
+ * 60 Hz: positions within 1 m of the flown truth, steps within 1.5 x speed
+ * x period but the one snap, prediction stopped at the velocity's timeout
+ * and annunciated only when the scene requires the velocity. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +31,7 @@
 
 #include "app.h"
 #include "candump.h"
+#include "flight_path.h"
 #include "replay.h"
 #include "test_util.h"
 
@@ -170,6 +175,153 @@ static char *slurp(const char *path, size_t *n)
     return b;
 }
 
+/* ---- smooth position: a flightgen orbit at 250 m/s through replay ---------- */
+
+static FILE *g_fg_out;
+
+/* North, east, up metres from 46.5 N 8.0 E, 0 m (WGS-84 radii there: the
+ * orbit stays within 4 km, where that is exact to 1e-3). */
+static void local_m(double lat, double lon, double alt, double out[3])
+{
+    const double deg = 3.14159265358979323846 / 180.0;
+    double m = 0.0, n = 0.0;
+    ft_wgs84_radii_m(46.5, &m, &n);
+    out[0] = (lat - 46.5) * deg * m;
+    out[1] = (lon - 8.0) * deg * n * cos(46.5 * deg);
+    out[2] = alt;
+}
+
+static ft_status fg_sink(void *ctx, const ft_candump_record *rec, const char *line, size_t len,
+                         ft_error *err)
+{
+    (void)ctx;
+    (void)rec;
+    if (fwrite(line, 1u, len, g_fg_out) != len || fputc('\n', g_fg_out) == EOF) {
+        return ft_fail(err, FT_ERR_IO, "test: log write failed");
+    }
+    return FT_OK;
+}
+
+/* A 4 km orbit at 250 m/s (58 deg of bank) around the synthetic terrain's
+ * anchor, with a 500 m GPS reset at 5 s, replayed at 60 Hz by the real
+ * `fixterrain replay` loop: the pose record's positions within 1 m of the
+ * flown truth (plus the reset after it), one snap counted, no other step
+ * over 1.5 x speed x period; then the same log with the velocity required
+ * and its output stopped at 7 s. */
+static void test_smooth_position(void)
+{
+    static flight_path path;
+    flight_builtin_params bp;
+    flight_builtin_defaults(&bp, FLIGHT_ORBIT);
+    bp.centre_lat_deg = 46.5;
+    bp.centre_lon_deg = 8.0;
+    bp.alt_m = 3000.0;
+    bp.radius_m = 4000.0;
+    bp.speed_m_s = 250.0;
+    ft_error err;
+    REQUIRE(flight_path_builtin(&path, &bp, &err) == FT_OK);
+    flightgen_options o;
+    flightgen_options_default(&o);
+    o.duration_s = 8.0;
+    o.gps_jump_at_s = 5.0;
+    o.gps_jump_m = 500.0;
+    o.velocity_stop_s = 7.0;
+    const char *log = FT_TEST_OUT_DIR "/replay_orbit250.log";
+    const char *poses = FT_TEST_OUT_DIR "/replay_orbit250.csv";
+    g_fg_out = fopen(log, "w");
+    REQUIRE(g_fg_out != NULL);
+    flightgen_stats fst;
+    REQUIRE(flightgen_run(&path, &o, fg_sink, NULL, &fst, &err) == FT_OK);
+    REQUIRE(fclose(g_fg_out) == 0);
+
+    const double period_saved = g_app.scene.frame_period_ms;
+    g_app.scene.frame_period_ms = 16.667; /* 60 Hz */
+    for (int required = 0; required < 2; ++required) {
+        g_app.scene.pose_velocity_required = required;
+        ft_status st;
+        if (!run_replay(log, poses, &st, &err)) fprintf(stderr, "replay orbit: %s\n", err.text);
+        REQUIRE(st == FT_OK);
+        size_t n = 0;
+        char *text = slurp(poses, &n);
+        const char *line = strchr(text, '\n');
+        double prev[3] = {0.0, 0.0, 0.0}, prev_t = 0.0, err_max = 0.0, step_ratio_max = 0.0;
+        int have_prev = 0, rows = 0, big_steps = 0, ann_rows = 0, pred_after_stop = 0;
+        const double stop_s = 6.9 + 0.008 + 0.5; /* last altitude rate + its timeout */
+        const double t_jump = 5.00650;           /* the first jumped latitude is in */
+        while (line != NULL && line[1] != '\0') {
+            ++line;
+            unsigned k, mask;
+            double t_s, lat, lon, alt, hdg, pitch, roll, scale, tau, off;
+            int ann, pred, frozen, source, pos_pred;
+            if (sscanf(line, "%u,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%u,%d,%d,%d,%lf,%lf,%d,%lf", &k,
+                       &t_s, &lat, &lon, &alt, &hdg, &pitch, &roll, &ann, &mask, &pred, &frozen,
+                       &source, &scale, &tau, &pos_pred, &off) != 17) {
+                fprintf(stderr, "bad pose row: %.100s\n", line);
+                CHECK(0);
+                break;
+            }
+            line = strchr(line, '\n');
+            ++rows;
+            const double t = t_s - 1700000000.0; /* path time */
+            if (t < 0.2 || t > 8.0) {
+                continue;
+            }
+            flight_sample s;
+            flight_path_sample(&path, t, &s);
+            double p[3], q[3];
+            local_m(lat, lon, alt, p);
+            local_m(s.lat_deg, s.lon_deg, s.alt_m, q);
+            if (t >= t_jump) {
+                q[0] += 500.0;
+            }
+            const double e = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                  (p[2] - q[2]) * (p[2] - q[2]));
+            if (t <= stop_s) {
+                /* the accuracy while the velocity is current (the last one
+                 * at 6.9 s still predicts, from an older direction, until
+                 * its timeout) */
+                if (t < 7.0) {
+                    err_max = fmax(err_max, e);
+                }
+                CHECK(pos_pred == 3 && ann == 0);
+            } else {
+                pred_after_stop += pos_pred != 0;
+                ann_rows += ann;
+            }
+            if (have_prev && t <= stop_s) {
+                const double step = sqrt((p[0] - prev[0]) * (p[0] - prev[0]) +
+                                         (p[1] - prev[1]) * (p[1] - prev[1]) +
+                                         (p[2] - prev[2]) * (p[2] - prev[2]));
+                const double ratio = step / (250.0 * (t - prev_t));
+                big_steps += ratio > 1.5;
+                if (!(prev_t < t_jump && t >= t_jump)) {
+                    step_ratio_max = fmax(step_ratio_max, ratio);
+                }
+            }
+            memcpy(prev, p, sizeof prev);
+            prev_t = t;
+            have_prev = 1;
+        }
+        free(text);
+        printf("replay orbit 250 m/s at 60 Hz (velocity required %d): %d rows, position error "
+               "max %.3f m, largest step %.3f x speed x period outside the reset, %d steps over "
+               "1.5 x, %llu snaps, velocity stale after %.3f s: %d rows predicted, %d "
+               "annunciated, %u frames with a stale velocity\n",
+               required, rows, err_max, step_ratio_max, big_steps,
+               (unsigned long long)g_feed.ps.snap_count, stop_s, pred_after_stop, ann_rows,
+               g_res.frames_velocity_stale);
+        CHECK(err_max <= 1.0);
+        CHECK(step_ratio_max <= 1.5);
+        CHECK(big_steps == 1); /* the 500 m reset */
+        CHECK(g_feed.ps.snap_count == 1u);
+        CHECK(pred_after_stop == 0);
+        CHECK(required ? ann_rows > 0 : ann_rows == 0);
+        CHECK(g_res.frames_velocity_stale > 0u && g_res.frames_pos_predicted > 400u);
+    }
+    g_app.scene.frame_period_ms = period_saved;
+    g_app.scene.pose_velocity_required = 0;
+}
+
 int main(void)
 {
     const double pi = 3.14159265358979323846, pitch_rad = -12.0 * pi / 180.0;
@@ -296,6 +448,8 @@ int main(void)
     /* a missing log */
     CHECK(!run_replay(FT_TEST_OUT_DIR "/no_such.log", NULL, &st, &err));
     CHECK(st == FT_ERR_IO);
+
+    test_smooth_position();
 
     ft_app_shutdown(&g_app);
     return ft_test_result("test_replay");

@@ -62,7 +62,11 @@ int main(void)
     CHECK_NEAR(a.frame_degrade_max_scale, b.frame_degrade_max_scale, 0.0);
     CHECK(a.pose_horizon_ms == b.pose_horizon_ms && a.can_failover_ms == b.can_failover_ms);
     CHECK(strcmp(a.can_iface, b.can_iface) == 0 && strcmp(a.can_backup_iface, "") == 0);
-    CHECK(a.can_map.count == b.can_map.count && a.can_map.count == 10u);
+    CHECK(a.can_map.count == b.can_map.count && a.can_map.count == 13u);
+    CHECK(a.pose_velocity_required == b.pose_velocity_required && a.pose_velocity_required == 0);
+    CHECK(a.pose_converge_ms == b.pose_converge_ms && a.pose_converge_ms == 300u);
+    CHECK_NEAR(a.pose_snap_m, b.pose_snap_m, 0.0);
+    CHECK_NEAR(a.pose_snap_m, 100.0, 0.0);
     CHECK(memcmp(&a.can_map, &b.can_map, sizeof a.can_map) == 0);
     CHECK(strcmp(a.gpio_chip, b.gpio_chip) == 0 && a.gpio_heartbeat_line == -1);
     CHECK(memcmp(a.gpio_input_line, b.gpio_input_line, sizeof a.gpio_input_line) == 0);
@@ -90,7 +94,7 @@ int main(void)
 
     /* CAN map: replace by id, add a quantity, start empty. */
     CHECK(parse("[can_map]\npitch = 311,0.5,-90,90,50\n", &a, &err) == FT_OK);
-    CHECK(a.can_map.count == 10u);
+    CHECK(a.can_map.count == 13u);
     for (uint32_t i = 0; i < a.can_map.count; ++i) {
         if (a.can_map.e[i].can_id == 311u) {
             CHECK_NEAR(a.can_map.e[i].scale, 0.5, 0.0);
@@ -102,7 +106,42 @@ int main(void)
           a.can_map.e[0].qty == FT_QTY_HEADING);
     CHECK(parse("[can_map]\nalt = 320,1,-1000,25000,500,0\nalt = 1038,1,-1000,25000,500,1\n",
                 &a, &err) == FT_OK);
-    CHECK(a.can_map.count == 10u);
+    CHECK(a.can_map.count == 13u);
+    /* velocity: replace the default ground speed (knots on id 1500), add a
+     * backup altitude rate */
+    CHECK(parse("[can_map]\nground_speed = 1500,0.514444,0,1000,200\n"
+                "alt_rate = 1501,1,-300,300,200,1\ntrack = 1040,1,0,360,250\n",
+                &a, &err) == FT_OK);
+    CHECK(a.can_map.count == 14u);
+    int seen = 0;
+    for (uint32_t i = 0; i < a.can_map.count; ++i) {
+        const ft_can_map_entry *e = &a.can_map.e[i];
+        CHECK(e->can_id != 1039u);
+        if (e->can_id == 1500u) {
+            seen |= 1;
+            CHECK(e->qty == FT_QTY_GROUND_SPEED && e->timeout_ms == 200u);
+            CHECK_NEAR(e->scale, 0.514444, 0.0);
+        } else if (e->can_id == 1501u) {
+            seen |= 2;
+            CHECK(e->qty == FT_QTY_ALT_RATE && e->priority == 1u);
+        } else if (e->can_id == 314u) {
+            seen |= 4;
+            CHECK(e->qty == FT_QTY_ALT_RATE && e->priority == 0u);
+        } else if (e->can_id == 1040u) {
+            seen |= 8;
+            CHECK(e->qty == FT_QTY_TRACK && e->timeout_ms == 250u && e->min_value == 0.0);
+        }
+    }
+    CHECK(seen == 15);
+    CHECK(parse("[pose_input]\nvelocity_required = 1\nconverge_ms = 0\nsnap_m = 25\n", &a,
+                &err) == FT_OK);
+    CHECK(a.pose_velocity_required == 1 && a.pose_converge_ms == 0u);
+    CHECK_NEAR(a.pose_snap_m, 25.0, 0.0);
+    expect_error("[pose_input]\nvelocity_required = 2\n", "pose_input.velocity_required");
+    expect_error("[pose_input]\nconverge_ms = 10001\n", "expected 0..10000");
+    expect_error("[pose_input]\nsnap_m = 0.5\n", "expected 1..100000");
+    expect_error("[can_map]\nground_speed = 1039,1,0,1000,0\n", "can_map.ground_speed");
+    expect_error("[can_map]\nvertical_speed = 314,1,-1,1,100\n", "unknown section or key");
     expect_error("[can_map]\npitch = 3000,1,-90,90,100\n", "can_map.pitch");
     expect_error("[can_map]\npitch = 311,1,-90,90\n", "TIMEOUT_MS");
     expect_error("[can_map]\npitch = 311,1,90,-90,100\n", "can_map.pitch");

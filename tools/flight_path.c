@@ -5,6 +5,8 @@
 #include "flight_path.h"
 
 #include <math.h>
+
+#include "canaero.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +39,21 @@ static void delta_m(const flight_waypoint *a, const flight_waypoint *b, double d
     d[1] = ft_wrap_deg_pm180(b->lon_deg - a->lon_deg) * FP_DEG * FLIGHT_EARTH_RADIUS_M *
            cos(lat_mid_rad);
     d[2] = b->alt_m - a->alt_m;
+}
+
+/* Velocity (north, east, up m/s) of the straight segment a -> b at latitude
+ * lat_deg and altitude alt_m, as a GPS receiver reports it: the rates of
+ * latitude, longitude and altitude in metres on the WGS-84 ellipsoid. */
+static void segment_velocity(const flight_waypoint *a, const flight_waypoint *b, double lat_deg,
+                             double alt_m, double v[3])
+{
+    const double dt = b->t_s - a->t_s;
+    double m = 0.0, n = 0.0;
+    ft_wgs84_radii_m(lat_deg, &m, &n);
+    v[0] = (b->lat_deg - a->lat_deg) / dt * FP_DEG * (m + alt_m);
+    v[1] = ft_wrap_deg_pm180(b->lon_deg - a->lon_deg) / dt * FP_DEG * (n + alt_m) *
+           cos(lat_deg * FP_DEG);
+    v[2] = (b->alt_m - a->alt_m) / dt;
 }
 
 static double quat_dot(ft_quat a, ft_quat b)
@@ -200,6 +217,20 @@ ft_status flight_path_finish(flight_path *p, ft_error *err)
                            "%s: %.1f m in %.6g s from %s is %.0f m/s, at most %g m/s", loc,
                            sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), dt, ploc, speed,
                            FLIGHT_SPEED_MAX_M_S);
+        }
+        /* the velocity frames must pass the decoder's ranges too (the
+         * ellipsoid's radii differ from the sphere's by up to 0.7 %) */
+        double v[3];
+        segment_velocity(&p->wp[i - 1u], &p->wp[i], p->wp[i - 1u].lat_deg, p->wp[i - 1u].alt_m, v);
+        if (!(hypot(v[0], v[1]) <= FLIGHT_SPEED_MAX_M_S) ||
+            !(fabs(v[2]) <= FLIGHT_VSPEED_MAX_M_S)) {
+            where(p, i, loc, sizeof loc);
+            where(p, i - 1u, ploc, sizeof ploc);
+            return ft_fail(err, FT_ERR_NUMERIC,
+                           "%s: from %s the ground speed is %.0f m/s and the vertical speed "
+                           "%.0f m/s, at most %g and %g m/s",
+                           loc, ploc, hypot(v[0], v[1]), v[2], FLIGHT_SPEED_MAX_M_S,
+                           FLIGHT_VSPEED_MAX_M_S);
         }
     }
     derive_attitude(p);
@@ -436,6 +467,11 @@ void flight_path_sample(const flight_path *p, double t_s, flight_sample *out)
     out->p_deg_s = p->w_rad_s[lo][0] * FP_RAD;
     out->q_deg_s = p->w_rad_s[lo][1] * FP_RAD;
     out->r_deg_s = p->w_rad_s[lo][2] * FP_RAD;
+    double v[3];
+    segment_velocity(a, b, out->lat_deg, out->alt_m, v);
+    out->v_n_m_s = v[0];
+    out->v_e_m_s = v[1];
+    out->v_u_m_s = v[2];
 }
 
 /* ---- built-in paths --------------------------------------------------------- */
@@ -750,16 +786,48 @@ ft_status flight_path_builtin(flight_path *p, const flight_builtin_params *bp, f
 /* ---- frames and the log ----------------------------------------------------- */
 
 const flightgen_slot flightgen_schedule[FLIGHTGEN_MSG_COUNT] = {
-    {311u, 0u, 1u, 0u},    /* pitch */
-    {312u, 250u, 1u, 0u},  /* roll */
-    {321u, 500u, 1u, 0u},  /* heading */
-    {304u, 750u, 1u, 0u},  /* roll rate p */
-    {303u, 1000u, 1u, 0u}, /* pitch rate q */
-    {305u, 1250u, 1u, 0u}, /* yaw rate r */
-    {1036u, 6250u, FLIGHTGEN_POS_DIVIDER, 1u}, /* latitude */
-    {1037u, 6750u, FLIGHTGEN_POS_DIVIDER, 1u}, /* longitude */
-    {320u, 7250u, FLIGHTGEN_POS_DIVIDER, 0u},  /* altitude */
+    {FT_QTY_PITCH, 0u, 1u, 0u},
+    {FT_QTY_ROLL, 250u, 1u, 0u},
+    {FT_QTY_HEADING, 500u, 1u, 0u},
+    {FT_QTY_ROLL_RATE, 750u, 1u, 0u},  /* p */
+    {FT_QTY_PITCH_RATE, 1000u, 1u, 0u}, /* q */
+    {FT_QTY_YAW_RATE, 1250u, 1u, 0u},  /* r */
+    {FT_QTY_LAT, 6250u, FLIGHTGEN_POS_DIVIDER, 1u},
+    {FT_QTY_LON, 6750u, FLIGHTGEN_POS_DIVIDER, 1u},
+    {FT_QTY_ALT, 7250u, FLIGHTGEN_POS_DIVIDER, 0u},
+    {FT_QTY_GROUND_SPEED, 7500u, FLIGHTGEN_POS_DIVIDER, 0u},
+    {FT_QTY_TRACK, 7750u, FLIGHTGEN_POS_DIVIDER, 0u},
+    {FT_QTY_ALT_RATE, 8000u, FLIGHTGEN_POS_DIVIDER, 0u},
 };
+
+ft_status flightgen_ids(uint16_t ids[FLIGHTGEN_MSG_COUNT], ft_error *err)
+{
+    ft_can_map m;
+    ft_canaero_default_map(&m);
+    for (uint32_t k = 0u; k < FLIGHTGEN_MSG_COUNT; ++k) {
+        int found = 0;
+        for (uint32_t i = 0u; i < m.count && i < FT_CAN_MAP_MAX; ++i) {
+            if (m.e[i].qty == flightgen_schedule[k].qty && m.e[i].priority == 0u) {
+                ids[k] = m.e[i].can_id;
+                found = 1;
+                break;
+            }
+        }
+        if (!found) {
+            return ft_fail(err, FT_ERR_CONFIG, "the default CAN map has no primary id for %s",
+                           ft_pose_qty_name(flightgen_schedule[k].qty));
+        }
+    }
+    return FT_OK;
+}
+
+void flightgen_ground_velocity(double v_n_m_s, double v_e_m_s, double *speed_m_s,
+                               double *track_deg)
+{
+    *speed_m_s = hypot(v_n_m_s, v_e_m_s);
+    /* atan2(0, 0) is 0: a hovering path reports track 000 */
+    *track_deg = ft_wrap_deg_0_360(atan2(v_e_m_s, v_n_m_s) * FP_RAD);
+}
 
 void flightgen_encode(ft_can_frame *f, uint16_t can_id, uint8_t data_type, uint8_t code,
                       uint32_t data_bits, uint64_t t_ns)
@@ -787,9 +855,12 @@ void flightgen_options_default(flightgen_options *o)
     o->start_us = FLIGHTGEN_DEFAULT_START_US;
     (void)snprintf(o->iface, sizeof o->iface, "vcan0");
     o->duration_s = NAN;
+    o->velocity = 1;
     o->drop_every = 0u;
     o->nan_at_s = o->bad_dlc_at_s = o->duplicate_at_s = NAN;
     o->stall_from_s = o->stall_to_s = NAN;
+    o->velocity_stop_s = NAN;
+    o->gps_jump_at_s = o->gps_jump_m = NAN;
 }
 
 typedef struct gen_out {
@@ -875,6 +946,20 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
     if (s == FT_OK) {
         s = check_time_opt("--duplicate-at", o->duplicate_at_s, err);
     }
+    if (s == FT_OK) {
+        s = check_time_opt("--velocity-stop", o->velocity_stop_s, err);
+    }
+    if (s == FT_OK) {
+        s = check_time_opt("--gps-jump", o->gps_jump_at_s, err);
+    }
+    if (s == FT_OK && !isnan(o->gps_jump_at_s) &&
+        !(isfinite(o->gps_jump_m) && fabs(o->gps_jump_m) <= 1e6)) {
+        s = ft_fail(err, FT_ERR_ARG, "--gps-jump needs a finite distance of at most 1000 km");
+    }
+    uint16_t ids[FLIGHTGEN_MSG_COUNT];
+    if (s == FT_OK) {
+        s = flightgen_ids(ids, err);
+    }
     if (s != FT_OK) {
         return s;
     }
@@ -896,7 +981,8 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
     for (uint64_t k = 0u; k < periods; ++k) {
         for (uint32_t m = 0u; m < FLIGHTGEN_MSG_COUNT; ++m) {
             const flightgen_slot *sl = &flightgen_schedule[m];
-            if (k % sl->divider != 0u) {
+            const int is_velocity = m >= FLIGHTGEN_GROUND_SPEED;
+            if (k % sl->divider != 0u || (is_velocity && !o->velocity)) {
                 continue;
             }
             uint64_t rel_us = k * FLIGHTGEN_PERIOD_US + sl->offset_us;
@@ -909,18 +995,29 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
                 st->stalled += sl->is_double ? 2u : 1u;
                 continue; /* silent sender: no frame, no code used */
             }
+            if (is_velocity && t >= o->velocity_stop_s) {
+                ++st->velocity_stopped; /* a failed output: silent, no code used */
+                continue;
+            }
             uint64_t t_ns = (o->start_us + rel_us) * 1000u;
             flight_sample smp;
             flight_path_sample(p, t, &smp);
             if (sl->is_double) {
                 double v = (m == FLIGHTGEN_LAT) ? smp.lat_deg : smp.lon_deg;
+                if (m == FLIGHTGEN_LAT && t >= o->gps_jump_at_s) {
+                    double mer = 0.0;
+                    ft_wgs84_radii_m(smp.lat_deg, &mer, NULL);
+                    v += o->gps_jump_m / (mer + smp.alt_m) * FP_RAD;
+                    v = v > 90.0 ? 90.0 : (v < -90.0 ? -90.0 : v);
+                    ++st->gps_jumped;
+                }
                 uint64_t bits;
                 memcpy(&bits, &v, sizeof bits);
-                flightgen_encode(&f, sl->can_id, FT_CAN_TYPE_DOUBLEH, code[m]++,
+                flightgen_encode(&f, ids[m], FT_CAN_TYPE_DOUBLEH, code[m]++,
                                  (uint32_t)(bits >> 32), t_ns);
                 s = emit(&g, &f, (flightgen_msg)m, err);
                 if (s == FT_OK) {
-                    flightgen_encode(&f, sl->can_id, FT_CAN_TYPE_DOUBLEL, code[m]++,
+                    flightgen_encode(&f, ids[m], FT_CAN_TYPE_DOUBLEL, code[m]++,
                                      (uint32_t)bits, t_ns + FLIGHTGEN_HALF_GAP_US * 1000u);
                     s = emit(&g, &f, (flightgen_msg)m, err);
                 }
@@ -941,6 +1038,18 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
             case FLIGHTGEN_ROLL_RATE: v = smp.p_deg_s; break;
             case FLIGHTGEN_PITCH_RATE: v = smp.q_deg_s; break;
             case FLIGHTGEN_YAW_RATE: v = smp.r_deg_s; break;
+            case FLIGHTGEN_GROUND_SPEED:
+            case FLIGHTGEN_TRACK: {
+                double speed = 0.0, track = 0.0;
+                flightgen_ground_velocity(smp.v_n_m_s, smp.v_e_m_s, &speed, &track);
+                v = speed;
+                if (m == FLIGHTGEN_TRACK) {
+                    /* as for the heading: 359.99999 would round to 360.0f */
+                    v = ((float)track >= 360.0f) ? 0.0 : track;
+                }
+                break;
+            }
+            case FLIGHTGEN_ALT_RATE: v = smp.v_u_m_s; break;
             case FLIGHTGEN_ALT:
             default: v = smp.alt_m; break;
             }
@@ -969,7 +1078,7 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
                 dup_todo = 0;
                 ++st->duplicates_injected;
             }
-            flightgen_encode(&f, sl->can_id, FT_CAN_TYPE_FLOAT, this_code, bits, t_ns);
+            flightgen_encode(&f, ids[m], FT_CAN_TYPE_FLOAT, this_code, bits, t_ns);
             if (dlc != 8u) {
                 f.dlc = dlc;
                 f.data[7] = 0u; /* bytes past the DLC are 0 in ft_can_frame */

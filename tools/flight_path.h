@@ -61,11 +61,20 @@
  *   +6250  us 1036 latitude  DOUBLEH, +6500 us DOUBLEL (consecutive codes)
  *   +6750  us 1037 longitude DOUBLEH, +7000 us DOUBLEL
  *   +7250  us  320 altitude  FLOAT m
- * 250 us is about one 8-byte frame at 500 kbit/s, so the schedule is one a
- * bus could carry; 80 * 6 + 10 * 5 = 530 frames per second of flight. Each
- * frame carries the path's value at its own timestamp (a double at its
+ *   +7500  us 1039 GPS ground speed FLOAT m/s   (unless --no-velocity)
+ *   +7750  us 1040 GPS true track   FLOAT deg [0, 360)
+ *   +8000  us  314 altitude rate    FLOAT m/s, up positive
+ * The ids are canaero.h's defaults (ft_canaero_default_map, the primary
+ * source of each quantity), not a copy. 250 us is about one 8-byte frame at
+ * 500 kbit/s, so the schedule is one a bus could carry; 80 * 6 + 10 * 8 =
+ * 560 frames per second of flight (530 without velocity). Each frame
+ * carries the path's value at its own timestamp (a double at its
  * DOUBLEH's), and timestamps are whole microseconds, so what the log says
- * is exactly what was sampled. Frames: node-id 1, service code 0, message
+ * is exactly what was sampled. The velocity is what a GPS receiver reports
+ * for the path's latitude/longitude/altitude track: its time derivative in
+ * north/east/up metres per second on the WGS-84 ellipsoid (radii of
+ * curvature M, N at the latitude, plus the altitude; pose_state.h), i.e.
+ * exactly the motion the renderer's position prediction inverts. Frames: node-id 1, service code 0, message
  * code a per-id counter from 0 wrapping 255 -> 0, DLC 8. Frames of
  * [t0, t0 + duration) are written, sorted by time; log time =
  * start time + (t - t0).
@@ -85,7 +94,12 @@
  *                 the same code -> COUNTER_REPEAT reject;
  *   stall         no frame at all in [from, to): the sender is silent, its
  *                 counters do not advance (no loss is counted, the data go
- *                 stale); a DOUBLEH/DOUBLEL pair is kept or left out whole.
+ *                 stale); a DOUBLEH/DOUBLEL pair is kept or left out whole;
+ *   velocity_stop no velocity frame (1039/1040/314) at or after this time:
+ *                 the GPS velocity output fails, the position goes on;
+ *   gps_jump      from this time on every latitude is sent gps_jump_m metres
+ *                 north of the path (a GPS reset, or a receiver that changes
+ *                 its solution), the velocity unchanged.
  *
  * Deterministic: no clock, no randomness, fixed-order arithmetic; the same
  * path and options give the same bytes. */
@@ -104,7 +118,8 @@
 #define FLIGHT_EARTH_RADIUS_M 6371008.8    /* mean radius (IUGG) */
 #define FLIGHT_G_M_S2 9.80665
 #define FLIGHT_RATE_MAX_DEG_S 500.0        /* decoder range of 303/304/305 */
-#define FLIGHT_SPEED_MAX_M_S 1000.0
+#define FLIGHT_SPEED_MAX_M_S 1000.0        /* and the decoder range of 1039 */
+#define FLIGHT_VSPEED_MAX_M_S 500.0        /* decoder range of 314 */
 #define FLIGHT_DURATION_MAX_S 36000.0
 #define FLIGHT_TIME_MAX_S 1e7              /* waypoint time stamps */
 #define FLIGHT_DERIVED_ROLL_MAX_DEG 80.0
@@ -128,12 +143,16 @@ typedef struct flight_path {
 } flight_path;
 
 /* The path at time t_s. Outside [t0, t_end] the end state is held with zero
- * rates. Euler angles come from q (pose_state.h ranges). */
+ * rates. Euler angles come from q (pose_state.h ranges). The velocity is the
+ * segment's (the path is linear in lat, lon, alt between waypoints), in
+ * metres per second on the WGS-84 ellipsoid at the sample's latitude and
+ * altitude (what a GPS receiver reports; 0 outside the path). */
 typedef struct flight_sample {
     double lat_deg, lon_deg, alt_m;
     double heading_deg, pitch_deg, roll_deg;
     ft_quat q;
     double p_deg_s, q_deg_s, r_deg_s; /* body rates: roll, pitch, yaw */
+    double v_n_m_s, v_e_m_s, v_u_m_s; /* velocity north, east, up */
 } flight_sample;
 
 /* Parses a waypoint file held in text[0..len) (see the top of the file for
@@ -207,11 +226,14 @@ typedef enum flightgen_msg {
     FLIGHTGEN_LAT,
     FLIGHTGEN_LON,
     FLIGHTGEN_ALT,
+    FLIGHTGEN_GROUND_SPEED,
+    FLIGHTGEN_TRACK,
+    FLIGHTGEN_ALT_RATE,
     FLIGHTGEN_MSG_COUNT
 } flightgen_msg;
 
 typedef struct flightgen_slot {
-    uint16_t can_id;
+    ft_pose_qty qty;    /* sent on the default CANaerospace id of this quantity */
     uint32_t offset_us; /* within the 12.5 ms period */
     uint32_t divider;   /* sent every divider-th period */
     uint8_t is_double;  /* DOUBLEH + DOUBLEL, else FLOAT */
@@ -219,6 +241,14 @@ typedef struct flightgen_slot {
 
 /* The schedule in the table at the top of the file, indexed by flightgen_msg. */
 extern const flightgen_slot flightgen_schedule[FLIGHTGEN_MSG_COUNT];
+
+/* The CAN id of every message: the primary (priority 0) entry of its
+ * quantity in ft_canaero_default_map. FT_ERR_CONFIG if one has none. */
+ft_status flightgen_ids(uint16_t ids[FLIGHTGEN_MSG_COUNT], ft_error *err);
+
+/* Ground speed (m/s, >= 0) and true track (deg, [0, 360)) of a velocity. */
+void flightgen_ground_velocity(double v_n_m_s, double v_e_m_s, double *speed_m_s,
+                               double *track_deg);
 
 /* One CANaerospace normal-operation frame: node-id 1, the given type, service
  * code 0, message code, data big-endian in bytes 4..7, DLC 8. */
@@ -229,12 +259,15 @@ typedef struct flightgen_options {
     uint64_t start_us;                         /* log time of path time t0 */
     char iface[FT_CANDUMP_IFACE_MAX + 1u];     /* "vcan0" */
     double duration_s;                         /* NAN: the whole path, else a limit */
+    int velocity;                              /* 1: send 1039/1040/314 (--no-velocity: 0) */
     uint32_t drop_every;                       /* 0: off */
     double nan_at_s, bad_dlc_at_s, duplicate_at_s; /* NAN: off */
     double stall_from_s, stall_to_s;           /* NAN: off */
+    double velocity_stop_s;                    /* NAN: off */
+    double gps_jump_at_s, gps_jump_m;          /* NAN: off */
 } flightgen_options;
 
-/* start 1700000000.000000, vcan0, whole path, no faults. */
+/* start 1700000000.000000, vcan0, whole path, velocity sent, no faults. */
 void flightgen_options_default(flightgen_options *o);
 
 typedef struct flightgen_stats {
@@ -242,6 +275,8 @@ typedef struct flightgen_stats {
     uint64_t frames[FLIGHTGEN_MSG_COUNT];   /* written per message */
     uint64_t dropped;                       /* attitude frames left out (--drop-every) */
     uint64_t stalled;                       /* frames not sent during the stall */
+    uint64_t velocity_stopped;              /* velocity frames not sent (--velocity-stop) */
+    uint64_t gps_jumped;                    /* latitudes sent off the path (--gps-jump) */
     uint32_t nan_injected, bad_dlc_injected, duplicates_injected;
     uint64_t first_t_ns, last_t_ns;         /* log times of the first and last line */
 } flightgen_stats;

@@ -4,9 +4,9 @@
  *
  *   fixterrain-flightgen (--path orbit|climb|dive|turn360|valley | --waypoints FILE)
  *       [--centre LAT,LON] [--alt M] [--radius M] [--speed M/S] [--duration S]
- *       [--start-time S] [--iface NAME] [--out FILE] [--quiet]
+ *       [--start-time S] [--iface NAME] [--out FILE] [--quiet] [--no-velocity]
  *       [--drop-every N] [--nan-at S] [--stall FROM,TO] [--bad-dlc-at S]
- *       [--duplicate-at S]
+ *       [--duplicate-at S] [--velocity-stop S] [--gps-jump S,M]
  *
  * The path model, the schedule and the faults are described in
  * flight_path.h. A summary goes to stderr (unless --quiet); the log goes to
@@ -41,12 +41,17 @@ static void usage(FILE *to)
             "  --iface NAME        interface name in the log (default vcan0)\n"
             "  --out FILE          write the log here (default stdout)\n"
             "  --quiet             no summary on stderr\n"
+            "  --no-velocity       leave out the velocity (1039 ground speed, 1040 track,\n"
+            "                      314 altitude rate): position only, as older logs\n"
             "faults (times S are path times):\n"
             "  --drop-every N      leave out every Nth attitude frame (311/312/321)\n"
             "  --nan-at S          a NaN pitch at S\n"
             "  --stall FROM,TO     no frames at all in [FROM, TO)\n"
             "  --bad-dlc-at S      a frame with DLC 7 at S\n"
-            "  --duplicate-at S    a frame sent twice at S\n",
+            "  --duplicate-at S    a frame sent twice at S\n"
+            "  --velocity-stop S   no velocity frames from S on (the position goes on)\n"
+            "  --gps-jump S,M      from S on every latitude is sent M metres north of the\n"
+            "                      path (a GPS reset)\n",
             FLIGHT_DEFAULT_CENTRE_LAT_DEG, FLIGHT_DEFAULT_CENTRE_LON_DEG);
 }
 
@@ -202,6 +207,10 @@ static int parse_args(int argc, char **argv, cli *c)
             c->quiet = 1;
             continue;
         }
+        if (strcmp(a, "--no-velocity") == 0) {
+            c->opt.velocity = 0;
+            continue;
+        }
         if (i + 1 >= argc) {
             fprintf(stderr, "flightgen: %s needs a value (or is unknown; see --help)\n", a);
             return 2;
@@ -241,6 +250,11 @@ static int parse_args(int argc, char **argv, cli *c)
             ok = parse_double(v, &c->opt.bad_dlc_at_s);
         } else if (strcmp(a, "--duplicate-at") == 0) {
             ok = parse_double(v, &c->opt.duplicate_at_s);
+        } else if (strcmp(a, "--velocity-stop") == 0) {
+            ok = parse_double(v, &c->opt.velocity_stop_s);
+        } else if (strcmp(a, "--gps-jump") == 0) {
+            ok = parse_pair(v, &c->opt.gps_jump_at_s, &c->opt.gps_jump_m) &&
+                 fabs(c->opt.gps_jump_m) <= 1e6;
         } else if (strcmp(a, "--stall") == 0) {
             ok = parse_pair(v, &c->opt.stall_from_s, &c->opt.stall_to_s) &&
                  c->opt.stall_from_s < c->opt.stall_to_s;
@@ -339,12 +353,15 @@ int main(int argc, char **argv)
     if (!c.quiet) {
         double dur_s = isnan(c.opt.duration_s) ? flight_path_duration_s(path) : c.opt.duration_s;
         fprintf(stderr,
-                "flightgen: %s: %.3f s of flight, %llu lines (%.1f per second), %u waypoints; "
-                "faults: %llu dropped, %llu stalled, %u NaN, %u bad DLC, %u duplicate\n",
+                "flightgen: %s: %.3f s of flight, %llu lines (%.1f per second), %u waypoints, "
+                "velocity %s; faults: %llu dropped, %llu stalled, %u NaN, %u bad DLC, "
+                "%u duplicate, %llu velocity frames stopped, %llu latitudes jumped\n",
                 path->name, dur_s, (unsigned long long)st.lines, (double)st.lines / dur_s,
-                (unsigned)path->count, (unsigned long long)st.dropped,
-                (unsigned long long)st.stalled, (unsigned)st.nan_injected,
-                (unsigned)st.bad_dlc_injected, (unsigned)st.duplicates_injected);
+                (unsigned)path->count, c.opt.velocity ? "sent" : "left out",
+                (unsigned long long)st.dropped, (unsigned long long)st.stalled,
+                (unsigned)st.nan_injected, (unsigned)st.bad_dlc_injected,
+                (unsigned)st.duplicates_injected, (unsigned long long)st.velocity_stopped,
+                (unsigned long long)st.gps_jumped);
     }
     free(path);
     return 0;

@@ -2,7 +2,7 @@
  * canplayer on vcan0) against `fixterrain replay` of the same log.
  *
  * usage: compare-live LIVE.csv LIVE.json REPLAY.csv LOG_T0_S STALL_FROM_S STALL_TO_S
- *                     PERIOD_MS TIMEOUT_MS
+ *                     PERIOD_MS TIMEOUT_MS [VELOCITY_STOP_S VELOCITY_TIMEOUT_MS]
  * Time mapping: log time = live monotonic time - t_first_rx_ns + LOG_T0_S
  * (canplayer sends the first frame at once and keeps the log's spacing).
  * Tolerances (stated, with why):
@@ -10,15 +10,23 @@
  *     emulated VM (a few ms when the host is quiet, > 100 ms when it is
  *     loaded) times the path's turn rate (1.7 deg/s: a 2 km orbit at 60 m/s),
  *     i.e. 290 ms of timing error allowed;
- *   lat/lon 3e-4 deg, alt 2 m: position is held between 10 Hz samples, so a
- *     live frame off the replay's timing holds a neighbouring sample (the
- *     path moves 6 m per sample; 3e-4 deg is about 5 samples, the timing
- *     error a loaded host causes);
+ *   lat/lon 3e-4 deg, alt 2 m: the position is predicted to each frame's
+ *     own time from the velocity, so what is left is the mapping's timing
+ *     error times the speed (60 m/s x 290 ms = 17 m, 1.6e-4 deg); once the
+ *     velocity has stopped the position is held between 10 Hz samples (6 m
+ *     a sample), and 3e-4 deg (about 5 samples) covers both;
  *   annunciation: the first annunciated frame of the stall must say the
  *     data was between the timeout and the timeout + one period old (the
  *     feed's own age, from kernel receive stamps: within one frame of the
  *     timeout); recovery must follow the data's return (within 1 s of the
  *     mapped time; the exact frame is tested by tests/test_replay.c).
+ *   velocity (when VELOCITY_STOP_S is given; the scene requires the
+ *     velocity): every frame whose velocity was fresh draws a position
+ *     predicted from it (pos_predicted 3) - from 0.5 s after the stall to
+ *     0.5 s before the velocity's timeout, a margin for the mapping; the
+ *     first frame annunciated after the velocity stopped says "no ground
+ *     speed" and an age within one frame of VELOCITY_TIMEOUT_MS (its own
+ *     receive stamps, as above), and no frame after it is predicted.
  * Rows that are frozen or in the annunciation test are checked separately:
  * frozen rows hold one pose; test rows say ANNUNCIATION TEST. */
 #include <math.h>
@@ -30,7 +38,8 @@
 
 typedef struct row {
     double t_s, lat, lon, alt, hdg, pitch, roll;
-    int ann, pred, frozen, source;
+    int ann, pred, frozen, source, pos_pred;
+    double pos_offset_m;
     char reason[80];
 } row;
 
@@ -54,9 +63,10 @@ static int load(const char *path, row *rows)
         unsigned k, mask;
         int used = 0;
         double scale, tau;
-        if (sscanf(line, "%u,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%u,%d,%d,%d,%lf,%lf,%n", &k, &r->t_s,
-                   &r->lat, &r->lon, &r->alt, &r->hdg, &r->pitch, &r->roll, &r->ann, &mask,
-                   &r->pred, &r->frozen, &r->source, &scale, &tau, &used) < 15) {
+        if (sscanf(line, "%u,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%u,%d,%d,%d,%lf,%lf,%d,%lf,%n", &k,
+                   &r->t_s, &r->lat, &r->lon, &r->alt, &r->hdg, &r->pitch, &r->roll, &r->ann,
+                   &mask, &r->pred, &r->frozen, &r->source, &scale, &tau, &r->pos_pred,
+                   &r->pos_offset_m, &used) < 17) {
             fprintf(stderr, "%s: bad row %d: %s", path, n + 2, line);
             exit(2);
         }
@@ -94,11 +104,14 @@ static int replay_at(int n, double t, row *out)
 
 int main(int argc, char **argv)
 {
-    if (argc != 9) {
+    if (argc != 9 && argc != 11) {
         fprintf(stderr, "usage: %s LIVE.csv LIVE.json REPLAY.csv LOG_T0_S STALL_FROM_S STALL_TO_S "
-                        "PERIOD_MS TIMEOUT_MS\n", argv[0]);
+                        "PERIOD_MS TIMEOUT_MS [VELOCITY_STOP_S VELOCITY_TIMEOUT_MS]\n", argv[0]);
         return 2;
     }
+    const int check_velocity = argc == 11;
+    const double vel_stop = check_velocity ? atof(argv[9]) : 0.0;
+    const double vel_timeout_s = check_velocity ? atof(argv[10]) * 1e-3 : 0.0;
     const int nl = load(argv[1], g_live), nr = load(argv[3], g_rep);
     FILE *jf = fopen(argv[2], "r");
     if (jf == NULL) return 2;
@@ -116,6 +129,9 @@ int main(int argc, char **argv)
     double worst_att = 0.0, worst_pos = 0.0, worst_alt = 0.0;
     double first_ann = -1.0, last_before = -1.0, recovered = -1.0, first_age_ms = -1.0;
     double frozen_hdg = NAN;
+    int vel_window = 0, vel_predicted = 0, vel_pred_after = 0;
+    double vel_first_ann = -1.0, vel_first_age_ms = -1.0;
+    char vel_reason[80] = "";
     for (int i = 0; i < nl; ++i) {
         const row *r = &g_live[i];
         const double t_log = r->t_s - t_rx0_s + log_t0; /* log time of this frame */
@@ -143,6 +159,20 @@ int main(int argc, char **argv)
             first_age_ms = q ? atof(q + 5) : -1.0;
         }
         if (t_path >= stall_to && !r->ann && recovered < 0.0 && first_ann >= 0.0) recovered = t_path;
+        if (check_velocity) {
+            if (t_path >= stall_to + 0.5 && t_path <= vel_stop + vel_timeout_s - 0.5) {
+                ++vel_window;
+                vel_predicted += r->pos_pred == 3;
+            }
+            if (t_path >= vel_stop && r->ann && vel_first_ann < 0.0) {
+                vel_first_ann = t_path;
+                (void)snprintf(vel_reason, sizeof vel_reason, "%s", r->reason);
+                vel_reason[strcspn(vel_reason, "\r\n")] = '\0';
+                const char *q = strstr(r->reason, " for ");
+                vel_first_age_ms = q ? atof(q + 5) : -1.0;
+            }
+            if (vel_first_ann >= 0.0) vel_pred_after += r->pos_pred != 0;
+        }
         row e;
         if (r->ann || !replay_at(nr, t_log, &e) || e.ann) continue;
         if (t_path < 0.5) continue; /* start-up: the feed fills within the first frames */
@@ -193,6 +223,28 @@ int main(int argc, char **argv)
     if (recovered < 0.0 || recovered > stall_to + 1.0) {
         fprintf(stderr, "no recovery after the data came back\n");
         ++fails;
+    }
+    if (check_velocity) {
+        printf("compare-live: velocity: %d of %d frames while it was fresh drew a predicted "
+               "position; it stopped at %.3f s: first annunciated frame %.3f s says %s "
+               "(age allowed %.0f..%.0f ms), %d frames predicted after it\n",
+               vel_predicted, vel_window, vel_stop, vel_first_ann, vel_reason,
+               vel_timeout_s * 1e3, (vel_timeout_s + period_s) * 1e3 + 1.0, vel_pred_after);
+        if (vel_window < 5 || vel_predicted != vel_window) {
+            fprintf(stderr, "frames with a fresh velocity that were not predicted\n");
+            ++fails;
+        }
+        if (vel_first_ann < 0.0 || strstr(vel_reason, "no ground speed for") == NULL ||
+            vel_first_age_ms < vel_timeout_s * 1e3 ||
+            vel_first_age_ms > (vel_timeout_s + period_s) * 1e3 + 1.0) {
+            fprintf(stderr, "the stopped velocity was not annunciated within one frame of its "
+                            "timeout\n");
+            ++fails;
+        }
+        if (vel_pred_after != 0) {
+            fprintf(stderr, "position predicted from a stale velocity\n");
+            ++fails;
+        }
     }
     printf("compare-live: %s\n", fails ? "FAILED" : "ok");
     return fails ? 1 : 0;

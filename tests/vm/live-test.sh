@@ -2,8 +2,9 @@
 # The live pose path on real vcan and GPIO lines (issue 5), in one VM boot:
 #   live-test.sh BUILD_DIR OUT_DIR COMPARE_LIVE_BINARY HB_SAMPLER_BINARY
 # 1. fixterrain-flightgen writes a 12 s orbit as a CANaerospace candump log
-#    with faults: a NaN pitch at 3 s, every 10th attitude frame dropped, and a
-#    stalled bus from 8 to 9 s;
+#    with faults: a NaN pitch at 3 s, every 10th attitude frame dropped, a
+#    stalled bus from 8 to 9 s, and the GPS velocity output stopping at 11 s
+#    (the position goes on; the scene requires the velocity);
 # 2. in the VM, `fixterrain run` draws from vcan0 while canplayer replays the
 #    log; GPIO line 0 freezes the pose for 1 s, line 1 holds the annunciation
 #    test for 0.5 s, line 7 is the heartbeat; then SIGTERM;
@@ -18,11 +19,12 @@ rm -f "$out"/live.* "$out"/hb.* "$out"/replay.*
 fail() { echo "live-test: FAIL: $*" >&2; exit 1; }
 period_ms=200
 "$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 2000 --alt 2600 \
-  --duration 12 --nan-at 3 --drop-every 10 --stall 8,9 --out "$out/flight.log" --quiet
+  --duration 12 --nan-at 3 --drop-every 10 --stall 8,9 --velocity-stop 11 \
+  --out "$out/flight.log" --quiet
 "$build/fixterrain-flightgen" --path orbit --centre 46.509,8.013 --radius 2000 --alt 2600 \
   --duration 12 --iface vcan1 --out "$out/flight_backup.log" --quiet
 log_t0=$(head -n 1 "$out/flight.log" | sed 's/^(\([0-9.]*\)).*/\1/')
-scene() { # $1 period_ms
+scene() { # $1 period_ms, $2 pose_input.velocity_required
   cat <<EOS
 [scene]
 name = vm-live
@@ -38,6 +40,8 @@ synth_anchor_lat_deg = 46.5
 synth_anchor_lon_deg = 8.0
 [frame]
 period_ms = $1
+[pose_input]
+velocity_required = $2
 [can]
 interface = vcan0
 backup_interface = vcan1
@@ -49,9 +53,9 @@ heartbeat_line = 7
 debounce_ms = 10
 EOS
 }
-scene "$period_ms" > "$out/live.ini"
-{ scene "$period_ms"; printf 'source_line = 2\n[can]\nfailover_ms = 200\n'; } > "$out/failover.ini"
-scene 5 > "$out/replay.ini"
+scene "$period_ms" 1 > "$out/live.ini"
+{ scene "$period_ms" 0; printf 'source_line = 2\n[can]\nfailover_ms = 200\n'; } > "$out/failover.ini"
+scene 5 1 > "$out/replay.ini"
 
 FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} "$here/run-vm.sh" \
   "tests/vm/guest-live.sh $build/fixterrain $out/flight.log $out/live.ini $sampler $out/flight_backup.log $out/failover.ini" "$out"
@@ -59,7 +63,7 @@ FT_VM_TIMEOUT=${FT_VM_TIMEOUT:-300} "$here/run-vm.sh" \
 "$build/fixterrain" replay --log "$out/flight.log" --scene "$out/replay.ini" \
   --poses "$out/replay.csv" --quiet || fail "host replay"
 "$compare" "$out/live.csv" "$out/live.json" "$out/replay.csv" "$log_t0" 8 9 \
-  "$period_ms" 100 || fail "live poses against the replay"
+  "$period_ms" 100 11 500 || fail "live poses against the replay"
 
 # no missed frames; every presented frame toggled the heartbeat
 frames=$(sed -n 's/^  "frames": \([0-9]*\).*/\1/p' "$out/live.json")
@@ -69,6 +73,15 @@ echo "live-test: $frames frames, $misses deadline misses, $toggles heartbeat tog
 [ "$misses" -eq 0 ] || fail "$misses deadline misses at ${period_ms} ms frames"
 [ "$toggles" -eq "$frames" ] || fail "heartbeat toggled $toggles times for $frames frames"
 grep -q '"can_dropped": \[0, 0\]' "$out/live.json" || fail "the kernel dropped CAN frames"
+# the position came from the velocity frames on vcan0: predicted on most
+# frames, never snapped (the flight has no GPS jump), no velocity rejected
+pos_pred=$(sed -n 's/.*"position": {"frames_predicted": \([0-9]*\).*/\1/p' "$out/live.json")
+snaps=$(sed -n 's/.*"snaps": \([0-9]*\).*/\1/p' "$out/live.json")
+vel_rej=$(sed -n 's/.*"velocity_rejects": \([0-9]*\).*/\1/p' "$out/live.json")
+echo "live-test: position predicted on $pos_pred of $frames frames, $snaps snaps, $vel_rej velocity rejects"
+[ "$snaps" -eq 0 ] && [ "$vel_rej" -eq 0 ] || fail "$snaps snaps, $vel_rej velocity rejects"
+[ "$pos_pred" -ge $((frames / 3)) ] || fail "position predicted on only $pos_pred of $frames frames"
+grep -q '"velocity_required": 1' "$out/live.json" || fail "the scene's velocity requirement"
 # every frame's pose row was written (by the deferred jobs, or at the end)
 rows=$(($(wc -l < "$out/live.csv") - 1))
 jobs=$(sed -n 's/.*"jobs": {"run": \([0-9]*\).*/\1/p' "$out/live.json")

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "default_view.h"
 #include "platform_api.h"
 #include "replay.h"
 #if FT_WITH_CAN && FT_WITH_GPIO
@@ -50,6 +51,11 @@ static void print_render_help(void)
            "  --hold-ms N         with a display: keep the last frame shown N ms\n"
            "  --size WxH          image size in pixels (16..8192)\n"
            "  --pose LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG\n"
+           "                      default: the scene's [pose] if it lies over the terrain,\n"
+           "                      else the terrain's default view (from above its\n"
+           "                      south-west corner, looking at its centre; said on stderr)\n"
+           "  --strict            a pose that does not lie over the terrain is an error\n"
+           "                      (default: a warning naming both)\n"
            "  --out FILE.png      output image (default fixterrain.png)\n"
            "  --stats FILE.json   frame, memory and (metric.enabled) error statistics\n"
            "  --frames N          render N frames (timing: median of all but the first)\n"
@@ -276,6 +282,42 @@ static int resolve_scene(const char *cmd, const scene_opts *o, ft_scene *scene)
     return FT_EXIT_OK;
 }
 
+/* The pose a command draws from: --pose, else the scene's [pose] when the
+ * scene's own terrain is drawn or the pose lies over the terrain given with
+ * --dem, else the terrain's default view (a scene's pose belongs to the
+ * scene's terrain, not to another DEM named on the command line). A pose
+ * that was asked for but lies off the terrain is drawn (the frame is sky)
+ * with a warning naming both, or refused under --strict. */
+static int settle_pose(const char *cmd, const ft_scene *scene, int pose_from_cli,
+                       int dem_from_cli, int strict, const ft_terrain *t, ft_pose *pose)
+{
+    const char *dem = scene->dem_path[0] != '\0' ? scene->dem_path : "(synthetic terrain)";
+    int over = ft_pose_over_terrain(t, &scene->pose);
+    int asked = pose_from_cli || (scene->pose_given && (!dem_from_cli || over));
+    *pose = scene->pose;
+    if (asked && over) {
+        return FT_EXIT_OK;
+    }
+    if (asked) {
+        double lat0, lat1, lon0, lon1;
+        ft_terrain_extent_geo(t, &lat0, &lat1, &lon0, &lon1);
+        fprintf(stderr,
+                "fixterrain %s: %s: the pose (lat %.6f, lon %.6f) does not lie over the "
+                "terrain %s (lat %.6f..%.6f, lon %.6f..%.6f)%s\n",
+                cmd, strict ? "error" : "warning", scene->pose.lat_deg, scene->pose.lon_deg,
+                dem, lat0, lat1, lon0, lon1,
+                strict ? "" : ": the frame may show no terrain (--strict refuses)");
+        return strict ? FT_EXIT_USAGE : FT_EXIT_OK;
+    }
+    ft_default_view_pose(t, pose);
+    fprintf(stderr,
+            "fixterrain %s: no pose given for %s: default view from above its south-west "
+            "corner: --pose %.6f,%.6f,%.0f,%.1f,%.1f,0\n",
+            cmd, dem, pose->lat_deg, pose->lon_deg, pose->alt_m, pose->heading_deg,
+            pose->pitch_deg);
+    return FT_EXIT_OK;
+}
+
 static int cmd_render(int argc, char **argv)
 {
     ft_scene scene;
@@ -285,7 +327,8 @@ static int cmd_render(int argc, char **argv)
     const char *display = NULL;
     unsigned long hold_ms = 0;
     unsigned frames = 1;
-    int quiet = 0;
+    int quiet = 0, strict = 0;
+    ft_pose pose_drawn;
     memset(&err, 0, sizeof err);
 
     for (int i = 1; i < argc; ++i) {
@@ -297,6 +340,10 @@ static int cmd_render(int argc, char **argv)
         }
         if (strcmp(a, "--quiet") == 0) {
             quiet = 1;
+            continue;
+        }
+        if (strcmp(a, "--strict") == 0) {
+            strict = 1;
             continue;
         }
         if (v == NULL) {
@@ -347,6 +394,14 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "fixterrain: init failed: %s: %s\n", ft_status_str(err.status), err.text);
         return FT_EXIT_ERROR;
     }
+    {
+        int rc0 = settle_pose("render", &scene, pose != NULL, dem != NULL, strict,
+                              &g_app.terrain, &pose_drawn);
+        if (rc0 != FT_EXIT_OK) {
+            ft_app_shutdown(&g_app);
+            return rc0;
+        }
+    }
     if (!quiet) {
         printf("fixterrain: %s on %s (%s, %s)\n", ft_method_name(scene.method),
                ft_backend_name(scene.backend), g_app.gpu.version, g_app.gpu.renderer);
@@ -367,7 +422,7 @@ static int cmd_render(int argc, char **argv)
     memset(&st, 0, sizeof st);
     int rc = FT_EXIT_OK;
     for (unsigned f = 0; f < frames; ++f) {
-        if (ft_app_render(&g_app, &scene.pose, &cam, &st, &err) != FT_OK) {
+        if (ft_app_render(&g_app, &pose_drawn, &cam, &st, &err) != FT_OK) {
             fprintf(stderr, "fixterrain: frame %u: %s\n", f, err.text);
             rc = FT_EXIT_ERROR;
             goto done;

@@ -324,6 +324,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
         }
     } else if (strcmp(section, "pose") == 0) {
         double big = 1e9;
+        s->pose_given = 1;
         if (strcmp(key, "lat_deg") == 0) {
             return RANGE(parse_f64(value, -89.0, 89.0, &s->pose.lat_deg), "expected -89..89");
         }

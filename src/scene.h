@@ -159,6 +159,7 @@ typedef struct ft_scene {
     uint32_t width_px, height_px;
     double fovy_deg;
     ft_pose pose;
+    int pose_given; /* 1 when the scene text has a [pose] section */
     char dem_path[FT_SCENE_PATH_MAX];
     ft_synth_desc synth;
     ft_curvature curvature; /* terrain.curvature */

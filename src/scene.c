@@ -44,7 +44,7 @@ void ft_scene_defaults(ft_scene *s)
 {
     memset(s, 0, sizeof *s);
     (void)snprintf(s->name, sizeof s->name, "%s", "default");
-    s->method = FT_METHOD_BRUTE;
+    s->method = FT_METHOD_PGRID;
     s->backend = FT_BACKEND_EGL_GLES3;
     s->display = FT_DISPLAY_NONE;
     s->width_px = 800;

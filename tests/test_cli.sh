@@ -47,7 +47,7 @@ head -c 70000 /dev/zero | tr '\0' ';' >> "$out/ok.ini"
 expect 1 "the limit is 65535 bytes" -- "$bin" render --scene "$out/ok.ini"
 
 # fixterrain budget: the table and worst cases; an exceeded budget exits 1 naming it.
-expect 0 "worst-case triangles per frame: 2097152" -- "$bin" budget
+expect 0 "worst-case triangles per frame: 2097152" -- "$bin" budget --method brute
 expect 0 "binary static footprint" -- "$bin" budget --method bintree
 printf '[scene]\nmethod = bintree\n[budget]\nmethod_bytes = 64K\n' > "$out/bmem.ini"
 expect 1 "OVER BUDGET" -- "$bin" budget --scene "$out/bmem.ini"
@@ -73,7 +73,7 @@ fi
 if [ -f "$data/N42E001.hgt" ]; then
   # 2 frames: the timer of a context's first frame may not be a measurement
   # (llvmpipe: a timestamp), and is then reported as none (-1)
-  "$bin" render --dem "$data/N42E001.hgt" --pose 42.30,1.50,3800,0,-14,0 --size 320x240 \
+  "$bin" render --method brute --dem "$data/N42E001.hgt" --pose 42.30,1.50,3800,0,-14,0 --size 320x240 \
     --frames 2 --out "$out/n42.png" --stats "$out/n42.json" --quiet || fail "N42E001 render failed"
   cmake -DJSON="$out/n42.json" -DGPU_TIMER=1 -P "$(dirname "$0")/../tools/check_stats.cmake" || fail "stats JSON check"
   expect 0 "7652 voids filled" -- "$bin" render --dem "$data/N42E001.hgt" --size 64x64 --out "$out/y.png"

@@ -21,7 +21,7 @@ grep -q "left out of this build" "$dir/off-run.log" || { cat "$dir/off-run.log";
 cmake -S "$src" -B "$dir/min" -DCMAKE_C_COMPILER="$cc" $off -DFIXTERRAIN_WITH_EGL=ON \
       -DFIXTERRAIN_WITH_METHOD_BRUTE=ON > "$dir/min.log"
 cmake --build "$dir/min" -j2 >> "$dir/min.log" 2>&1 || { cat "$dir/min.log"; exit 1; }
-"$dir/min/fixterrain" render --size 160x120 --out "$dir/min.png" > "$dir/min-run.log" 2>&1 \
+"$dir/min/fixterrain" render --method brute --size 160x120 --out "$dir/min.png" > "$dir/min-run.log" 2>&1 \
   || { cat "$dir/min-run.log"; exit 1; }
 grep -q "triangles" "$dir/min-run.log" || { cat "$dir/min-run.log"; exit 1; }
 

@@ -538,7 +538,9 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
     int len = snprintf(
         g_stats_text, sizeof g_stats_text,
         "{\n  \"lines\": %llu,\n  \"lines_bad\": %llu,\n  \"lines_unsupported\": %llu,\n"
-        "  \"gaps\": %llu,\n  \"can_frames\": %llu,\n  \"values_applied\": %llu,\n"
+        "  \"gaps\": %llu,\n  \"timestamps_backwards\": %llu,\n"
+        "  \"timestamps_out_of_range\": %llu,\n"
+        "  \"can_frames\": %llu,\n  \"values_applied\": %llu,\n"
         "  \"messages_lost\": %llu,\n  \"rejects\": {%s},\n%s"
         "  \"frames\": %u,\n  \"frames_annunciated\": %u,\n  \"first_annunciated\": %lld,\n"
         "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
@@ -547,7 +549,8 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         "  \"tau_max_px\": %.4f\n}\n",
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
-        (unsigned long long)f->frames_in, (unsigned long long)f->values_applied,
+        (unsigned long long)r->timestamps_backwards,
+        (unsigned long long)r->timestamps_out_of_range, (unsigned long long)f->frames_in, (unsigned long long)f->values_applied,
         (unsigned long long)f->dec.lost, rejects, position, r->frames, r->frames_annunciated,
         r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
         r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
@@ -620,9 +623,11 @@ static int cmd_replay(int argc, char **argv)
     for (uint32_t i = 0; i < r.errors_kept; ++i) {
         fprintf(stderr, "fixterrain replay: rejected %s\n", r.errors[i]);
     }
-    if (r.lines_bad + r.lines_unsupported > r.errors_kept) {
+    const uint64_t rejected_lines = r.lines_bad + r.lines_unsupported + r.timestamps_backwards +
+                                    r.timestamps_out_of_range;
+    if (rejected_lines > r.errors_kept) {
         fprintf(stderr, "fixterrain replay: ... %llu rejected lines in all\n",
-                (unsigned long long)(r.lines_bad + r.lines_unsupported));
+                (unsigned long long)rejected_lines);
     }
     if (st != FT_OK) {
         fprintf(stderr, "fixterrain replay: %s\n", err.text);
@@ -644,6 +649,11 @@ static int cmd_replay(int argc, char **argv)
             printf(" (first: frame %u)", r.first_annunciated);
         }
         printf("\n");
+        if (r.timestamps_backwards + r.timestamps_out_of_range > 0u) {
+            printf("replay: timestamps rejected: %llu backwards, %llu out of range (not fed)\n",
+                   (unsigned long long)r.timestamps_backwards,
+                   (unsigned long long)r.timestamps_out_of_range);
+        }
         if (r.last_view.annunciate) {
             printf("replay: the last frame is annunciated: %s\n", r.last_view.reason);
         }

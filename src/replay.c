@@ -86,7 +86,8 @@ static ft_status next_record(ft_line_reader *lr, const char *log, ft_replay_resu
                 r->timestamps_backwards += 1u;
                 ts_text(tl->last_ns, ref_txt);
                 (void)snprintf(why, sizeof why,
-                               "timestamp %s s is earlier than the previous frame's %s s",
+                               "timestamp %s s is earlier than the previous accepted frame's "
+                               "%s s",
                                t_txt, ref_txt);
             } else {
                 r->timestamps_out_of_range += 1u;

@@ -380,8 +380,9 @@ static void test_timestamps(void)
     CHECK(g_res.timestamps_backwards == 1u && g_res.timestamps_out_of_range == 0u);
     CHECK(g_feed.frames_in == 1u); /* the rejected frame is not fed */
     CHECK(g_res.errors_kept == 1u &&
-          strstr(g_res.errors[0], "replay_ts_backwards.log:2: timestamp 1.000000 s is earlier "
-                                  "than the previous frame's 18446744014.000000 s") != NULL);
+          strstr(g_res.errors[0], "replay_ts_backwards.log:2: timestamp 1.000000 s is "
+                                  "earlier than the previous accepted frame's "
+                                  "18446744014.000000 s") != NULL);
 
     /* The display clock wrapping past 2^64 ns: the second frame is 615 ns
      * before the end of the clock, so no display time can reach it. */

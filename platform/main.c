@@ -593,8 +593,11 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
     int len = snprintf(
         g_stats_text, sizeof g_stats_text,
         "{\n  \"lines\": %llu,\n  \"lines_bad\": %llu,\n  \"lines_unsupported\": %llu,\n"
-        "  \"gaps\": %llu,\n  \"can_frames\": %llu,\n  \"values_applied\": %llu,\n"
-        "  \"messages_lost\": %llu,\n  \"rejects\": {%s},\n%s"
+        "  \"gaps\": %llu,\n  \"timestamps_backwards\": %llu,\n"
+        "  \"timestamps_out_of_range\": %llu,\n"
+        "  \"can_frames\": %llu,\n  \"values_applied\": %llu,\n"
+        "  \"messages_lost\": %llu,\n  \"messages_out_of_sequence\": %llu,\n"
+        "  \"rejects\": {%s},\n%s"
         "  \"frames\": %u,\n  \"frames_annunciated\": %u,\n  \"first_annunciated\": %lld,\n"
         "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
         "  \"draw_ms_max\": %.3f,\n  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
@@ -602,8 +605,11 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         "  \"tau_max_px\": %.4f\n}\n",
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
-        (unsigned long long)f->frames_in, (unsigned long long)f->values_applied,
-        (unsigned long long)f->dec.lost, rejects, position, r->frames, r->frames_annunciated,
+        (unsigned long long)r->timestamps_backwards,
+        (unsigned long long)r->timestamps_out_of_range, (unsigned long long)f->frames_in,
+        (unsigned long long)f->values_applied,
+        (unsigned long long)f->dec.lost, (unsigned long long)f->dec.out_of_sequence, rejects,
+        position, r->frames, r->frames_annunciated,
         r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
         r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
         r->degrade.over_budget, r->degrade.enabled, r->degrade.raises, r->degrade.lowers,
@@ -675,9 +681,11 @@ static int cmd_replay(int argc, char **argv)
     for (uint32_t i = 0; i < r.errors_kept; ++i) {
         fprintf(stderr, "fixterrain replay: rejected %s\n", r.errors[i]);
     }
-    if (r.lines_bad + r.lines_unsupported > r.errors_kept) {
+    const uint64_t rejected_lines = r.lines_bad + r.lines_unsupported + r.timestamps_backwards +
+                                    r.timestamps_out_of_range;
+    if (rejected_lines > r.errors_kept) {
         fprintf(stderr, "fixterrain replay: ... %llu rejected lines in all\n",
-                (unsigned long long)(r.lines_bad + r.lines_unsupported));
+                (unsigned long long)rejected_lines);
     }
     if (st != FT_OK) {
         fprintf(stderr, "fixterrain replay: %s\n", err.text);
@@ -689,16 +697,22 @@ static int cmd_replay(int argc, char **argv)
     }
     if (!quiet) {
         printf("replay: %u frames over %.3f s of log (%llu lines, %llu rejected, %llu CAN frames, "
-               "%llu decoder rejects, %llu lost); %u frames annunciated",
+               "%llu decoder rejects, %llu lost, %llu out of sequence); %u frames annunciated",
                r.frames, r.log_last_s - r.log_first_s, (unsigned long long)r.lines,
                (unsigned long long)(r.lines_bad + r.lines_unsupported),
                (unsigned long long)g_feed.frames_in,
                (unsigned long long)ft_pose_feed_rejected(&g_feed),
-               (unsigned long long)g_feed.dec.lost, r.frames_annunciated);
+               (unsigned long long)g_feed.dec.lost,
+               (unsigned long long)g_feed.dec.out_of_sequence, r.frames_annunciated);
         if (r.first_annunciated != UINT32_MAX) {
             printf(" (first: frame %u)", r.first_annunciated);
         }
         printf("\n");
+        if (r.timestamps_backwards + r.timestamps_out_of_range > 0u) {
+            printf("replay: timestamps rejected: %llu backwards, %llu out of range (not fed)\n",
+                   (unsigned long long)r.timestamps_backwards,
+                   (unsigned long long)r.timestamps_out_of_range);
+        }
         if (r.last_view.annunciate) {
             printf("replay: the last frame is annunciated: %s\n", r.last_view.reason);
         }
@@ -759,6 +773,7 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         "  \"frames_backup\": %u,\n  \"source_switches\": %u,\n"
         "  \"can_frames\": [%llu, %llu],\n  \"can_dropped\": [%llu, %llu],\n"
         "  \"decoder_rejects\": %llu,\n  \"messages_lost\": %llu,\n"
+        "  \"messages_out_of_sequence\": %llu,\n"
         "  \"gpio_edges\": %llu,\n  \"gpio_changes\": %llu,\n  \"heartbeat_toggles\": %llu,\n"
         "  \"t_start_ns\": %llu,\n  \"t_first_rx_ns\": %llu,\n"
         "  \"stage_ms_mean\": {\"poll\": %.3f, \"select\": %.3f, \"draw\": %.3f, \"gpu\": %.3f},\n"
@@ -774,7 +789,8 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         (unsigned long long)r->can_frames[0], (unsigned long long)r->can_frames[1],
         (unsigned long long)r->can_dropped[0], (unsigned long long)r->can_dropped[1],
         (unsigned long long)ft_pose_feed_rejected(f), (unsigned long long)f->dec.lost,
-        (unsigned long long)r->gpio_edges, (unsigned long long)r->gpio_changes,
+        (unsigned long long)f->dec.out_of_sequence, (unsigned long long)r->gpio_edges,
+        (unsigned long long)r->gpio_changes,
         (unsigned long long)r->heartbeat_toggles, (unsigned long long)r->t_start_ns,
         (unsigned long long)r->t_first_rx_ns, r->poll_ms_sum / (r->frames ? r->frames : 1u),
         r->select_ms_sum / (r->frames ? r->frames : 1u), r->draw_ms_sum / (r->frames ? r->frames : 1u),

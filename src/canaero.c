@@ -166,6 +166,52 @@ static int dlc_ok_for_type(uint8_t type, uint8_t dlc)
     return dlc == 8u;
 }
 
+/* The message-code accounting of canaero.h for one frame that passed 1-5.
+ * uint8 arithmetic wraps 255 -> 0 for free. */
+static void count_sequence(ft_canaero *dec, ft_can_id_state *st, uint8_t code, ft_can_result *out)
+{
+    uint32_t lost = 0u, withdrawn = 0u;
+    uint8_t oos = 0u;
+    if (!st->has_code) {
+        st->expect_code = (uint8_t)(code + 1u);
+    } else {
+        if (st->has_jump) {
+            /* Which sequence does this frame continue: the one after the
+             * jump, or the one before it? The nearer one wins. */
+            const uint8_t after_expect = (uint8_t)(code - st->expect_code);
+            const uint8_t after_jump = (uint8_t)(code - st->jump_code - 1u);
+            if (after_jump <= after_expect) {
+                st->expect_code = (uint8_t)(st->jump_code + 1u); /* a real gap: keep it */
+            } else {
+                oos = 1u; /* the jumped frame was out of sequence: nothing was lost */
+                withdrawn = (uint8_t)(st->jump_code - st->expect_code);
+            }
+            st->has_jump = 0u;
+        }
+        if (code == st->expect_code) {
+            st->expect_code = (uint8_t)(code + 1u);
+            if (oos && st->jump_code == st->expect_code) {
+                st->expect_code = (uint8_t)(st->expect_code + 1u); /* swapped: it came early */
+            }
+        } else {
+            lost = (uint8_t)(code - st->expect_code); /* until the next frame says otherwise */
+            st->has_jump = 1u;
+            st->jump_code = code;
+        }
+    }
+    st->has_code = 1u;
+    st->last_code = code;
+    /* withdrawn was added by the jumped frame, so neither total goes below 0 */
+    st->lost = st->lost + lost - withdrawn;
+    dec->lost = dec->lost + lost - withdrawn;
+    st->out_of_sequence += oos;
+    dec->out_of_sequence += oos;
+    if (out != NULL) {
+        out->lost = lost;
+        out->out_of_sequence = oos;
+    }
+}
+
 ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_result *out)
 {
     if (out != NULL) {
@@ -220,17 +266,7 @@ ft_can_outcome ft_canaero_decode(ft_canaero *dec, const ft_can_frame *f, ft_can_
     if (st->has_code && code == st->last_code) {
         return reject(dec, out, FT_CAN_REJECT_COUNTER_REPEAT, qty);
     }
-    if (st->has_code) {
-        /* uint8 arithmetic wraps 255 -> 0 for free. */
-        uint32_t gap_lost = (uint8_t)(code - st->last_code - 1u);
-        st->lost += gap_lost;
-        dec->lost += gap_lost;
-        if (out != NULL) {
-            out->lost = gap_lost;
-        }
-    }
-    st->has_code = 1u;
-    st->last_code = code;
+    count_sequence(dec, st, code, out);
 
     /* 6. double halves. */
     double raw;

@@ -17,8 +17,8 @@
  *   3. data type known                                FT_CAN_REJECT_TYPE
  *   4. DLC right for the data type                    FT_CAN_REJECT_DLC
  *   5. message code differs from the last one         FT_CAN_REJECT_COUNTER_REPEAT
- *      (same code twice = duplicate). A jump is accepted and counted as
- *      lost messages: gap - 1 with 255 -> 0 wrap (10 -> 13 loses 2).
+ *      (same code twice = duplicate). Any other code is accepted; the
+ *      counters then tell a gap from a frame out of sequence (below).
  *   6. DOUBLEL completes the DOUBLEH with the code just before it, else it
  *      is rejected                                    FT_CAN_REJECT_DOUBLE_HALF_MISSING
  *      A stored DOUBLEH whose low half does not follow is abandoned by the
@@ -26,6 +26,23 @@
  *      reason, so that counter is the number of halves that never paired.
  *   7. value finite (raw and after scale)             FT_CAN_REJECT_NONFINITE
  *   8. scaled value in [min, max] of the map entry    FT_CAN_REJECT_RANGE
+ * Message-code accounting (per id, codes wrap 255 -> 0; "expected" is the
+ * code after the last frame in sequence):
+ *   - the expected code: in sequence, nothing counted (254 255 0 1);
+ *   - any other code is a jump: the codes skipped are counted lost at once
+ *     (0 1 2 5: 3 and 4, 2 lost), and the next frame of the id judges it.
+ *     That frame continues either the sequence after the jump or the one
+ *     before it, whichever it is nearer to (fewer codes ahead, with wrap):
+ *       * after the jump (0 1 2 5 6): a real gap, the count stands;
+ *       * before it (0 1 2 3 4 200 5 6: 5 follows 4): the jumped frame was
+ *         out of sequence (a corrupt code, or a frame sent early): its
+ *         count is withdrawn and it is counted once in out_of_sequence;
+ *         when the jumped frame is the one after this one, the two were
+ *         swapped and the sequence goes on after both (00 02 01 03: 1 out
+ *         of sequence, nothing lost);
+ *     then the new frame is itself in sequence or a new jump (0 1 2 5 9 10:
+ *     2 + 3 lost; 0 1 2 200 4 5: 200 out of sequence, 3 lost).
+ *   A jump on the last frame of an id stays counted as a gap.
  * The counter history is updated by every frame that passes 1-5, including
  * frames rejected later for their value: the message was transmitted and
  * received, so it is not lost, and a retransmission of it is a duplicate.
@@ -143,12 +160,16 @@ ft_status ft_can_map_add(ft_can_map *m, const ft_can_map_entry *e, ft_error *err
 
 typedef struct ft_can_id_state {
     uint8_t has_code;        /* a message code was seen */
-    uint8_t last_code;
+    uint8_t last_code;       /* of the last frame (duplicate check) */
+    uint8_t expect_code;     /* the code after the last frame in sequence */
+    uint8_t has_jump;        /* the last frame jumped (its gap counted); the next judges it */
+    uint8_t jump_code;
     uint8_t has_high;        /* a DOUBLEH is waiting for its DOUBLEL */
     uint8_t high_code;
     uint32_t high_bits;
     uint64_t high_t_ns;
     uint64_t lost;           /* messages lost on this id */
+    uint64_t out_of_sequence; /* frames out of sequence on this id */
 } ft_can_id_state;
 
 typedef struct ft_canaero {
@@ -161,6 +182,7 @@ typedef struct ft_canaero {
     uint64_t accepted;       /* frames that produced a value */
     uint64_t pending;        /* DOUBLEH halves stored */
     uint64_t lost;           /* all ids */
+    uint64_t out_of_sequence; /* all ids */
 } ft_canaero;
 
 /* Copies the map (every entry re-checked as by ft_can_map_add) and clears
@@ -177,7 +199,10 @@ typedef struct ft_can_result {
     ft_can_outcome outcome;
     ft_can_reject reason; /* valid when rejected */
     uint8_t node_id, data_type, service_code, message_code;
-    uint32_t lost;        /* messages lost just before this one (counter gap - 1) */
+    uint32_t lost;        /* codes skipped just before this one (withdrawn if it turns
+                           * out to be out of sequence) */
+    uint8_t out_of_sequence; /* 1: this frame showed the one before it out of sequence
+                              * (and withdrew that frame's lost count) */
     ft_pose_input input;  /* valid when outcome == FT_CAN_VALUE */
 } ft_can_result;
 

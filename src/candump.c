@@ -3,6 +3,8 @@
  * against len, so no input can read past the line or loop. */
 #include "candump.h"
 
+#include "ft_ns.h"
+
 #include <inttypes.h>
 #include <stdio.h>
 #include <string.h>
@@ -97,14 +99,17 @@ static ft_status parse(const char *line, size_t len, ft_candump_record *out, ft_
                        "timestamp must be (seconds.microseconds) with exactly 6 decimals");
     }
     ++i;
-    /* sec * 1e9 + usec * 1000 must fit in uint64. */
-    if (sec_overflow || sec > (UINT64_MAX - usec * 1000u) / NS_PER_S) {
+    /* sec * 1e9 + usec * 1000 must fit in uint64 (usec < 1e6: its product
+     * cannot overflow). */
+    uint64_t t_ns = 0u;
+    if (sec_overflow || !ft_ns_mul(sec, NS_PER_S, &t_ns) ||
+        !ft_ns_add(t_ns, usec * 1000u, &t_ns)) {
         return ft_fail(err, FT_ERR_NUMERIC,
                        "candump: timestamp with %zu second digits does not fit in 64-bit "
                        "nanoseconds (at most 18446744073.709551 s)",
                        sec_digits);
     }
-    out->frame.t_ns = sec * NS_PER_S + usec * 1000u;
+    out->frame.t_ns = t_ns;
 
     /* ---- interface ---- */
     size_t blanks = 0u;

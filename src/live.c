@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "ft_ns.h"
+
 static ft_status write_pose_row(void *ctx, const void *row, size_t bytes)
 {
     const ft_writer *w = (const ft_writer *)ctx;
@@ -189,7 +191,11 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         ft_frame_stats fs;
         st = ft_app_render_annunciated(app, &s->pose, FT_LIVE_TEST_REASON, &cam, &fs, err);
     }
-    const uint64_t period_ns = (uint64_t)(s->frame_period_ms * 1e6 + 0.5);
+    uint64_t period_ns = 0u;
+    if (st == FT_OK && !ft_ns_from_ms(s->frame_period_ms, 1.0, 1000.0, &period_ns)) {
+        st = ft_fail(err, FT_ERR_CONFIG, "run: frame.period_ms %g is not in 1..1000",
+                     s->frame_period_ms);
+    }
     ft_degrade_init(&r->degrade, s->frame_degrade,
                     s->frame_budget_ms > 0.0 ? s->frame_budget_ms : s->frame_period_ms,
                     s->frame_degrade_max_scale);
@@ -204,7 +210,11 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         if (d->stop != NULL && *d->stop) {
             break;
         }
-        const uint64_t t_due = t_base + (k - k_base) * period_ns;
+        /* saturating: a schedule past the end of the clock is simply late */
+        uint64_t since_base_ns = 0u;
+        (void)ft_ns_mul((uint64_t)k - k_base, period_ns, &since_base_ns);
+        const uint64_t t_due = ft_ns_add_sat(t_base, since_base_ns);
+        const uint64_t t_next_ns = ft_ns_add_sat(t_due, period_ns);
         uint64_t now = ft_plat_monotonic_ns();
         const uint64_t t_poll0 = now;
         st = poll_gpio(lv, now, r, err);
@@ -222,8 +232,8 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         now = ft_plat_monotonic_ns();
         int want = 0;
         if (lv->can_open[1]) {
-            const int primary_silent = now > lv->last_rx_ns[0] + failover_ns;
-            const int backup_alive = now <= lv->last_rx_ns[1] + failover_ns;
+            const int primary_silent = now > ft_ns_add_sat(lv->last_rx_ns[0], failover_ns);
+            const int backup_alive = now <= ft_ns_add_sat(lv->last_rx_ns[1], failover_ns);
             want = input_active(lv, FT_GPIO_SOURCE) || (primary_silent && backup_alive);
         }
         if (want != source) {
@@ -233,7 +243,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         }
         ft_pose_view v;
         now = ft_plat_monotonic_ns();
-        const double poll_ms = (double)(now - t_poll0) * 1e-6;
+        const double poll_ms = (double)ft_ns_sub_sat(now, t_poll0) * 1e-6;
         ft_pose_feed_view(feed, now, &v);
         const int freeze = input_active(lv, FT_GPIO_FREEZE);
         if (freeze && !frozen) {
@@ -300,19 +310,19 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
             }
         }
         if (st == FT_OK) {
-            st = ft_jobs_run(&lv->jobs, ft_plat_monotonic_ns, t_due + period_ns, 0, err);
+            st = ft_jobs_run(&lv->jobs, ft_plat_monotonic_ns, t_next_ns, 0, err);
         }
         const uint64_t t_end = ft_plat_monotonic_ns();
-        const double ms = (double)(t_end - t_due) * 1e-6;
+        const double ms = (double)ft_ns_sub_sat(t_end, t_due) * 1e-6;
         if (ms > r->frame_ms_max) r->frame_ms_max = ms;
-        if (t_end > t_due + period_ns) {
+        if (t_end > t_next_ns) {
             /* missed: count it and start a new schedule from now rather
              * than drawing the missed frames back to back */
             r->deadline_misses += 1u;
             t_base = t_end;
             k_base = (uint64_t)k + 1u;
         } else {
-            const uint64_t wait_ns = t_due + period_ns - t_end;
+            const uint64_t wait_ns = t_next_ns - t_end;
             ft_plat_sleep_ns(wait_ns);
         }
     }

@@ -3,6 +3,8 @@
  * no heap, no OS. */
 #include "pose_state.h"
 
+#include "ft_ns.h"
+
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
@@ -427,7 +429,8 @@ static void position_event(ft_pose_state *ps, const pos_pred *before, uint64_t t
     const double norm_m = sqrt(d_m[0] * d_m[0] + d_m[1] * d_m[1] + d_m[2] * d_m[2]);
     if (!(norm_m <= ps->snap_m)) {
         const uint64_t merge_ns = (uint64_t)FT_POSE_SNAP_MERGE_MS * FT_NS_PER_MS;
-        if (ps->snap_count == 0u || te > ps->last_snap_t_ns + merge_ns) {
+        /* a difference: a sum near the end of the clock would wrap */
+        if (ps->snap_count == 0u || ft_ns_sub_sat(te, ps->last_snap_t_ns) > merge_ns) {
             ++ps->snap_count;
         }
         ps->last_snap_t_ns = te;

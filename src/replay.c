@@ -5,7 +5,37 @@
 #include <string.h>
 
 #include "candump.h"
+#include "ft_ns.h"
 #include "line_reader.h"
+
+#define NS_PER_S UINT64_C(1000000000)
+
+ft_replay_ts ft_replay_timeline_accept(ft_replay_timeline *tl, uint64_t t_ns)
+{
+    if (t_ns > FT_REPLAY_T_MAX_NS ||
+        (tl->anchored && t_ns > tl->anchor_ns &&
+         t_ns - tl->anchor_ns > (uint64_t)FT_REPLAY_SPAN_MAX_S * NS_PER_S)) {
+        tl->out_of_range += 1u;
+        return FT_REPLAY_TS_OUT_OF_RANGE;
+    }
+    if (tl->anchored && t_ns < tl->last_ns) {
+        tl->backwards += 1u;
+        return FT_REPLAY_TS_BACKWARDS;
+    }
+    if (!tl->anchored) {
+        tl->anchored = 1;
+        tl->anchor_ns = t_ns;
+    }
+    tl->last_ns = t_ns;
+    return FT_REPLAY_TS_OK;
+}
+
+/* "1700000000.123456" (the candump spelling; whole microseconds) */
+static void ts_text(uint64_t t_ns, char out[32])
+{
+    (void)snprintf(out, 32, "%llu.%06llu", (unsigned long long)(t_ns / NS_PER_S),
+                   (unsigned long long)((t_ns % NS_PER_S) / 1000u));
+}
 
 
 static void keep_error(ft_replay_result *r, const char *log, uint64_t line_no, const char *text)
@@ -20,7 +50,8 @@ static void keep_error(ft_replay_result *r, const char *log, uint64_t line_no, c
 /* Next valid record from the log; *have = 0 at the end. Bad lines are
  * counted and skipped (bounded by the file: every pass consumes a line). */
 static ft_status next_record(ft_line_reader *lr, const char *log, ft_replay_result *r,
-                             ft_candump_record *rec, int *have, ft_error *err)
+                             ft_replay_timeline *tl, ft_candump_record *rec, int *have,
+                             ft_error *err)
 {
     *have = 0;
     for (;;) {
@@ -44,8 +75,38 @@ static ft_status next_record(ft_line_reader *lr, const char *log, ft_replay_resu
         ft_error e;
         st = ft_candump_parse_line(lr->line, lr->len, rec, &e);
         if (st == FT_OK) {
-            *have = 1;
-            return FT_OK;
+            const ft_replay_ts ts = ft_replay_timeline_accept(tl, rec->frame.t_ns);
+            if (ts == FT_REPLAY_TS_OK) {
+                *have = 1;
+                return FT_OK;
+            }
+            char t_txt[32], ref_txt[32], why[FT_REPLAY_ERROR_TEXT_MAX];
+            ts_text(rec->frame.t_ns, t_txt);
+            if (ts == FT_REPLAY_TS_BACKWARDS) {
+                r->timestamps_backwards += 1u;
+                ts_text(tl->last_ns, ref_txt);
+                (void)snprintf(why, sizeof why,
+                               "timestamp %s s is earlier than the previous accepted frame's "
+                               "%s s",
+                               t_txt, ref_txt);
+            } else {
+                r->timestamps_out_of_range += 1u;
+                if (tl->anchored && rec->frame.t_ns <= FT_REPLAY_T_MAX_NS) {
+                    ts_text(tl->anchor_ns, ref_txt);
+                    (void)snprintf(why, sizeof why,
+                                   "timestamp %s s is more than %u s after the first frame's "
+                                   "%s s",
+                                   t_txt, FT_REPLAY_SPAN_MAX_S, ref_txt);
+                } else {
+                    ts_text(FT_REPLAY_T_MAX_NS, ref_txt);
+                    (void)snprintf(why, sizeof why,
+                                   "timestamp %s s is past the end of the replay timeline "
+                                   "(%s s)",
+                                   t_txt, ref_txt);
+                }
+            }
+            keep_error(r, log, lr->line_no, why);
+            continue;
         }
         if (st == FT_ERR_UNSUPPORTED) {
             r->lines_unsupported += 1u;
@@ -86,7 +147,13 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
     if (st != FT_OK) {
         return st;
     }
-    const uint64_t period_ns = (uint64_t)(s->frame_period_ms * 1e6 + 0.5);
+    uint64_t period_ns = 0u;
+    if (!ft_ns_from_ms(s->frame_period_ms, 1.0, 1000.0, &period_ns)) {
+        return ft_fail(err, FT_ERR_CONFIG, "replay: frame.period_ms %g is not in 1..1000",
+                       s->frame_period_ms);
+    }
+    _Static_assert(FT_REPLAY_T_HEADROOM_NS >= UINT64_C(1000000000),
+                   "one display period (at most 1 s) fits after the last accepted frame");
     ft_degrade_init(&r->degrade, s->frame_degrade,
                     s->frame_budget_ms > 0.0 ? s->frame_budget_ms : s->frame_period_ms,
                     s->frame_degrade_max_scale);
@@ -112,13 +179,17 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
     }
 
     ft_candump_record rec;
+    ft_replay_timeline tl;
+    memset(&tl, 0, sizeof tl);
     int have = 0;
     if (st == FT_OK) {
-        st = next_record(&lr, d->log_path, r, &rec, &have, err);
+        st = next_record(&lr, d->log_path, r, &tl, &rec, &have, err);
     }
     if (st == FT_OK && !have) {
-        st = ft_fail(err, FT_ERR_FORMAT, "%s: no valid CAN frame in %llu lines", d->log_path,
-                     (unsigned long long)r->lines);
+        st = ft_fail(err, FT_ERR_FORMAT,
+                     "%s: no valid CAN frame in %llu lines (%llu timestamps out of range)",
+                     d->log_path, (unsigned long long)r->lines,
+                     (unsigned long long)r->timestamps_out_of_range);
     }
     uint64_t t_display = have ? rec.frame.t_ns : 0u;
     uint64_t t_last = t_display;
@@ -131,11 +202,12 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         while (have && rec.frame.t_ns <= t_display) {
             ft_pose_feed_frame(feed, &rec.frame);
             t_last = rec.frame.t_ns > t_last ? rec.frame.t_ns : t_last;
-            st = next_record(&lr, d->log_path, r, &rec, &have, err);
+            st = next_record(&lr, d->log_path, r, &tl, &rec, &have, err);
             if (st != FT_OK) {
                 break;
             }
-            if (have && rec.frame.t_ns > t_last + gap_ns) {
+            /* accepted frames never go backwards: rec.frame.t_ns >= t_last */
+            if (have && ft_ns_sub_sat(rec.frame.t_ns, t_last) > gap_ns) {
                 r->gaps += 1u; /* resume the timeline at the later frame */
                 t_display = rec.frame.t_ns;
             }
@@ -188,7 +260,12 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         if (!have && t_display >= t_last) {
             break; /* the log is done and this frame showed its end */
         }
-        t_display += period_ns;
+        /* Cannot fail: t_display <= the last accepted timestamp <=
+         * FT_REPLAY_T_MAX_NS, 10 s below the end of the clock. Ending the
+         * run is still the answer if it ever did. */
+        if (!ft_ns_add(t_display, period_ns, &t_display)) {
+            break;
+        }
     }
     r->log_last_s = (double)t_last * 1e-9;
     if (poses) {

@@ -11,6 +11,23 @@
  * discontinuity (a log spliced from two sessions): counted, and the timeline
  * restarts at the later frame instead of rendering hours of stale frames.
  *
+ * Timestamps (a log is external input; the rule keeps every clock value
+ * representable, so the display clock can never wrap past 2^64 ns):
+ *   - the first parsed frame whose timestamp is at most FT_REPLAY_T_MAX_NS
+ *     anchors the timeline;
+ *   - a frame earlier than the previous accepted frame is rejected and
+ *     counted in timestamps_backwards (equal times are accepted: several
+ *     frames share a microsecond on a busy bus);
+ *   - a frame later than FT_REPLAY_T_MAX_NS (the end of the timeline, 10 s
+ *     before 2^64 ns, which leaves room for one display period of at most
+ *     1 s after the last frame), or more than FT_REPLAY_SPAN_MAX_S after
+ *     the anchor, is rejected and counted in timestamps_out_of_range;
+ *   - a rejected frame is not fed to the decoder; its line number and why
+ *     are kept with the other rejected lines.
+ * The rule needs no look-ahead, so one corrupt timestamp far in the future
+ * (but within the span) is taken as a gap and the frames after it that are
+ * earlier are then rejected as backwards; the counters show it.
+ *
  * Bad input never stops the replay: an unparseable or overlong line is
  * counted (the first FT_REPLAY_ERRORS_KEPT messages are kept with their line
  * numbers), a frame the decoder rejects is counted per reason, and the pose
@@ -29,6 +46,9 @@
 #define FT_REPLAY_ERROR_TEXT_MAX 200u
 #define FT_REPLAY_GAP_MAX_S 60.0
 #define FT_REPLAY_FRAMES_LIMIT 10000000u /* hard bound on one run's frames */
+#define FT_REPLAY_SPAN_MAX_S 2592000u     /* 30 days after the anchor */
+#define FT_REPLAY_T_HEADROOM_NS UINT64_C(10000000000) /* 10 s */
+#define FT_REPLAY_T_MAX_NS (UINT64_MAX - FT_REPLAY_T_HEADROOM_NS) /* 18446744063.709551615 s */
 
 typedef struct ft_replay_desc {
     const char *log_path;
@@ -42,6 +62,8 @@ typedef struct ft_replay_result {
     uint64_t lines_bad;      /* unparseable (candump syntax) or overlong */
     uint64_t lines_unsupported; /* remote, FD or error frames: valid syntax, not ours */
     uint64_t gaps;           /* discontinuities (see above) */
+    uint64_t timestamps_backwards;    /* frames earlier than the previous accepted one */
+    uint64_t timestamps_out_of_range; /* past FT_REPLAY_T_MAX_NS or the span */
     uint32_t errors_kept;
     char errors[FT_REPLAY_ERRORS_KEPT][FT_REPLAY_ERROR_TEXT_MAX];
     uint32_t frames;          /* frames rendered */
@@ -57,6 +79,23 @@ typedef struct ft_replay_result {
     double tau_max_px;       /* worst error bound a frame's LOD met (bintree) */
     ft_pose_view last_view;
 } ft_replay_result;
+
+/* The timestamp rule above, on its own (the replay runs every parsed frame
+ * through it). Zero-initialise, then call once per frame in log order. */
+typedef enum ft_replay_ts {
+    FT_REPLAY_TS_OK,
+    FT_REPLAY_TS_BACKWARDS,
+    FT_REPLAY_TS_OUT_OF_RANGE
+} ft_replay_ts;
+
+typedef struct ft_replay_timeline {
+    int anchored;
+    uint64_t anchor_ns; /* the first accepted timestamp */
+    uint64_t last_ns;   /* the latest accepted timestamp */
+    uint64_t backwards, out_of_range;
+} ft_replay_timeline;
+
+ft_replay_ts ft_replay_timeline_accept(ft_replay_timeline *tl, uint64_t t_ns);
 
 /* Runs the replay on an initialised app. feed is caller storage (it holds
  * the decoder counters afterwards). */

@@ -17,4 +17,11 @@ if(TARGET fixterrain-flightgen)
             $<TARGET_FILE:fixterrain-flightgen> ${FG_OUT})
   set_tests_properties(test_flightgen_cli_errors PROPERTIES TIMEOUT 60
     PASS_REGULAR_EXPRESSION "fg_bad.wp line 4: time 1 s is not after the previous waypoint's 1 s \\([^\n]*fg_bad.wp line 3\\)\nrc=1 log=no\n[^\n]*unknown path 'loop'[^\n]*\nrc2=2")
+  # A path shorter than one log period (times 0 and 1e-300) used to exit 0
+  # with an empty log; refused now, and no log is left behind.
+  add_test(NAME test_flightgen_cli_degenerate
+    COMMAND sh -c "printf '0 46.5 8 1000\\n1e-300 46.5 8 1000\\n' > \"$1/fg_tiny.wp\" && rm -f \"$1/fg_tiny.log\" && { \"$0\" --waypoints \"$1/fg_tiny.wp\" --out \"$1/fg_tiny.log\" 2>&1; echo \"rc=$? log=$(test -e \"$1/fg_tiny.log\" && echo yes || echo no)\"; } && { \"$0\" --path orbit --duration 1e-300 --out \"$1/fg_tiny.log\" 2>&1; echo \"rc2=$?\"; } && { \"$0\" --path valley --nan-at -1 --out \"$1/fg_tiny.log\" 2>&1; echo \"rc3=$?\"; }"
+            $<TARGET_FILE:fixterrain-flightgen> ${FG_OUT})
+  set_tests_properties(test_flightgen_cli_degenerate PROPERTIES TIMEOUT 60
+    PASS_REGULAR_EXPRESSION "fg_tiny.wp: the path lasts 1e-300 s \\([^\n]*fg_tiny.wp line 1 to [^\n]*fg_tiny.wp line 2\\), shorter than one log period of 0.0125 s[^\n]*\nrc=1 log=no\n[^\n]*duration 1e-300 s outside \\[0.0125, 36000\\][^\n]*\nrc2=1\n[^\n]*--nan-at -1 s is outside the logged path \\[0, 120\\) s[^\n]*\nrc3=1")
 endif()

@@ -7,3 +7,16 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_BRUTE)
   target_link_libraries(test_replay PRIVATE ft_app m)
   add_test(NAME replay_faults COMMAND test_replay)
 endif()
+
+# The two logs that used to hang `replay` (a timestamp going backwards after a
+# huge one; a display clock that would wrap past 2^64 ns), through the CLI:
+# it finishes within the timeout, and the summary and the stats file count
+# the rejected timestamps.
+if(TARGET fixterrain)
+  set(RP_OUT ${CMAKE_BINARY_DIR}/test-out)
+  add_test(NAME replay_timestamps_cli
+    COMMAND sh -c "mkdir -p \"$1\" && printf '(18446744014.000000) vcan0 137#01020000A6652EE1\\n(1.000000) vcan0 137#01020001A6652EE1\\n' > \"$1/rp_back.log\" && printf '(18446744013.709551) vcan0 137#0102000040400000\\n(18446744073.709551) vcan0 137#0102000140400000\\n' > \"$1/rp_wrap.log\" && \"$0\" replay --log \"$1/rp_back.log\" --stats \"$1/rp_back.json\" 2>&1 && \"$0\" replay --log \"$1/rp_wrap.log\" --stats \"$1/rp_wrap.json\" 2>&1 && tr -d ' \\n' < \"$1/rp_back.json\" && tr -d ' \\n' < \"$1/rp_wrap.json\""
+    $<TARGET_FILE:fixterrain> ${RP_OUT})
+  set_tests_properties(replay_timestamps_cli PROPERTIES TIMEOUT 60
+    PASS_REGULAR_EXPRESSION "rp_back.log:2: timestamp 1.000000 s is earlier than the previous accepted frame's 18446744014.000000 s\n[^\n]*1 frames over[^\n]*\nreplay: timestamps rejected: 1 backwards, 0 out of range[^\n]*\n.*rp_wrap.log:2: timestamp 18446744073.709551 s is past the end of the replay timeline[^\n]*\n[^\n]*1 frames over[^\n]*\nreplay: timestamps rejected: 0 backwards, 1 out of range.*\"timestamps_backwards\":1,\"timestamps_out_of_range\":0,\"can_frames\":1,.*\"frames\":1,.*\"timestamps_backwards\":0,\"timestamps_out_of_range\":1,\"can_frames\":1,.*\"frames\":1,")
+endif()

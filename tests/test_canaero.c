@@ -220,7 +220,7 @@ static void test_double_pairs(void)
     CHECK(ft_canaero_decode(&dec, &hi, &r) == FT_CAN_PENDING);
     CHECK(r.lost == 248u); /* 6 -> 255 */
     CHECK(ft_canaero_decode(&dec, &lo, &r) == FT_CAN_VALUE);
-    CHECK(r.input.value == 46.853 && r.lost == 0u);
+    CHECK(r.input.value == 46.853 && r.lost == 0u && r.out_of_sequence == 0u);
 
     /* Low half alone. */
     lo.data[3] = 10u;
@@ -401,13 +401,14 @@ static void test_counters(void)
     CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
     CHECK(r.lost == 2u && r.input.value == 2.0);
     CHECK(dec.lost == 2u && dec.st[0].lost == 2u);
-    /* 255 -> 1 across the wrap loses 1 (code 0). */
+    /* 255 -> 1 across the wrap loses 1 (code 0); each jump is confirmed as
+     * a gap by the frame after it (it follows the jump). */
     f = float_frame(311u, 255u, 3.0f, 3u);
     CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
-    CHECK(r.lost == 241u); /* 13 -> 255 */
+    CHECK(r.lost == 241u && r.out_of_sequence == 0u); /* 13 -> 255 */
     f = float_frame(311u, 1u, 4.0f, 4u);
     CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
-    CHECK(r.lost == 1u);
+    CHECK(r.lost == 1u && r.out_of_sequence == 0u);
     CHECK(dec.lost == 2u + 241u + 1u);
     /* Duplicate: same code twice is rejected, even with another value. */
     f = float_frame(311u, 1u, 5.0f, 5u);
@@ -428,6 +429,93 @@ static void test_counters(void)
     f = float_frame(311u, 3u, 5.0f, 8u);
     CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
     CHECK(r.lost == 0u);
+    CHECK(dec.lost == 2u + 241u + 1u && dec.out_of_sequence == 0u);
+}
+
+/* Feeds one id the codes (FLOAT pitch frames, all valid) on a fresh decoder;
+ * returns the lost and out-of-sequence counts. */
+static void run_codes(const uint8_t *codes, size_t n, uint64_t *lost, uint64_t *oos)
+{
+    ft_canaero dec;
+    init_default(&dec);
+    for (size_t i = 0; i < n; ++i) {
+        ft_can_frame f = float_frame(311u, codes[i], 1.0f, 1000u * i);
+        ft_can_result r;
+        CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
+    }
+    *lost = dec.lost;
+    *oos = dec.out_of_sequence;
+    CHECK(dec.st[0].lost == dec.lost && dec.st[0].out_of_sequence == dec.out_of_sequence);
+}
+
+#define CODES(...) (const uint8_t[]){__VA_ARGS__}, sizeof((const uint8_t[]){__VA_ARGS__})
+
+/* Out-of-sequence frames are not gaps: one frame whose code jumps ahead
+ * after which the sequence resumes used to count 255 lost, two swapped
+ * frames 256. */
+static void test_sequence_anomalies(void)
+{
+    uint64_t lost = 0u, oos = 0u;
+    /* one frame jumps ahead, the sequence resumes */
+    run_codes(CODES(0, 1, 2, 3, 4, 200, 5, 6, 7, 8), &lost, &oos);
+    printf("jump ahead and resume: %llu lost, %llu out of sequence\n", (unsigned long long)lost,
+           (unsigned long long)oos);
+    CHECK(lost == 0u && oos == 1u);
+    /* two frames swapped */
+    run_codes(CODES(0x00, 0x02, 0x01, 0x03, 0x04), &lost, &oos);
+    printf("swapped: %llu lost, %llu out of sequence\n", (unsigned long long)lost,
+           (unsigned long long)oos);
+    CHECK(lost == 0u && oos == 1u);
+    /* a real gap: 3 and 4 missing */
+    run_codes(CODES(0, 1, 2, 5, 6), &lost, &oos);
+    CHECK(lost == 2u && oos == 0u);
+    /* the wrap */
+    run_codes(CODES(254, 255, 0, 1), &lost, &oos);
+    CHECK(lost == 0u && oos == 0u);
+    /* a gap across the wrap: 255 and 0 missing */
+    run_codes(CODES(253, 254, 1, 2), &lost, &oos);
+    CHECK(lost == 2u && oos == 0u);
+    /* a swap across the wrap */
+    run_codes(CODES(254, 0, 255, 1, 2), &lost, &oos);
+    CHECK(lost == 0u && oos == 1u);
+    /* two gaps in a row: 3, 4 then 6, 7, 8 */
+    run_codes(CODES(0, 1, 2, 5, 9, 10), &lost, &oos);
+    CHECK(lost == 5u && oos == 0u);
+    /* a corrupt code in a lossy stream: 200 is out of sequence, 3 lost */
+    run_codes(CODES(0, 1, 2, 200, 4, 5), &lost, &oos);
+    CHECK(lost == 1u && oos == 1u);
+    /* the result: the gap on the frame after it, the anomaly on the frame
+     * that shows it (which withdraws the gap counted before) */
+    ft_canaero dec;
+    init_default(&dec);
+    ft_can_result r;
+    static const uint8_t k_seq[] = {0, 1, 200, 2, 3, 6, 7};
+    static const uint8_t k_oos[] = {0, 0, 0, 1, 0, 0, 0};
+    static const uint8_t k_lost[] = {0, 0, 198, 0, 0, 2, 0}; /* 198: withdrawn at 2 */
+    for (size_t i = 0; i < sizeof k_seq; ++i) {
+        ft_can_frame f = float_frame(312u, k_seq[i], 1.0f, 1000u * i);
+        CHECK(ft_canaero_decode(&dec, &f, &r) == FT_CAN_VALUE);
+        CHECK(r.out_of_sequence == k_oos[i] && r.lost == k_lost[i]);
+    }
+    /* a long stream: 1000 frames wrapping 3 times, with one jump ahead, one
+     * swap and one real gap of 4 */
+    uint8_t codes[1000];
+    uint8_t c = 0u;
+    for (size_t i = 0; i < sizeof codes; ++i) {
+        if (i == 300) {
+            c = (uint8_t)(c + 4u); /* 4 lost */
+        }
+        codes[i] = c++;
+    }
+    codes[100] = 17u; /* jumps ahead of 100, the sequence resumes at 101 */
+    const uint8_t t = codes[600];
+    codes[600] = codes[601]; /* swapped */
+    codes[601] = t;
+    run_codes(codes, sizeof codes, &lost, &oos);
+    printf("long stream: %llu lost, %llu out of sequence\n", (unsigned long long)lost,
+           (unsigned long long)oos);
+    /* the frame whose code was overwritten (100) is one lost message */
+    CHECK(lost == 4u + 1u && oos == 2u);
 }
 
 /* The velocity ids: decoded in their units, validated and counted per reason
@@ -561,6 +649,7 @@ int main(void)
     test_double_pairs();
     test_rejects();
     test_counters();
+    test_sequence_anomalies();
     test_velocity_ids();
     test_into_pose();
     return ft_test_result("test_canaero");

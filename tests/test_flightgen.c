@@ -740,6 +740,130 @@ static void test_waypoint_errors(void)
     free(big);
 }
 
+/* ---- degenerate inputs: refused, never an empty or silently different log -- */
+
+static void expect_run_error(const flightgen_options *o, const char *want)
+{
+    logbuf b;
+    memset(&b, 0, sizeof b);
+    flightgen_stats st;
+    ft_error err = {0};
+    ft_status s = flightgen_run(&g_path, o, mem_sink, &b, &st, &err);
+    CHECK(s == FT_ERR_ARG);
+    if (s == FT_OK || strstr(err.text, want) == NULL) {
+        fprintf(stderr, "flightgen_run: want '%s', got '%s'\n", want, err.text);
+        CHECK(0);
+    }
+    log_free(&b);
+}
+
+static void expect_builtin_error(flight_builtin_kind k, double duration_s, double speed_m_s,
+                                 const char *want)
+{
+    flight_builtin_params bp;
+    flight_builtin_defaults(&bp, k);
+    bp.duration_s = duration_s;
+    bp.speed_m_s = speed_m_s;
+    ft_error err = {0};
+    ft_status s = flight_path_builtin(&g_path, &bp, &err);
+    CHECK(s != FT_OK);
+    if (s == FT_OK || strstr(err.text, want) == NULL) {
+        fprintf(stderr, "builtin: want '%s', got '%s'\n", want, err.text);
+        CHECK(0);
+    }
+}
+
+static void test_degenerate(void)
+{
+    /* times 0 and 1e-300: used to exit 0 with an empty log */
+    expect_wp_error("0 46.5 8 1000\n1e-300 46.5 8 1000\n",
+                    "bad.wp: the path lasts 1e-300 s (bad.wp line 1 to bad.wp line 2), shorter "
+                    "than one log period of 0.0125 s",
+                    NULL);
+    /* 5 ms: attitude frames only, no position fix */
+    expect_wp_error("0 46.5 8 1000\n0.005 46.5 8 1000\n", "lasts 0.005 s", "one log period");
+    expect_wp_error("0 46.5 8 1000\nnan 46.5 8 1000\n", "line 2: t_s is NaN", NULL);
+    expect_wp_error("0 46.5 8 1000\ninf 46.5 8 1000\n", "line 2: t_s is infinite", NULL);
+    expect_wp_error("0 46.5 8 1000\n-inf 46.5 8 1000\n", "line 2: t_s is infinite", NULL);
+    expect_wp_error("-1e-300 46.5 8 1000\n1 46.5 8 1000\n", "line 1: t_s", "outside");
+    /* exactly one period: a log with one full set of frames (6 attitude,
+     * 2 + 2 position halves, altitude, 3 velocity) */
+    static const char one[] = "0 46.5 8 1000\n0.0125 46.5 8 1000\n";
+    ft_error err = {0};
+    REQUIRE(flight_path_parse_waypoints(&g_path, one, strlen(one), "one.wp", &err) == FT_OK);
+    flightgen_options o;
+    flightgen_options_default(&o);
+    logbuf b;
+    flightgen_stats st;
+    generate(&g_path, &o, &b, &st);
+    CHECK(st.lines == 6u + 4u + 1u + 3u);
+    CHECK(st.frames[FLIGHTGEN_LAT] == 2u && st.frames[FLIGHTGEN_ALT_RATE] == 1u);
+    log_free(&b);
+
+    /* --duration: at least one period; NaN = the whole path */
+    builtin(FLIGHT_VALLEY, 20.0);
+    static const double k_bad_dur[] = {1e-300, 0.001, 0.0124, 0.0, -1.0, INFINITY, -INFINITY,
+                                       20.5};
+    for (size_t i = 0; i < sizeof k_bad_dur / sizeof k_bad_dur[0]; ++i) {
+        flightgen_options_default(&o);
+        o.duration_s = k_bad_dur[i];
+        expect_run_error(&o, "duration");
+    }
+    flightgen_options_default(&o);
+    o.duration_s = 0.0125;
+    generate(&g_path, &o, &b, &st);
+    CHECK(st.lines == 14u);
+    log_free(&b);
+
+    /* fault times: finite and inside the logged path [0, 20) */
+    flightgen_options_default(&o);
+    o.nan_at_s = -1.0;
+    expect_run_error(&o, "--nan-at -1 s is outside the logged path [0, 20) s");
+    o.nan_at_s = 1e300;
+    expect_run_error(&o, "--nan-at 1e+300 s is outside");
+    o.nan_at_s = INFINITY;
+    expect_run_error(&o, "--nan-at must be a finite time");
+    o.nan_at_s = 19.999; /* inside, but no pitch frame after it */
+    expect_run_error(&o, "--nan-at 19.999 s: no pitch frame at or after it");
+    flightgen_options_default(&o);
+    o.duplicate_at_s = 20.0;
+    expect_run_error(&o, "--duplicate-at 20 s is outside");
+    flightgen_options_default(&o);
+    o.bad_dlc_at_s = -INFINITY;
+    expect_run_error(&o, "--bad-dlc-at must be a finite time");
+    flightgen_options_default(&o);
+    o.velocity_stop_s = 25.0;
+    expect_run_error(&o, "--velocity-stop 25 s is outside");
+    flightgen_options_default(&o);
+    o.gps_jump_at_s = -0.5;
+    o.gps_jump_m = 5.0;
+    expect_run_error(&o, "--gps-jump -0.5 s is outside");
+    flightgen_options_default(&o);
+    o.stall_from_s = -5.0;
+    o.stall_to_s = -1.0;
+    expect_run_error(&o, "--stall FROM -5 s is outside");
+    o.stall_from_s = NAN;
+    o.stall_to_s = 3.0;
+    expect_run_error(&o, "--stall FROM,TO needs finite FROM < TO");
+    /* a stall to past the end is a sender that dies: fine */
+    flightgen_options_default(&o);
+    o.stall_from_s = 15.0;
+    o.stall_to_s = 1000.0;
+    generate(&g_path, &o, &b, &st);
+    CHECK(st.stalled > 0u);
+    log_free(&b);
+
+    /* built-in duration and speed */
+    expect_builtin_error(FLIGHT_ORBIT, 1e-300, NAN, "duration 1e-300 s outside [0.0125, 36000]");
+    expect_builtin_error(FLIGHT_VALLEY, 0.001, NAN, "duration 0.001 s outside");
+    expect_builtin_error(FLIGHT_VALLEY, -5.0, NAN, "duration -5 s outside");
+    expect_builtin_error(FLIGHT_VALLEY, INFINITY, NAN, "duration inf s outside");
+    expect_builtin_error(FLIGHT_ORBIT, NAN, 0.0, "speed 0 m/s outside");
+    expect_builtin_error(FLIGHT_ORBIT, NAN, -10.0, "speed -10 m/s outside");
+    expect_builtin_error(FLIGHT_ORBIT, NAN, INFINITY, "speed inf m/s outside");
+    expect_builtin_error(FLIGHT_ORBIT, NAN, 1e-300, "speed 1e-300 m/s outside");
+}
+
 /* ---- faults ----------------------------------------------------------------- */
 
 static void expect_counts(const char *what, const decoded *d, uint64_t nonfinite, uint64_t dlc,
@@ -1404,6 +1528,7 @@ int main(void)
     test_other_builtins();
     test_waypoints();
     test_waypoint_errors();
+    test_degenerate();
     test_faults();
     test_position_accuracy();
     test_position_faults();

@@ -322,6 +322,125 @@ static void test_smooth_position(void)
     g_app.scene.pose_velocity_required = 0;
 }
 
+/* ---- timestamps the timeline cannot take ---------------------------------- */
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    REQUIRE(f != NULL);
+    REQUIRE(fputs(text, f) >= 0);
+    REQUIRE(fclose(f) == 0);
+}
+
+static void test_timeline_rule(void)
+{
+    const uint64_t s_ns = 1000000000ull;
+    ft_replay_timeline tl;
+    memset(&tl, 0, sizeof tl);
+    /* past the end of the timeline: never an anchor */
+    CHECK(ft_replay_timeline_accept(&tl, UINT64_MAX) == FT_REPLAY_TS_OUT_OF_RANGE);
+    CHECK(ft_replay_timeline_accept(&tl, FT_REPLAY_T_MAX_NS + 1u) == FT_REPLAY_TS_OUT_OF_RANGE);
+    CHECK(!tl.anchored && tl.out_of_range == 2u);
+    CHECK(ft_replay_timeline_accept(&tl, 100u * s_ns) == FT_REPLAY_TS_OK);
+    CHECK(tl.anchored && tl.anchor_ns == 100u * s_ns);
+    CHECK(ft_replay_timeline_accept(&tl, 100u * s_ns) == FT_REPLAY_TS_OK); /* equal: fine */
+    CHECK(ft_replay_timeline_accept(&tl, 100u * s_ns - 1u) == FT_REPLAY_TS_BACKWARDS);
+    CHECK(ft_replay_timeline_accept(&tl, 0u) == FT_REPLAY_TS_BACKWARDS);
+    CHECK(tl.backwards == 2u && tl.last_ns == 100u * s_ns);
+    /* the span: exactly FT_REPLAY_SPAN_MAX_S after the anchor is in, 1 ns more is out */
+    const uint64_t span_end = 100u * s_ns + (uint64_t)FT_REPLAY_SPAN_MAX_S * s_ns;
+    CHECK(ft_replay_timeline_accept(&tl, span_end + 1u) == FT_REPLAY_TS_OUT_OF_RANGE);
+    CHECK(ft_replay_timeline_accept(&tl, span_end) == FT_REPLAY_TS_OK);
+    CHECK(tl.out_of_range == 3u && tl.last_ns == span_end);
+    /* an anchor near the end of the clock: the end of the timeline bounds it */
+    memset(&tl, 0, sizeof tl);
+    CHECK(ft_replay_timeline_accept(&tl, FT_REPLAY_T_MAX_NS) == FT_REPLAY_TS_OK);
+    CHECK(ft_replay_timeline_accept(&tl, FT_REPLAY_T_MAX_NS + 1u) == FT_REPLAY_TS_OUT_OF_RANGE);
+    CHECK(ft_replay_timeline_accept(&tl, FT_REPLAY_T_MAX_NS) == FT_REPLAY_TS_OK);
+}
+
+static void test_timestamps(void)
+{
+    ft_status st;
+    ft_error err;
+    test_timeline_rule();
+
+    /* A timestamp going backwards after a huge one: the display clock used
+     * to restart at the small one (t_last + gap wrapped) and then step
+     * towards the huge one for FT_REPLAY_FRAMES_LIMIT frames. */
+    const char *back = FT_TEST_OUT_DIR "/replay_ts_backwards.log";
+    write_text(back, "(18446744014.000000) vcan0 137#01020000A6652EE1\n"
+                     "(1.000000) vcan0 137#01020001A6652EE1\n");
+    CHECK(run_replay(back, NULL, &st, &err));
+    printf("backwards log: %u frames, %llu backwards, %llu out of range, %llu CAN frames fed\n",
+           g_res.frames, (unsigned long long)g_res.timestamps_backwards,
+           (unsigned long long)g_res.timestamps_out_of_range,
+           (unsigned long long)g_feed.frames_in);
+    CHECK(g_res.frames == 1u);
+    CHECK(g_res.timestamps_backwards == 1u && g_res.timestamps_out_of_range == 0u);
+    CHECK(g_feed.frames_in == 1u); /* the rejected frame is not fed */
+    CHECK(g_res.errors_kept == 1u &&
+          strstr(g_res.errors[0], "replay_ts_backwards.log:2: timestamp 1.000000 s is "
+                                  "earlier than the previous accepted frame's "
+                                  "18446744014.000000 s") != NULL);
+
+    /* The display clock wrapping past 2^64 ns: the second frame is 615 ns
+     * before the end of the clock, so no display time can reach it. */
+    const char *wrap = FT_TEST_OUT_DIR "/replay_ts_wrap.log";
+    write_text(wrap, "(18446744013.709551) vcan0 137#0102000040400000\n"
+                     "(18446744073.709551) vcan0 137#0102000140400000\n");
+    CHECK(run_replay(wrap, NULL, &st, &err));
+    printf("wrapping log: %u frames, %llu backwards, %llu out of range\n", g_res.frames,
+           (unsigned long long)g_res.timestamps_backwards,
+           (unsigned long long)g_res.timestamps_out_of_range);
+    CHECK(g_res.frames == 1u);
+    CHECK(g_res.timestamps_backwards == 0u && g_res.timestamps_out_of_range == 1u);
+    CHECK(g_feed.frames_in == 1u);
+    CHECK(g_res.errors_kept == 1u &&
+          strstr(g_res.errors[0], "replay_ts_wrap.log:2: timestamp 18446744073.709551 s is past "
+                                  "the end of the replay timeline") != NULL);
+    CHECK(g_res.log_last_s >= 18446744013.0 && g_res.log_last_s <= 18446744014.0);
+
+    /* Only timestamps past the end: nothing to anchor on, an error that
+     * counts them. */
+    const char *end_only = FT_TEST_OUT_DIR "/replay_ts_end.log";
+    write_text(end_only, "(18446744073.709551) vcan0 137#0102000040400000\n"
+                         "(18446744070.000000) vcan0 137#0102000140400000\n");
+    CHECK(!run_replay(end_only, NULL, &st, &err));
+    CHECK(st == FT_ERR_FORMAT && strstr(err.text, "no valid CAN frame in 2 lines (2 timestamps "
+                                                  "out of range)") != NULL);
+    CHECK(g_res.timestamps_out_of_range == 2u && g_res.frames == 0u);
+
+    /* In a normal log: a frame from the past in the middle and one more
+     * than the span after the first are rejected and counted; the rest
+     * plays on, the timeline untouched (20 ms frames over 0.2 s). */
+    const char *mixed = FT_TEST_OUT_DIR "/replay_ts_mixed.log";
+    g_log = fopen(mixed, "w");
+    REQUIRE(g_log != NULL);
+    memset(g_code, 0, sizeof g_code);
+    for (int i = 0; i <= 16; ++i) {
+        uint64_t t = T0_NS + (uint64_t)i * 12500000ull;
+        if (i == 5) {
+            t = T0_NS - 3600ull * 1000000000ull; /* an hour before the first */
+        } else if (i == 9) {
+            t = T0_NS + ((uint64_t)FT_REPLAY_SPAN_MAX_S + 1u) * 1000000000ull;
+        }
+        put_float(311, -12.0f, t);
+    }
+    REQUIRE(fclose(g_log) == 0);
+    CHECK(run_replay(mixed, NULL, &st, &err));
+    printf("mixed log: %u frames, %llu backwards, %llu out of range, %llu gaps, %llu fed\n",
+           g_res.frames, (unsigned long long)g_res.timestamps_backwards,
+           (unsigned long long)g_res.timestamps_out_of_range, (unsigned long long)g_res.gaps,
+           (unsigned long long)g_feed.frames_in);
+    CHECK(g_res.timestamps_backwards == 1u && g_res.timestamps_out_of_range == 1u);
+    CHECK(g_res.gaps == 0u && g_feed.frames_in == 15u);
+    CHECK(g_res.frames == 11u); /* 0 .. 200 ms in 20 ms steps */
+    CHECK_NEAR(g_res.log_last_s - g_res.log_first_s, 0.2, 1e-6);
+    /* the message codes of the two rejected frames read as lost */
+    CHECK(g_feed.dec.lost == 2u);
+}
+
 int main(void)
 {
     const double pi = 3.14159265358979323846, pitch_rad = -12.0 * pi / 180.0;
@@ -444,6 +563,8 @@ int main(void)
     CHECK(st == FT_ERR_FORMAT && strstr(err.text, "no valid CAN frame") != NULL);
     CHECK(g_res.lines_bad == 2u && g_res.errors_kept == 2u);
     CHECK(strstr(g_res.errors[0], "replay_junk.log:1:") != NULL);
+
+    test_timestamps();
 
     /* a missing log */
     CHECK(!run_replay(FT_TEST_OUT_DIR "/no_such.log", NULL, &st, &err));

@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "canaero.h"
+#include "ft_ns.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -205,6 +206,17 @@ ft_status flight_path_finish(flight_path *p, ft_error *err)
                        FLIGHT_WAYPOINTS_MAX, (unsigned)n);
     }
     char loc[96], ploc[96];
+    /* The log is sampled every FLIGHTGEN_PERIOD_US: a shorter path gives an
+     * empty log (or one without a position fix) that looks like success. */
+    const double span_s = p->wp[n - 1u].t_s - p->wp[0].t_s;
+    if (!(span_s >= FLIGHT_DURATION_MIN_S)) {
+        where(p, n - 1u, loc, sizeof loc);
+        where(p, 0u, ploc, sizeof ploc);
+        return ft_fail(err, FT_ERR_FORMAT,
+                       "%s: the path lasts %.6g s (%s to %s), shorter than one log period of "
+                       "%g s: the log would not hold one full set of frames",
+                       p->name, span_s, ploc, loc, FLIGHT_DURATION_MIN_S);
+    }
     for (uint32_t i = 1u; i < n; ++i) {
         double dt = p->wp[i].t_s - p->wp[i - 1u].t_s;
         double d[3];
@@ -271,7 +283,7 @@ ft_status flight_path_finish(flight_path *p, ft_error *err)
                 where(p, i + 1u, loc, sizeof loc);
                 where(p, i, ploc, sizeof ploc);
                 return ft_fail(err, FT_ERR_NUMERIC,
-                               "%s: the attitude change from %s needs a %s of %.1f deg/s, "
+                               "%s: the attitude change from %s needs a %s of %.4g deg/s, "
                                "at most %g deg/s",
                                loc, ploc, k_axis[a3], r_deg_s, FLIGHT_RATE_MAX_DEG_S);
             }
@@ -662,9 +674,10 @@ static ft_status builtin_setup(const flight_builtin_params *bp, builtin_ctx *c, 
         dflt = 2.0 * FP_PI * c->radius_m / c->speed_m_s;
     }
     c->duration_s = isnan(bp->duration_s) ? dflt : bp->duration_s;
-    if (!(c->duration_s > 0.0 && c->duration_s <= FLIGHT_DURATION_MAX_S)) {
-        return ft_fail(err, FT_ERR_ARG, "path %s: duration %g s outside (0, %g]", nm,
-                       c->duration_s, FLIGHT_DURATION_MAX_S);
+    if (!(c->duration_s >= FLIGHT_DURATION_MIN_S && c->duration_s <= FLIGHT_DURATION_MAX_S)) {
+        return ft_fail(err, FT_ERR_ARG,
+                       "path %s: duration %g s outside [%g, %g] (at least one log period)", nm,
+                       c->duration_s, FLIGHT_DURATION_MIN_S, FLIGHT_DURATION_MAX_S);
     }
     double v = c->speed_m_s;
     if (bp->kind == FLIGHT_ORBIT) {
@@ -903,10 +916,22 @@ static uint32_t float_bits(double v)
     return b;
 }
 
-static ft_status check_time_opt(const char *what, double v, ft_error *err)
+/* A fault time (NAN = off) must be finite and inside the logged path
+ * [t0, t_end): one outside would never fire (or fire at once) and the log
+ * would silently not be what was asked for. */
+static ft_status check_time_opt(const char *what, double v, double t0_s, double t_end_s,
+                                ft_error *err)
 {
-    if (!isnan(v) && !isfinite(v)) {
+    if (isnan(v)) {
+        return FT_OK;
+    }
+    if (!isfinite(v)) {
         return ft_fail(err, FT_ERR_ARG, "%s must be a finite time", what);
+    }
+    if (!(v >= t0_s && v < t_end_s)) {
+        return ft_fail(err, FT_ERR_ARG,
+                       "%s %g s is outside the logged path [%g, %g) s (path times)", what, v,
+                       t0_s, t_end_s);
     }
     return FT_OK;
 }
@@ -932,25 +957,30 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
     }
     double dur_s = flight_path_duration_s(p);
     if (!isnan(o->duration_s)) {
-        if (!(o->duration_s > 0.0 && o->duration_s <= dur_s)) {
+        if (!(o->duration_s >= FLIGHT_DURATION_MIN_S && o->duration_s <= dur_s)) {
             return ft_fail(err, FT_ERR_ARG,
-                           "duration %g s must be > 0 and at most the path's %g s",
-                           o->duration_s, dur_s);
+                           "duration %g s must be at least one log period (%g s) and at most "
+                           "the path's %g s",
+                           o->duration_s, FLIGHT_DURATION_MIN_S, dur_s);
         }
         dur_s = o->duration_s;
     }
-    ft_status s = check_time_opt("--nan-at", o->nan_at_s, err);
+    const double t0_s = flight_path_t0_s(p), t_end_s = t0_s + dur_s;
+    ft_status s = check_time_opt("--nan-at", o->nan_at_s, t0_s, t_end_s, err);
     if (s == FT_OK) {
-        s = check_time_opt("--bad-dlc-at", o->bad_dlc_at_s, err);
+        s = check_time_opt("--bad-dlc-at", o->bad_dlc_at_s, t0_s, t_end_s, err);
     }
     if (s == FT_OK) {
-        s = check_time_opt("--duplicate-at", o->duplicate_at_s, err);
+        s = check_time_opt("--duplicate-at", o->duplicate_at_s, t0_s, t_end_s, err);
     }
     if (s == FT_OK) {
-        s = check_time_opt("--velocity-stop", o->velocity_stop_s, err);
+        s = check_time_opt("--velocity-stop", o->velocity_stop_s, t0_s, t_end_s, err);
     }
     if (s == FT_OK) {
-        s = check_time_opt("--gps-jump", o->gps_jump_at_s, err);
+        s = check_time_opt("--gps-jump", o->gps_jump_at_s, t0_s, t_end_s, err);
+    }
+    if (s == FT_OK && !isnan(o->stall_from_s)) {
+        s = check_time_opt("--stall FROM", o->stall_from_s, t0_s, t_end_s, err);
     }
     if (s == FT_OK && !isnan(o->gps_jump_at_s) &&
         !(isfinite(o->gps_jump_m) && fabs(o->gps_jump_m) <= 1e6)) {
@@ -970,7 +1000,7 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
     }
 
     gen_out g = {sink, ctx, o->iface, st};
-    double t0 = flight_path_t0_s(p);
+    const double t0 = t0_s;
     uint64_t dur_us = (uint64_t)llround(dur_s * 1e6);
     uint64_t periods = (dur_us + FLIGHTGEN_PERIOD_US - 1u) / FLIGHTGEN_PERIOD_US;
     uint8_t code[FLIGHTGEN_MSG_COUNT] = {0};
@@ -999,7 +1029,14 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
                 ++st->velocity_stopped; /* a failed output: silent, no code used */
                 continue;
             }
-            uint64_t t_ns = (o->start_us + rel_us) * 1000u;
+            /* start <= FLIGHTGEN_START_MAX_US and rel < the path's 36000 s
+             * keep this far below 2^64 ns; checked all the same */
+            uint64_t t_us = 0u, t_ns = 0u;
+            const uint64_t tail_ns = (FLIGHTGEN_HALF_GAP_US + FLIGHTGEN_DUP_DELAY_US) * 1000u;
+            if (!ft_ns_add(o->start_us, rel_us, &t_us) || !ft_ns_mul(t_us, 1000u, &t_ns) ||
+                t_ns > UINT64_MAX - tail_ns) {
+                return ft_fail(err, FT_ERR_ARG, "log time past 64-bit nanoseconds");
+            }
             flight_sample smp;
             flight_path_sample(p, t, &smp);
             if (sl->is_double) {
@@ -1092,6 +1129,14 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
                 return s;
             }
         }
+    }
+    /* a single-shot fault near the end may find no frame to go to */
+    if (nan_todo || dlc_todo || dup_todo) {
+        const char *what = nan_todo ? "--nan-at" : (dlc_todo ? "--bad-dlc-at" : "--duplicate-at");
+        const double at_s =
+            nan_todo ? o->nan_at_s : (dlc_todo ? o->bad_dlc_at_s : o->duplicate_at_s);
+        return ft_fail(err, FT_ERR_ARG, "%s %g s: no %s frame at or after it in the log", what,
+                       at_s, nan_todo ? "pitch" : "FLOAT");
     }
     return FT_OK;
 }

@@ -34,7 +34,9 @@
  * CANaerospace default map), ground speed of a segment at most
  * FLIGHT_SPEED_MAX_M_S (a typo in a coordinate jumps kilometres), body rates
  * at most FLIGHT_RATE_MAX_DEG_S per axis (the decoder's range), duration at
- * most FLIGHT_DURATION_MAX_S. Errors name the waypoint file line.
+ * least FLIGHT_DURATION_MIN_S (one log period: a shorter path would give an
+ * empty or position-less log) and at most FLIGHT_DURATION_MAX_S. Errors name
+ * the waypoint file line.
  *
  * Built-in paths (position in a local tangent plane at the centre, sphere of
  * radius FLIGHT_EARTH_RADIUS_M; attitude from the velocity as above but
@@ -79,6 +81,11 @@
  * [t0, t0 + duration) are written, sorted by time; log time =
  * start time + (t - t0).
  *
+ * A --duration limit is likewise at least one log period. Fault times must
+ * be finite and inside the logged path [t0, t0 + duration) (a --stall's
+ * FROM; its TO may lie past the end), else the run is refused: a fault
+ * outside would silently never fire, or fire on the first frame.
+ *
  * Faults (times are path times, the clock of the waypoint file; each
  * single-shot fault goes to the first frame at or after its time that is
  * written and carries no other fault):
@@ -121,6 +128,7 @@
 #define FLIGHT_SPEED_MAX_M_S 1000.0        /* and the decoder range of 1039 */
 #define FLIGHT_VSPEED_MAX_M_S 500.0        /* decoder range of 314 */
 #define FLIGHT_DURATION_MAX_S 36000.0
+#define FLIGHT_DURATION_MIN_S (FLIGHTGEN_PERIOD_US * 1e-6) /* one log period */
 #define FLIGHT_TIME_MAX_S 1e7              /* waypoint time stamps */
 #define FLIGHT_DERIVED_ROLL_MAX_DEG 80.0
 #define FLIGHT_BUILTIN_STEP_S 0.1

@@ -475,6 +475,11 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
             }
         }
     }
+    /* The same height range the importer and the writer enforce. */
+    st = ft_terrain_check_heights(t->heights_m, t->width, t->height, name, err);
+    if (st != FT_OK) {
+        return st;
+    }
     /* The header range is informational for planning; the data decides, but
      * a large disagreement means a broken writer. */
     double tol = 0.01 + 1e-6 * (fabs((double)lo) + fabs((double)hi));
@@ -485,12 +490,7 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
                        (double)hi, (double)pend.header_min_m, (double)pend.header_max_m);
     }
     t->pyr.avg[0].avg_m = t->heights_m;
-    /* The same height range the importer and the writer enforce, then the
-     * pyramids against the heights: every error bound comes from them. */
-    st = ft_terrain_check_heights(t->heights_m, t->width, t->height, name, err);
-    if (st != FT_OK) {
-        return st;
-    }
+    /* The pyramids against the heights: every error bound comes from them. */
     st = ft_pyramid_check(t, name, err);
     if (st != FT_OK) {
         return st;

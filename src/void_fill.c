@@ -5,11 +5,12 @@
  *
  * The nearest valid sample along each direction is found without walking the
  * ray: rows are swept south to north; every line through the grid (row,
- * column, diagonal x - y = c, anti-diagonal x + y = c) carries "the last
- * valid sample behind" (updated as the sweep passes valid samples) and "the
- * next valid sample ahead" (a pointer moved forward only when the sweep has
- * reached it, so over the whole sweep each pointer visits each sample of its
- * line at most once). The per-void sum is taken in the same direction order
+ * column, diagonal x - y = c, anti-diagonal x + y = c) carries "the hit
+ * behind" of the last void swept on it (a void's hit behind is its neighbour
+ * if that is valid, else the hit of that neighbour, a void swept just
+ * before) and "the next valid sample ahead" (a pointer moved forward only
+ * when the sweep has reached it, so over the whole sweep each pointer visits
+ * each sample of its line at most once). Valid samples cost one mask test. The per-void sum is taken in the same direction order
  * (N, NE, E, SE, S, SW, W, NW) with the same weights as the plain ray walk,
  * so the result is bit-identical to it.
  *
@@ -62,11 +63,11 @@ static double mean_of_valid(const float *heights, const uint8_t *void_mask, size
 /* Per-line sweep state, all in caller scratch. Rows are indexed by y, so a
  * position on a column, diagonal or anti-diagonal is its y. */
 typedef struct fill_lines {
-    int32_t *col_below; /* [w]   last valid y < current row in column x */
+    int32_t *col_below; /* [w]   S hit (y) of the last void swept in column x */
     int32_t *col_above; /* [w]   smallest valid y > current row, or NONE_AHEAD */
-    int32_t *dia_below; /* [w+h-1] diagonal x - y + h - 1: last valid y below (SW) */
+    int32_t *dia_below; /* [w+h-1] diagonal x - y + h - 1: SW hit of its last void */
     int32_t *dia_above; /* [w+h-1] next valid y above (NE) */
-    int32_t *ant_below; /* [w+h-1] anti-diagonal x + y: last valid y below (SE) */
+    int32_t *ant_below; /* [w+h-1] anti-diagonal x + y: SE hit of its last void */
     int32_t *ant_above; /* [w+h-1] next valid y above (NW) */
 } fill_lines;
 
@@ -159,18 +160,42 @@ uint32_t ft_void_fill(float *heights, const uint8_t *void_mask, uint32_t w, uint
     double mean = 0.0;
     for (uint32_t y = 0u; y < h; ++y) {
         const uint8_t *mrow = void_mask + (size_t)y * w;
-        int64_t west = NONE_BEHIND; /* last valid x < current x in this row */
+        int64_t west = NONE_BEHIND; /* W hit of the last void swept in this row */
         int64_t east = AHEAD_UNKNOWN;
         for (uint32_t x = 0u; x < w; ++x) {
+            if (mrow[x] == 0u) {
+                continue; /* valid samples cost one mask test: nothing to update */
+            }
             const size_t idx = (size_t)y * w + x;
             const size_t dia = (size_t)x + (size_t)(h - 1u - y);
             const size_t ant = (size_t)x + (size_t)y;
-            if (mrow[x] == 0u) {
-                L.col_below[x] = (int32_t)y;
-                L.dia_below[dia] = (int32_t)y;
-                L.ant_below[ant] = (int32_t)y;
-                west = (int64_t)x;
-                continue;
+            /* Behind (W, S, SW, SE): the neighbour one step back if it is
+             * valid, else that neighbour is a void on the same line, swept
+             * just before, whose hit is the same sample. */
+            const uint8_t *mbelow = (y > 0u) ? mrow - w : NULL;
+            if (x == 0u) {
+                west = NONE_BEHIND;
+            } else if (mrow[x - 1u] == 0u) {
+                west = (int64_t)x - 1;
+            } /* else: west still holds the hit of void x - 1 */
+            if (mbelow == NULL) {
+                L.col_below[x] = NONE_BEHIND;
+                L.dia_below[dia] = NONE_BEHIND;
+                L.ant_below[ant] = NONE_BEHIND;
+            } else {
+                if (mbelow[x] == 0u) {
+                    L.col_below[x] = (int32_t)y - 1;
+                }
+                if (x == 0u) {
+                    L.dia_below[dia] = NONE_BEHIND;
+                } else if (mbelow[x - 1u] == 0u) {
+                    L.dia_below[dia] = (int32_t)y - 1;
+                }
+                if (x + 1u >= w) {
+                    L.ant_below[ant] = NONE_BEHIND;
+                } else if (mbelow[x + 1u] == 0u) {
+                    L.ant_below[ant] = (int32_t)y - 1;
+                }
             }
             /* East pointer of this row: smallest valid x' > x. */
             if (east <= (int64_t)x) {

@@ -104,6 +104,14 @@ static int describe_crs(GDALDatasetH ds, double x, double y, ft_terrain *t, char
     return ok;
 }
 
+/* The void rule of the header comment: NaN/Inf, the band's nodata value,
+ * -32768 in an Int16 band. */
+static int void_value(float v, int has_nodata, double nodata, int int16)
+{
+    return !isfinite(v) || (has_nodata && (double)v == (double)(float)nodata) ||
+           (int16 && v == -32768.0f);
+}
+
 int ft_cmd_import(int argc, char **argv)
 {
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
@@ -210,25 +218,28 @@ int ft_cmd_import(int argc, char **argv)
                     CPLGetLastErrorMsg());
             goto free_buffers;
         }
+        const float *got = heights + (size_t)dst_row * (size_t)w;
+        for (int c = 0; c < w; ++c) {
+            float v = got[c];
+            int is_void = void_value(v, has_nodata, nodata, int16);
+            if (!is_void &&
+                (!ft_terrain_height_ok((double)v) || (double)v < h_lo || (double)v > h_hi)) {
+                fprintf(stderr,
+                        "fixterrain import: %s: height %g m at row %d col %d is outside the "
+                        "%g..%g m the runtime accepts%s (mark it nodata or fix the source)\n",
+                        in, (double)v, row, c, h_lo, h_hi, srtm ? " from an SRTM .hgt" : "");
+                goto free_buffers;
+            }
+        }
     }
     uint32_t void_count = 0;
     for (size_t i = 0; i < n; ++i) {
         float v = heights[i];
-        int is_void = !isfinite(v) || (has_nodata && (double)v == (double)(float)nodata) ||
-                      (int16 && v == -32768.0f);
+        int is_void = void_value(v, has_nodata, nodata, int16);
         voids[i] = (uint8_t)is_void;
         void_count += (uint32_t)is_void;
         if (is_void) {
             heights[i] = 0.0f;
-        } else if (!ft_terrain_height_ok((double)v) || (double)v < h_lo || (double)v > h_hi) {
-            size_t grid_row = i / (size_t)w;
-            size_t src_row = north_up ? (size_t)h - 1u - grid_row : grid_row;
-            fprintf(stderr,
-                    "fixterrain import: %s: height %g m at row %zu col %zu is outside the "
-                    "%g..%g m the runtime accepts%s (mark it nodata or fix the source)\n",
-                    in, (double)v, src_row, i % (size_t)w, h_lo, h_hi,
-                    srtm ? " from an SRTM .hgt" : "");
-            goto free_buffers;
         }
     }
     int all_void = 0;

@@ -164,6 +164,19 @@ static void expect_fail(const char *what, const uint8_t *data, size_t bytes, uin
     if (!in_probe) free_terrain(&t);
 }
 
+/* Writes `bytes` of `data` to FT_TEST_OUT_DIR/name, for the CLI check in
+ * tests/ftt_cli_reject.cmake (fixterrain render must refuse these and never
+ * print a non-finite number into --stats). */
+static void save_case(const char *name, const uint8_t *data, size_t bytes)
+{
+    char path[512];
+    (void)snprintf(path, sizeof path, "%s/%s", FT_TEST_OUT_DIR, name);
+    FILE *fp = fopen(path, "wb");
+    REQUIRE(fp != NULL);
+    REQUIRE(fwrite(data, 1, bytes, fp) == bytes);
+    REQUIRE(fclose(fp) == 0);
+}
+
 static uint8_t *copy_file(void)
 {
     uint8_t *c = (uint8_t *)malloc(g_file_bytes + 16u);
@@ -197,6 +210,8 @@ int main(void)
     CHECK(memcmp(g_file, "FXTERR\r\n", 8) == 0);
     CHECK(get32(g_file + 8) == 1u);
     CHECK(get32(g_file + 16) == W && get32(g_file + 20) == H);
+
+    save_case("ftt_good.ftt", g_file, g_file_bytes);
 
     /* ---- round trip ---- */
     {
@@ -391,6 +406,7 @@ int main(void)
     fix_payload_crc(f, g_file_bytes);
     expect_fail("min/max pyramids zeroed", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
                 "min/max pyramid level 0 node (x 0, y 0)");
+    save_case("ftt_minmax_zeroed.ftt", f, g_file_bytes);
     free(f);
 
     /* min and max swapped at every level: min > max at the first node */
@@ -403,6 +419,7 @@ int main(void)
     fix_payload_crc(f, g_file_bytes);
     expect_fail("min/max pyramids reversed", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
                 "level 0 node (x 0, y 0): min");
+    save_case("ftt_minmax_reversed.ftt", f, g_file_bytes);
     free(f);
 
     /* one node deep in the pyramid no longer bounds its children: named by
@@ -460,12 +477,14 @@ int main(void)
     fix_header_crc(f);
     expect_fail("spacing_x 1e305", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
                 "test.ftt: terrain cell_x_m 1e+305 m is outside 0.001..200000 m");
+    save_case("ftt_spacing_1e305.ftt", f, g_file_bytes);
     free(f);
     f = copy_file();
     put64d(f + 48, 1e308);
     fix_header_crc(f);
     expect_fail("spacing_y 1e308", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
                 "cell_y_m 1e+308 m is outside");
+    save_case("ftt_spacing_1e308.ftt", f, g_file_bytes);
     free(f);
     /* cell size fine, but the grid reaches past the coordinate range */
     f = copy_file();
@@ -507,6 +526,7 @@ int main(void)
     fix_header_crc(f);
     expect_fail("degree origin_x 1e15", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
                 "origin_x (longitude) 1e+15 deg is outside -360..360 deg");
+    save_case("ftt_deg_origin_1e15.ftt", f, g_file_bytes);
     put64d(f + 56, 8.0);
     put64d(f + 64, 89.99);
     fix_header_crc(f);

@@ -152,6 +152,12 @@ static size_t fill_scratch_offset(uint32_t width, uint32_t height)
     return (off + 7u) & ~(size_t)7u;
 }
 
+int ft_hgt_height_ok(double v_m)
+{
+    return ft_terrain_height_ok(v_m) && v_m >= (double)FT_HGT_MIN_VALID_M &&
+           v_m <= (double)FT_HGT_MAX_VALID_M;
+}
+
 size_t ft_hgt_scratch_bytes(uint32_t width, uint32_t height)
 {
     if (width < FT_GRID_SIDE_MIN || height < FT_GRID_SIDE_MIN || width > FT_GRID_SIDE_MAX ||
@@ -209,7 +215,7 @@ ft_status ft_hgt_load(const ft_reader *r, ft_terrain *t, void *scratch, size_t s
                 ++voids;
                 continue;
             }
-            if (v < FT_HGT_MIN_VALID_M || v > FT_HGT_MAX_VALID_M) {
+            if (!ft_hgt_height_ok((double)v)) {
                 return ft_fail(err, FT_ERR_FORMAT,
                                "%s: height %d m at file row %u col %u is outside %d..%d m and "
                                "not the void value %d",

@@ -21,6 +21,11 @@
 #define FT_HGT_MIN_VALID_M (-1000)
 #define FT_HGT_MAX_VALID_M 9000
 
+/* 1 if v_m is a height an SRTM .hgt may hold: the shared terrain range
+ * (ft_terrain_height_ok) narrowed to FT_HGT_MIN/MAX_VALID_M. The reader and
+ * the importer (for GDAL's SRTMHGT driver) both use it. */
+int ft_hgt_height_ok(double v_m);
+
 /* Validates size and name; fills t's header fields (unit degree, spacing
  * 1/(N-1) deg, origin from the name, crs "EPSG:4326") and derives the frame. */
 ft_status ft_hgt_probe(const ft_reader *r, const char *path, ft_terrain *t, ft_error *err);

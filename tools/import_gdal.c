@@ -222,8 +222,8 @@ int ft_cmd_import(int argc, char **argv)
         for (int c = 0; c < w; ++c) {
             float v = got[c];
             int is_void = void_value(v, has_nodata, nodata, int16);
-            if (!is_void &&
-                (!ft_terrain_height_ok((double)v) || (double)v < h_lo || (double)v > h_hi)) {
+            int ok = srtm ? ft_hgt_height_ok((double)v) : ft_terrain_height_ok((double)v);
+            if (!is_void && !ok) {
                 fprintf(stderr,
                         "fixterrain import: %s: height %g m at row %d col %d is outside the "
                         "%g..%g m the runtime accepts%s (mark it nodata or fix the source)\n",

@@ -42,14 +42,18 @@ ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
         return ft_fail(err, FT_ERR_FORMAT, "terrain grid %ux%u is outside %u..%u samples per side",
                        t->width, t->height, FT_GRID_SIDE_MIN, FT_GRID_SIDE_MAX);
     }
-    if (!isfinite(t->origin_x) || !isfinite(t->origin_y) || !isfinite(t->anchor_lat_deg) ||
-        !isfinite(t->anchor_lon_deg) || fabs(t->anchor_lat_deg) > 89.0 ||
-        fabs(t->anchor_lon_deg) > 360.0) {
-        return ft_fail(err, FT_ERR_FORMAT,
-                       "terrain origin/anchor not finite or outside |lat|<=89, |lon|<=360");
+    if (!isfinite(t->origin_x) || !isfinite(t->origin_y)) {
+        return ft_fail(err, FT_ERR_FORMAT, "terrain origin (%g, %g) is not finite", t->origin_x,
+                       t->origin_y);
+    }
+    ft_status st = check_range("anchor_lat_deg", t->anchor_lat_deg, -89.0, 89.0, "deg", err);
+    if (st == FT_OK) {
+        st = check_range("anchor_lon_deg", t->anchor_lon_deg, -360.0, 360.0, "deg", err);
+    }
+    if (st != FT_OK) {
+        return st;
     }
     const double cols = (double)(t->width - 1u), rows = (double)(t->height - 1u);
-    ft_status st = FT_OK;
     if (t->unit == FT_UNIT_DEGREE) {
         /* The origin becomes the anchor: check it before it overwrites the
          * (already checked) anchor fields. */
@@ -111,12 +115,6 @@ ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
     if (st == FT_OK) {
         st = check_range("north edge y_m", t->origin_world_y_m + rows * t->cell_y_m,
                          -FT_COORD_MAX_M, FT_COORD_MAX_M, "m", err);
-    }
-    if (st == FT_OK) {
-        st = check_range("anchor_lat_deg", t->anchor_lat_deg, -90.0, 90.0, "deg", err);
-    }
-    if (st == FT_OK) {
-        st = check_range("anchor_lon_deg", t->anchor_lon_deg, -360.0, 360.0, "deg", err);
     }
     return st;
 }

@@ -18,8 +18,8 @@
  * sample below and a forward pointer to the next valid sample above; each
  * pointer only moves north, so all the look-ahead of a sweep is bounded by
  * the grid size. No recursion, no allocation: the per-line state lives in
- * caller scratch of ft_void_fill_scratch_bytes() (44 bytes per grid side,
- * about 53 KB for a 1201 x 1201 tile). */
+ * caller scratch of ft_void_fill_scratch_bytes() (40 bytes per grid side of
+ * a square grid, 48 KB for a 1201 x 1201 tile). */
 #ifndef FT_VOID_FILL_H
 #define FT_VOID_FILL_H
 

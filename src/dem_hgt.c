@@ -6,11 +6,6 @@
 
 #include "void_fill.h"
 
-/* Valid SRTM heights lie well inside this (Dead Sea shore -430 m, Everest
- * 8849 m); anything else that is not the void marker is a corrupt file. */
-#define FT_HGT_MIN_VALID_M (-1000)
-#define FT_HGT_MAX_VALID_M 9000
-
 /* Integer square root of n (n <= 2^40 here); bounded binary search. */
 static uint64_t isqrt_u64(uint64_t n)
 {
@@ -150,14 +145,28 @@ ft_status ft_hgt_probe(const ft_reader *r, const char *path, ft_terrain *t, ft_e
     return FT_OK;
 }
 
+/* Offset of the void fill's scratch after the row buffer and the mask. */
+static size_t fill_scratch_offset(uint32_t width, uint32_t height)
+{
+    size_t off = (size_t)width * 2u + (size_t)width * height;
+    return (off + 7u) & ~(size_t)7u;
+}
+
+int ft_hgt_height_ok(double v_m)
+{
+    return ft_terrain_height_ok(v_m) && v_m >= (double)FT_HGT_MIN_VALID_M &&
+           v_m <= (double)FT_HGT_MAX_VALID_M;
+}
+
 size_t ft_hgt_scratch_bytes(uint32_t width, uint32_t height)
 {
     if (width < FT_GRID_SIDE_MIN || height < FT_GRID_SIDE_MIN || width > FT_GRID_SIDE_MAX ||
         height > FT_GRID_SIDE_MAX) {
         return 0u;
     }
-    /* row of int16 + one mask byte per sample; fits size_t: <= 2.7e8. */
-    return (size_t)width * 2u + (size_t)width * height;
+    /* row of int16 + one mask byte per sample (fits size_t: <= 2.7e8), then
+     * the void fill's per-line state, 8-byte aligned. */
+    return fill_scratch_offset(width, height) + ft_void_fill_scratch_bytes(width, height);
 }
 
 ft_status ft_hgt_load(const ft_reader *r, ft_terrain *t, void *scratch, size_t scratch_bytes,
@@ -181,6 +190,9 @@ ft_status ft_hgt_load(const ft_reader *r, ft_terrain *t, void *scratch, size_t s
         return ft_fail(err, FT_ERR_BUDGET, "%s: hgt load needs %zu bytes of scratch, got %zu",
                        name, need, scratch == NULL ? (size_t)0 : scratch_bytes);
     }
+    if (((uintptr_t)scratch % 8u) != 0u) {
+        return ft_fail(err, FT_ERR_ARG, "%s: hgt load scratch is not 8-byte aligned", name);
+    }
     uint8_t *row = (uint8_t *)scratch;
     uint8_t *mask = row + (size_t)w * 2u;
     uint32_t voids = 0u;
@@ -203,7 +215,7 @@ ft_status ft_hgt_load(const ft_reader *r, ft_terrain *t, void *scratch, size_t s
                 ++voids;
                 continue;
             }
-            if (v < FT_HGT_MIN_VALID_M || v > FT_HGT_MAX_VALID_M) {
+            if (!ft_hgt_height_ok((double)v)) {
                 return ft_fail(err, FT_ERR_FORMAT,
                                "%s: height %d m at file row %u col %u is outside %d..%d m and "
                                "not the void value %d",
@@ -230,7 +242,9 @@ ft_status ft_hgt_load(const ft_reader *r, ft_terrain *t, void *scratch, size_t s
     int all_void = 0;
     uint32_t filled = 0u;
     if (voids > 0u) {
-        filled = ft_void_fill(t->heights_m, mask, w, h, &all_void);
+        uint8_t *fill_scratch = (uint8_t *)scratch + fill_scratch_offset(w, h);
+        filled = ft_void_fill(t->heights_m, mask, w, h, fill_scratch,
+                              need - fill_scratch_offset(w, h), &all_void);
     }
     if (all_void) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: all %u samples are void (-32768)", name, filled);

@@ -236,3 +236,88 @@ void ft_pyramid_build(ft_terrain *t)
     t->min_height_m = top->min_m[0];
     t->max_height_m = top->max_m[0];
 }
+
+/* Range of the 2x2 clamped children of texel (i, j) in a sw x sh array. */
+static void children_range(const float *lo_src, const float *hi_src, uint32_t sw, uint32_t sh,
+                           uint32_t i, uint32_t j, float *lo, float *hi)
+{
+    uint32_t x0 = 2u * i, y0 = 2u * j;
+    uint32_t x1 = (x0 + 1u < sw) ? x0 + 1u : sw - 1u;
+    uint32_t y1 = (y0 + 1u < sh) ? y0 + 1u : sh - 1u;
+    size_t o0 = (size_t)y0 * sw, o1 = (size_t)y1 * sw;
+    *lo = min4(lo_src[o0 + x0], lo_src[o0 + x1], lo_src[o1 + x0], lo_src[o1 + x1]);
+    *hi = max4(hi_src[o0 + x0], hi_src[o0 + x1], hi_src[o1 + x0], hi_src[o1 + x1]);
+}
+
+ft_status ft_pyramid_check(const ft_terrain *t, const char *name, ft_error *err)
+{
+    if (name == NULL) {
+        name = "terrain";
+    }
+    if (t == NULL || t->heights_m == NULL || !dims_ok(t->width, t->height)) {
+        return ft_fail(err, FT_ERR_ARG, "%s: pyramid check: terrain is not loaded", name);
+    }
+    const ft_pyramid *p = &t->pyr;
+    if (p->avg_levels != ft_pyramid_avg_levels(t->width, t->height) ||
+        p->minmax_levels != ft_pyramid_minmax_levels(t->width, t->height)) {
+        return ft_fail(err, FT_ERR_ARG, "%s: pyramid check: pyramids are not laid out", name);
+    }
+    for (uint32_t l = 0u; l < p->minmax_levels; ++l) {
+        const ft_pyramid_level *d = &p->minmax[l];
+        const ft_pyramid_level *s = (l == 0u) ? NULL : &p->minmax[l - 1u];
+        for (uint32_t j = 0u; j < d->height; ++j) {
+            for (uint32_t i = 0u; i < d->width; ++i) {
+                size_t k = (size_t)j * d->width + i;
+                float mn = d->min_m[k], mx = d->max_m[k], lo, hi;
+                if (s == NULL) {
+                    const float *r0 = t->heights_m + (size_t)j * t->width;
+                    const float *r1 = r0 + t->width;
+                    lo = min4(r0[i], r0[i + 1u], r1[i], r1[i + 1u]);
+                    hi = max4(r0[i], r0[i + 1u], r1[i], r1[i + 1u]);
+                } else {
+                    float lo_min, hi_min, lo_max, hi_max;
+                    children_range(s->min_m, s->min_m, s->width, s->height, i, j, &lo_min,
+                                   &hi_min);
+                    children_range(s->max_m, s->max_m, s->width, s->height, i, j, &lo_max,
+                                   &hi_max);
+                    (void)hi_min;
+                    (void)lo_max;
+                    lo = lo_min;
+                    hi = hi_max;
+                }
+                if (!(mn <= mx)) {
+                    return ft_fail(err, FT_ERR_FORMAT,
+                                   "%s: min/max pyramid level %u node (x %u, y %u): min %g m > "
+                                   "max %g m",
+                                   name, l, i, j, (double)mn, (double)mx);
+                }
+                if (mn != lo || mx != hi) {
+                    return ft_fail(err, FT_ERR_FORMAT,
+                                   "%s: min/max pyramid level %u node (x %u, y %u) holds "
+                                   "%g..%g m, but its %s span %g..%g m",
+                                   name, l, i, j, (double)mn, (double)mx,
+                                   l == 0u ? "cell's 4 samples" : "children", (double)lo,
+                                   (double)hi);
+                }
+            }
+        }
+    }
+    for (uint32_t l = 1u; l < p->avg_levels; ++l) {
+        const ft_pyramid_level *d = &p->avg[l];
+        const ft_pyramid_level *s = &p->avg[l - 1u];
+        const float *src = (l == 1u) ? t->heights_m : s->avg_m;
+        for (uint32_t j = 0u; j < d->height; ++j) {
+            for (uint32_t i = 0u; i < d->width; ++i) {
+                float v = d->avg_m[(size_t)j * d->width + i], lo, hi;
+                children_range(src, src, s->width, s->height, i, j, &lo, &hi);
+                if (!(v >= lo && v <= hi)) {
+                    return ft_fail(err, FT_ERR_FORMAT,
+                                   "%s: avg pyramid level %u node (x %u, y %u) is %g m, outside "
+                                   "its children's %g..%g m",
+                                   name, l, i, j, (double)v, (double)lo, (double)hi);
+                }
+            }
+        }
+    }
+    return FT_OK;
+}

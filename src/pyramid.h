@@ -23,4 +23,15 @@ ft_status ft_pyramid_layout(ft_terrain *t, void *storage, size_t storage_bytes, 
  * t->min_height_m / max_height_m. O(width*height), no recursion. */
 void ft_pyramid_build(ft_terrain *t);
 
+/* Checks laid-out, filled pyramids against t->heights_m before anything
+ * trusts them (a file's crc guards transport, not meaning):
+ *  - min/max level 0 texel (i,j) equals the min/max of its cell's 4 samples;
+ *  - min/max level L+1 equals the min/max of its 2x2 (clamped) children, so
+ *    every node bounds its children and min <= max everywhere;
+ *  - avg level L+1 lies within the range of its 2x2 (clamped) children (a
+ *    mean cannot leave it; the exact float rounding is not compared).
+ * Fails with FT_ERR_FORMAT naming `name`, the first inconsistent node
+ * (pyramid, level, x, y) and the values. O(width*height), no recursion. */
+ft_status ft_pyramid_check(const ft_terrain *t, const char *name, ft_error *err);
+
 #endif

@@ -19,6 +19,17 @@ static double lat_ref_deg(const ft_terrain *t)
     return t->anchor_lat_deg;
 }
 
+/* Range check of one derived or header quantity with a message naming it. */
+static ft_status check_range(const char *field, double v, double lo, double hi, const char *unit,
+                             ft_error *err)
+{
+    if (!isfinite(v) || v < lo || v > hi) {
+        return ft_fail(err, FT_ERR_FORMAT, "terrain %s %g %s is outside %g..%g %s", field, v,
+                       unit, lo, hi, unit);
+    }
+    return FT_OK;
+}
+
 ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
 {
     if (!(t->spacing_x > 0.0) || !(t->spacing_y > 0.0) || !isfinite(t->spacing_x) ||
@@ -26,13 +37,41 @@ ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
         return ft_fail(err, FT_ERR_FORMAT, "terrain spacing %g x %g is not positive and finite",
                        t->spacing_x, t->spacing_y);
     }
-    if (!isfinite(t->origin_x) || !isfinite(t->origin_y) || !isfinite(t->anchor_lat_deg) ||
-        !isfinite(t->anchor_lon_deg) || fabs(t->anchor_lat_deg) > 89.0 ||
-        fabs(t->anchor_lon_deg) > 360.0) {
-        return ft_fail(err, FT_ERR_FORMAT,
-                       "terrain origin/anchor not finite or outside |lat|<=89, |lon|<=360");
+    if (t->width < FT_GRID_SIDE_MIN || t->height < FT_GRID_SIDE_MIN ||
+        t->width > FT_GRID_SIDE_MAX || t->height > FT_GRID_SIDE_MAX) {
+        return ft_fail(err, FT_ERR_FORMAT, "terrain grid %ux%u is outside %u..%u samples per side",
+                       t->width, t->height, FT_GRID_SIDE_MIN, FT_GRID_SIDE_MAX);
     }
+    if (!isfinite(t->origin_x) || !isfinite(t->origin_y)) {
+        return ft_fail(err, FT_ERR_FORMAT, "terrain origin (%g, %g) is not finite", t->origin_x,
+                       t->origin_y);
+    }
+    ft_status st = check_range("anchor_lat_deg", t->anchor_lat_deg, -89.0, 89.0, "deg", err);
+    if (st == FT_OK) {
+        st = check_range("anchor_lon_deg", t->anchor_lon_deg, -360.0, 360.0, "deg", err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    const double cols = (double)(t->width - 1u), rows = (double)(t->height - 1u);
     if (t->unit == FT_UNIT_DEGREE) {
+        /* The origin becomes the anchor: check it before it overwrites the
+         * (already checked) anchor fields. */
+        st = check_range("origin_x (longitude)", t->origin_x, -360.0, 360.0, "deg", err);
+        if (st == FT_OK) {
+            st = check_range("origin_y (latitude)", t->origin_y, -90.0, 90.0, "deg", err);
+        }
+        if (st == FT_OK) {
+            st = check_range("longitude extent (width-1)*spacing_x", cols * t->spacing_x, 0.0,
+                             360.0, "deg", err);
+        }
+        if (st == FT_OK) {
+            st = check_range("northern edge origin_y+(height-1)*spacing_y",
+                             t->origin_y + rows * t->spacing_y, -90.0, 90.0, "deg", err);
+        }
+        if (st != FT_OK) {
+            return st;
+        }
         double lat = lat_ref_deg(t);
         if (fabs(lat) > 89.0) {
             return ft_fail(err, FT_ERR_FORMAT, "terrain latitude %.3f too close to a pole", lat);
@@ -51,7 +90,109 @@ ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
     } else {
         return ft_fail(err, FT_ERR_FORMAT, "terrain spacing unit %d unknown", (int)t->unit);
     }
+    st = check_range("cell_x_m", t->cell_x_m, FT_CELL_MIN_M, FT_CELL_MAX_M, "m", err);
+    if (st == FT_OK) {
+        st = check_range("cell_y_m", t->cell_y_m, FT_CELL_MIN_M, FT_CELL_MAX_M, "m", err);
+    }
+    if (st == FT_OK) {
+        st = check_range("extent_x_m", cols * t->cell_x_m, 0.0, FT_EXTENT_MAX_M, "m", err);
+    }
+    if (st == FT_OK) {
+        st = check_range("extent_y_m", rows * t->cell_y_m, 0.0, FT_EXTENT_MAX_M, "m", err);
+    }
+    if (st == FT_OK) {
+        st = check_range("origin_world_x_m", t->origin_world_x_m, -FT_COORD_MAX_M,
+                         FT_COORD_MAX_M, "m", err);
+    }
+    if (st == FT_OK) {
+        st = check_range("origin_world_y_m", t->origin_world_y_m, -FT_COORD_MAX_M,
+                         FT_COORD_MAX_M, "m", err);
+    }
+    if (st == FT_OK) {
+        st = check_range("east edge x_m", t->origin_world_x_m + cols * t->cell_x_m,
+                         -FT_COORD_MAX_M, FT_COORD_MAX_M, "m", err);
+    }
+    if (st == FT_OK) {
+        st = check_range("north edge y_m", t->origin_world_y_m + rows * t->cell_y_m,
+                         -FT_COORD_MAX_M, FT_COORD_MAX_M, "m", err);
+    }
+    return st;
+}
+
+int ft_terrain_height_ok(double v_m)
+{
+    return isfinite(v_m) && v_m >= FT_HEIGHT_MIN_M && v_m <= FT_HEIGHT_MAX_M;
+}
+
+ft_status ft_terrain_check_heights(const float *heights_m, uint32_t width, uint32_t height,
+                                   const char *name, ft_error *err)
+{
+    if (name == NULL) {
+        name = "terrain";
+    }
+    if (heights_m == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "%s: heights are not bound", name);
+    }
+    size_t n = (size_t)width * height;
+    for (size_t k = 0u; k < n; ++k) {
+        if (!ft_terrain_height_ok((double)heights_m[k])) {
+            return ft_fail(err, FT_ERR_NUMERIC,
+                           "%s: height %g m at row %zu col %zu (row 0 = south) is outside "
+                           "%g..%g m",
+                           name, (double)heights_m[k], k / width, k % width, FT_HEIGHT_MIN_M,
+                           FT_HEIGHT_MAX_M);
+        }
+    }
     return FT_OK;
+}
+
+ft_status ft_terrain_check_crs(const char *crs, size_t cap, const char *name, ft_error *err)
+{
+    if (name == NULL) {
+        name = "terrain";
+    }
+    if (crs == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "%s: crs text is NULL", name);
+    }
+    size_t limit = cap < FT_CRS_TEXT_MAX ? cap : FT_CRS_TEXT_MAX;
+    size_t len = 0u;
+    while (len < limit && crs[len] != '\0') {
+        unsigned char c = (unsigned char)crs[len];
+        if (c < 0x20u || c > 0x7eu) {
+            return ft_fail(err, FT_ERR_FORMAT,
+                           "%s: crs has a non-printable byte 0x%02x at offset %zu (printable "
+                           "ASCII 0x20..0x7e only)",
+                           name, c, len);
+        }
+        ++len;
+    }
+    if (len >= limit) {
+        return ft_fail(err, FT_ERR_FORMAT, "%s: crs text is not NUL-terminated within %u bytes",
+                       name, FT_CRS_TEXT_MAX);
+    }
+    return FT_OK;
+}
+
+uint32_t ft_terrain_sanitize_crs(const char *in, char out[FT_CRS_TEXT_MAX])
+{
+    size_t o = 0u;
+    uint32_t runs = 0u;
+    int in_run = 0;
+    for (size_t i = 0u; in != NULL && in[i] != '\0' && o + 1u < FT_CRS_TEXT_MAX; ++i) {
+        unsigned char c = (unsigned char)in[i];
+        if (c >= 0x20u && c <= 0x7eu) {
+            out[o++] = (char)c;
+            in_run = 0;
+        } else if (!in_run) {
+            out[o++] = '?';
+            ++runs;
+            in_run = 1;
+        }
+    }
+    for (size_t k = o; k < FT_CRS_TEXT_MAX; ++k) {
+        out[k] = '\0';
+    }
+    return runs;
 }
 
 void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg, double *x_m,

@@ -18,6 +18,7 @@
 #ifndef FT_TERRAIN_H
 #define FT_TERRAIN_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "ft_status.h"
@@ -95,8 +96,52 @@ typedef struct ft_terrain {
     ft_pyramid pyr;   /* levels in FT_POOL_PYRAMIDS */
 } ft_terrain;
 
-/* Fills cell_*_m and origin_world_* from unit/spacing/origin/anchor. */
+/* Ranges every terrain must keep, whatever its source (.ftt, .hgt, synth,
+ * import). ft_terrain_derive_frame checks the frame, the .ftt reader and
+ * writer and the importer check heights and crs with the functions below, so
+ * the importer refuses exactly what the runtime would refuse.
+ *  - heights: -12000..9000 m (below the deepest trench, above Everest; SRTM
+ *    .hgt is narrower still, dem_hgt.h);
+ *  - cell size (cell_x_m, cell_y_m): 0.001..200000 m (1 degree of latitude
+ *    is 111 km);
+ *  - extent ((side - 1) * cell) per axis: at most 4.1e7 m (the equator);
+ *  - metre grids: |origin| and |origin + extent| at most 1e8 m;
+ *  - degree grids: origin_x (lon) -360..360 deg, lon extent at most 360 deg,
+ *    origin_y (lat) and the northern edge -90..90 deg, middle latitude
+ *    within +-89 deg (the equirectangular plane degenerates at a pole);
+ *  - anchor: |lat| <= 89, |lon| <= 360 deg;
+ *  - crs: printable ASCII (0x20..0x7e), shorter than FT_CRS_TEXT_MAX. */
+#define FT_HEIGHT_MIN_M (-12000.0)
+#define FT_HEIGHT_MAX_M 9000.0
+#define FT_CELL_MIN_M 1.0e-3
+#define FT_CELL_MAX_M 2.0e5
+#define FT_EXTENT_MAX_M 4.1e7
+#define FT_COORD_MAX_M 1.0e8
+
+/* Fills cell_*_m and origin_world_* from unit/spacing/origin/anchor, after
+ * checking spacing, origin and anchor, and then the derived cell size,
+ * extent and world origin against the ranges above; the message names the
+ * field, its value and the allowed range. */
 ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err);
+
+/* 1 if v_m is a finite height inside FT_HEIGHT_MIN_M..FT_HEIGHT_MAX_M. */
+int ft_terrain_height_ok(double v_m);
+
+/* Checks every sample of a width x height grid (row 0 = south) with
+ * ft_terrain_height_ok; the message names `name`, the first bad sample's row
+ * and column and the allowed range. */
+ft_status ft_terrain_check_heights(const float *heights_m, uint32_t width, uint32_t height,
+                                   const char *name, ft_error *err);
+
+/* Checks crs text: NUL-terminated within FT_CRS_TEXT_MAX bytes, printable
+ * ASCII only; the message names the first bad byte's offset. */
+ft_status ft_terrain_check_crs(const char *crs, size_t cap, const char *name, ft_error *err);
+
+/* Makes crs text that ft_terrain_check_crs accepts out of any bytes: each
+ * run of bytes outside 0x20..0x7e (e.g. one UTF-8 encoded "é") becomes a
+ * single '?', and the text is cut to FT_CRS_TEXT_MAX - 1 bytes. Returns the
+ * number of runs replaced (0: the text was already clean). */
+uint32_t ft_terrain_sanitize_crs(const char *in, char out[FT_CRS_TEXT_MAX]);
 
 /* Geodetic (deg) to world metres with the equirectangular rule above. */
 void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg, double *x_m,

@@ -215,6 +215,18 @@ static void swap_floats(float *f, size_t n)
     }
 }
 
+/* Puts the file name in front of a message from a function that has none. */
+static ft_status prefix_name(ft_error *err, ft_status st, const char *name)
+{
+    if (err == NULL) {
+        return st;
+    }
+    char text[sizeof err->text];
+    memcpy(text, err->text, sizeof text);
+    text[sizeof text - 1u] = '\0';
+    return ft_fail(err, st, "%s: %s", name, text);
+}
+
 /* ---- probe ------------------------------------------------------------------ */
 
 ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr_out, ft_error *err)
@@ -309,9 +321,11 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
                        void_count);
     }
     float hmin = get_f32(hdr + OFF_MIN_H), hmax = get_f32(hdr + OFF_MAX_H);
-    if (!isfinite(hmin) || !isfinite(hmax) || hmin > hmax) {
-        return ft_fail(err, FT_ERR_NUMERIC, "%s: height range %g..%g m is not finite and ordered",
-                       name, (double)hmin, (double)hmax);
+    if (!ft_terrain_height_ok((double)hmin) || !ft_terrain_height_ok((double)hmax) ||
+        hmin > hmax) {
+        return ft_fail(err, FT_ERR_NUMERIC,
+                       "%s: header height range %g..%g m is not ordered within %g..%g m", name,
+                       (double)hmin, (double)hmax, FT_HEIGHT_MIN_M, FT_HEIGHT_MAX_M);
     }
     uint64_t payload = get_u64(hdr + OFF_PAYLOAD_BYTES);
     uint64_t payload_want = payload_bytes_for(w, h);
@@ -321,18 +335,11 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
                        (unsigned long long)payload, w, h, (unsigned long long)payload_want);
     }
     const char *crs = (const char *)(hdr + OFF_CRS);
-    size_t crs_len = 0u;
-    while (crs_len < FT_CRS_TEXT_MAX && crs[crs_len] != '\0') {
-        if (crs[crs_len] < 0x20 || crs[crs_len] > 0x7e) {
-            return ft_fail(err, FT_ERR_FORMAT, "%s: crs has a non-printable byte at offset %zu",
-                           name, crs_len);
-        }
-        ++crs_len;
+    st = ft_terrain_check_crs(crs, FT_CRS_TEXT_MAX, name, err);
+    if (st != FT_OK) {
+        return st;
     }
-    if (crs_len >= FT_CRS_TEXT_MAX) {
-        return ft_fail(err, FT_ERR_FORMAT, "%s: crs text is not NUL-terminated within %u bytes",
-                       name, FT_CRS_TEXT_MAX);
-    }
+    size_t crs_len = strlen(crs);
     for (uint32_t k = OFF_RESERVED; k < FT_TFILE_HEADER_BYTES; ++k) {
         if (hdr[k] != 0u) {
             return ft_fail(err, FT_ERR_FORMAT, "%s: reserved header byte %u is 0x%02x, not 0",
@@ -369,7 +376,7 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
     t->max_height_m = hmax;
     st = ft_terrain_derive_frame(t, err);
     if (st != FT_OK) {
-        return st;
+        return prefix_name(err, st, name);
     }
     hdr_out->payload_crc32 = get_u32(hdr + OFF_PAYLOAD_CRC);
     hdr_out->vertical_scale = vscale;
@@ -468,6 +475,11 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
             }
         }
     }
+    /* The same height range the importer and the writer enforce. */
+    st = ft_terrain_check_heights(t->heights_m, t->width, t->height, name, err);
+    if (st != FT_OK) {
+        return st;
+    }
     /* The header range is informational for planning; the data decides, but
      * a large disagreement means a broken writer. */
     double tol = 0.01 + 1e-6 * (fabs((double)lo) + fabs((double)hi));
@@ -477,9 +489,14 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
                        "%s: heights span %g..%g m but the header says %g..%g m", name, (double)lo,
                        (double)hi, (double)pend.header_min_m, (double)pend.header_max_m);
     }
+    t->pyr.avg[0].avg_m = t->heights_m;
+    /* The pyramids against the heights: every error bound comes from them. */
+    st = ft_pyramid_check(t, name, err);
+    if (st != FT_OK) {
+        return st;
+    }
     t->min_height_m = lo;
     t->max_height_m = hi;
-    t->pyr.avg[0].avg_m = t->heights_m;
     return FT_OK;
 }
 
@@ -543,34 +560,37 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
     if (t->unit != FT_UNIT_METRE && t->unit != FT_UNIT_DEGREE) {
         return ft_fail(err, FT_ERR_ARG, "%s: spacing unit %d unknown", name, (int)t->unit);
     }
-    if (!isfinite(t->spacing_x) || !isfinite(t->spacing_y) || !(t->spacing_x > 0.0) ||
-        !(t->spacing_y > 0.0) || !isfinite(t->origin_x) || !isfinite(t->origin_y) ||
-        !isfinite(t->anchor_lat_deg) || !isfinite(t->anchor_lon_deg)) {
-        return ft_fail(err, FT_ERR_NUMERIC, "%s: spacing/origin/anchor not finite and positive",
-                       name);
+    /* Everything the reader checks, checked here with the same functions:
+     * never write a file the runtime would refuse. */
+    {
+        ft_terrain frame = *t;
+        ft_status fst = ft_terrain_derive_frame(&frame, err);
+        if (fst != FT_OK) {
+            return prefix_name(err, fst, name);
+        }
     }
-    size_t crs_len = 0u;
-    while (crs_len < FT_CRS_TEXT_MAX && t->crs[crs_len] != '\0') {
-        ++crs_len;
-    }
-    if (crs_len >= FT_CRS_TEXT_MAX) {
-        return ft_fail(err, FT_ERR_ARG, "%s: crs text is not NUL-terminated", name);
-    }
-    tfile_array arr[FT_TFILE_ARRAYS_MAX];
-    uint32_t n_arr = 0u;
-    ft_status st = collect_arrays(t, name, arr, &n_arr, err);
+    ft_status st = ft_terrain_check_crs(t->crs, sizeof t->crs, name, err);
     if (st != FT_OK) {
         return st;
     }
-    /* Heights must be finite and the range must match them: the loader
-     * rejects anything else, so refuse to write it. */
+    size_t crs_len = strlen(t->crs);
+    tfile_array arr[FT_TFILE_ARRAYS_MAX];
+    uint32_t n_arr = 0u;
+    st = collect_arrays(t, name, arr, &n_arr, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    st = ft_terrain_check_heights(t->heights_m, t->width, t->height, name, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    st = ft_pyramid_check(t, name, err);
+    if (st != FT_OK) {
+        return st;
+    }
     float lo = t->heights_m[0], hi = t->heights_m[0];
     for (size_t k = 0u; k < arr[0].count; ++k) {
         float v = t->heights_m[k];
-        if (!isfinite(v)) {
-            return ft_fail(err, FT_ERR_NUMERIC, "%s: height at row %zu col %zu is not finite",
-                           name, k / t->width, k % t->width);
-        }
         lo = v < lo ? v : lo;
         hi = v > hi ? v : hi;
     }

@@ -28,7 +28,14 @@
  * Loading checks: magic, version, header size, header crc, dimensions within
  * FT_GRID_SIDE_MIN..MAX, level counts, finite spacing/origin, file size ==
  * header + payload (truncated -> FT_ERR_TRUNCATED, longer -> FT_ERR_OVERSIZED),
- * payload crc, every height finite. Never trusts a size before checking it. */
+ * payload crc, every height finite. Never trusts a size before checking it.
+ * The crcs guard transport, not meaning, so the content is checked too:
+ * probe range-checks every derived quantity (cell size, extent, world
+ * origin, anchor; ft_terrain_derive_frame) and the crs text
+ * (ft_terrain_check_crs); the payload load checks every height against
+ * FT_HEIGHT_MIN_M..MAX_M (ft_terrain_check_heights) and the pyramids against
+ * the heights (ft_pyramid_check) before any method trusts them. The writer
+ * runs the same checks, so it never writes a file the reader refuses. */
 #ifndef FT_TERRAIN_FILE_H
 #define FT_TERRAIN_FILE_H
 

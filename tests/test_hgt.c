@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L
 /* test_hgt.c - SRTM .hgt reader on in-memory images and the real tiles.
  *
  * In memory: a 5x5 tile with known values and voids checks the row flip
@@ -209,7 +210,9 @@ int main(void)
                 g[iy * 5 + ix] = (v == -32768) ? 0.0f : (float)v;
             }
         int av = 0;
-        CHECK(ft_void_fill(g, m, 5, 5, &av) == 4u);
+        uint32_t fs[64];
+        REQUIRE(ft_void_fill_scratch_bytes(5, 5) <= sizeof fs);
+        CHECK(ft_void_fill(g, m, 5, 5, fs, sizeof fs, &av) == 4u);
         CHECK(memcmp(g, t.heights_m, sizeof g) == 0);
         /* south-east corner void (grid 4,0): W=530 (d1), N=440 (d1), NW=430 (d sqrt2) */
         double s2 = sqrt(2.0);
@@ -279,6 +282,39 @@ int main(void)
         CHECK(st == FT_ERR_FORMAT && strstr(err.text, "all 4 samples are void") != NULL);
         free(t.heights_m);
     }
+    /* all 32767: outside -1000..9000 m, refused (the importer refuses the
+     * same file through GDAL, tests/test_import.c) */
+    {
+        uint8_t high[8];
+        for (int k = 0; k < 4; ++k) be16(high + 2 * k, 32767);
+        st = load_mem(high, sizeof high, "N46W122.hgt", &t, &err);
+        CHECK(st == FT_ERR_FORMAT && strstr(err.text, "32767") != NULL &&
+              strstr(err.text, "-1000..9000") != NULL);
+        free(t.heights_m);
+    }
+    /* 1201 x 1201 with one valid sample: the void fill is linear in the grid
+     * (the ray walk it replaced took about 5 s here). */
+    {
+        enum { S = 1201 };
+        uint8_t *one = malloc((size_t)S * S * 2u);
+        REQUIRE(one != NULL);
+        for (size_t k = 0; k < (size_t)S * S; ++k) be16(one + 2u * k, -32768);
+        be16(one + 2u * ((size_t)600 * S + 17u), 812);
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
+        st = load_mem(one, (size_t)S * S * 2u, "N46W122.hgt", &t, &err);
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        double dt = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+        printf("  1201x1201 with one valid sample loaded in %.3f s\n", dt);
+        CHECK(st == FT_OK);
+        CHECK(dt < 1.0);
+        if (st == FT_OK) {
+            CHECK(t.void_count == (uint32_t)(S * S - 1));
+            CHECK(t.min_height_m == 812.0f && t.max_height_m == 812.0f);
+        }
+        free(t.heights_m);
+        free(one);
+    }
     /* stream shorter than its declared size */
     {
         ft_reader r;
@@ -289,7 +325,7 @@ int main(void)
         REQUIRE(ft_hgt_probe(&r, "N46W122.hgt", &tt, &err) == FT_OK);
         m.size_bytes = 40; /* data ends early */
         float h[25];
-        uint8_t scratch[64];
+        uint64_t scratch[64]; /* row + mask + void-fill line state, 8-byte aligned */
         tt.heights_m = h;
         CHECK(ft_hgt_load(&r, &tt, scratch, sizeof scratch, &err) == FT_ERR_TRUNCATED);
         CHECK(strstr(err.text, "N46W122.hgt") != NULL);

@@ -37,6 +37,51 @@ static uint32_t umin(uint32_t a, uint32_t b)
     return a < b ? a : b;
 }
 
+/* ft_pyramid_check: a fresh build passes; one node changed at each level
+ * (min raised, max lowered, min above max, an avg outside its children) is
+ * caught, and the message names that level and node. */
+static void check_consistency(ft_terrain *t)
+{
+    ft_error err;
+    CHECK(ft_pyramid_check(t, "p", &err) == FT_OK);
+    char want[96];
+    for (uint32_t l = 0; l < t->pyr.minmax_levels; ++l) {
+        ft_pyramid_level *lv = &t->pyr.minmax[l];
+        uint32_t i = lv->width / 2u, j = lv->height - 1u;
+        size_t k = (size_t)j * lv->width + i;
+        (void)snprintf(want, sizeof want, "min/max pyramid level %u node (x %u, y %u)", l, i, j);
+        for (int mode = 0; mode < 3; ++mode) {
+            float keep_min = lv->min_m[k], keep_max = lv->max_m[k];
+            if (mode == 0) lv->min_m[k] = keep_min + 0.5f;
+            if (mode == 1) lv->max_m[k] = keep_max - 0.5f;
+            if (mode == 2) {
+                lv->min_m[k] = keep_max;
+                lv->max_m[k] = keep_min;
+            }
+            int hit = ft_pyramid_check(t, "p", &err) == FT_ERR_FORMAT &&
+                      strstr(err.text, want) != NULL;
+            /* a level 0 node whose cell is flat has min == max: swapping is a no-op */
+            if (!(mode == 2 && keep_min == keep_max)) {
+                if (!hit) fprintf(stderr, "mode %d: wanted \"%s\", got \"%s\"\n", mode, want, err.text);
+                CHECK(hit);
+            }
+            lv->min_m[k] = keep_min;
+            lv->max_m[k] = keep_max;
+        }
+    }
+    for (uint32_t l = 1; l < t->pyr.avg_levels; ++l) {
+        ft_pyramid_level *lv = &t->pyr.avg[l];
+        size_t k = (size_t)(lv->height - 1u) * lv->width;
+        float keep = lv->avg_m[k];
+        lv->avg_m[k] = 1.0e6f;
+        (void)snprintf(want, sizeof want, "avg pyramid level %u node (x 0, y %u)", l,
+                       lv->height - 1u);
+        CHECK(ft_pyramid_check(t, "p", &err) == FT_ERR_FORMAT && strstr(err.text, want) != NULL);
+        lv->avg_m[k] = keep;
+    }
+    CHECK(ft_pyramid_check(t, "p", &err) == FT_OK);
+}
+
 static void check_grid(uint32_t w, uint32_t h, int pattern)
 {
     ft_terrain t;
@@ -180,6 +225,7 @@ static void check_grid(uint32_t w, uint32_t h, int pattern)
     }
     CHECK(t.min_height_m == gmin);
     CHECK(t.max_height_m == gmax);
+    check_consistency(&t);
     free(store);
     free(t.heights_m);
 }

@@ -46,6 +46,37 @@ static void fix_payload_crc(uint8_t *f, size_t bytes)
     fix_header_crc(f);
 }
 
+static void put64d(uint8_t *p, double d)
+{
+    uint64_t u;
+    memcpy(&u, &d, sizeof u);
+    put32(p, (uint32_t)u);
+    put32(p + 4, (uint32_t)(u >> 32));
+}
+
+static void put32f(uint8_t *p, float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    put32(p, u);
+}
+
+static float get32f(const uint8_t *p)
+{
+    uint32_t u = get32(p);
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+/* File offset of a pyramid array of `t` (pointers into its pyramid block,
+ * which starts right after the heights in the payload). */
+static size_t pyr_offset(const ft_terrain *t, const float *array)
+{
+    const float *block = t->pyr.avg[1].avg_m;
+    return 256u + (size_t)W * H * 4u + (size_t)(array - block) * 4u;
+}
+
 static void make_terrain(ft_terrain *t)
 {
     memset(t, 0, sizeof *t);
@@ -133,6 +164,19 @@ static void expect_fail(const char *what, const uint8_t *data, size_t bytes, uin
     if (!in_probe) free_terrain(&t);
 }
 
+/* Writes `bytes` of `data` to FT_TEST_OUT_DIR/name, for the CLI check in
+ * tests/ftt_cli_reject.cmake (fixterrain render must refuse these and never
+ * print a non-finite number into --stats). */
+static void save_case(const char *name, const uint8_t *data, size_t bytes)
+{
+    char path[512];
+    (void)snprintf(path, sizeof path, "%s/%s", FT_TEST_OUT_DIR, name);
+    FILE *fp = fopen(path, "wb");
+    REQUIRE(fp != NULL);
+    REQUIRE(fwrite(data, 1, bytes, fp) == bytes);
+    REQUIRE(fclose(fp) == 0);
+}
+
 static uint8_t *copy_file(void)
 {
     uint8_t *c = (uint8_t *)malloc(g_file_bytes + 16u);
@@ -166,6 +210,8 @@ int main(void)
     CHECK(memcmp(g_file, "FXTERR\r\n", 8) == 0);
     CHECK(get32(g_file + 8) == 1u);
     CHECK(get32(g_file + 16) == W && get32(g_file + 20) == H);
+
+    save_case("ftt_good.ftt", g_file, g_file_bytes);
 
     /* ---- round trip ---- */
     {
@@ -347,6 +393,270 @@ int main(void)
     expect_fail("header_bytes", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
                 "header_bytes is 128");
     free(f);
+
+    /* ---- content that a recomputed crc does not make true ---- */
+    /* min/max pyramids zeroed: every level 0 node must equal its cell's
+     * samples; the first node is named. */
+    f = copy_file();
+    for (uint32_t l = 0; l < src.pyr.minmax_levels; ++l) {
+        size_t n = (size_t)src.pyr.minmax[l].width * src.pyr.minmax[l].height * 4u;
+        memset(f + pyr_offset(&src, src.pyr.minmax[l].min_m), 0, n);
+        memset(f + pyr_offset(&src, src.pyr.minmax[l].max_m), 0, n);
+    }
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("min/max pyramids zeroed", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "min/max pyramid level 0 node (x 0, y 0)");
+    save_case("ftt_minmax_zeroed.ftt", f, g_file_bytes);
+    free(f);
+
+    /* min and max swapped at every level: min > max at the first node */
+    f = copy_file();
+    for (uint32_t l = 0; l < src.pyr.minmax_levels; ++l) {
+        size_t n = (size_t)src.pyr.minmax[l].width * src.pyr.minmax[l].height * 4u;
+        memcpy(f + pyr_offset(&src, src.pyr.minmax[l].min_m), src.pyr.minmax[l].max_m, n);
+        memcpy(f + pyr_offset(&src, src.pyr.minmax[l].max_m), src.pyr.minmax[l].min_m, n);
+    }
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("min/max pyramids reversed", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "level 0 node (x 0, y 0): min");
+    save_case("ftt_minmax_reversed.ftt", f, g_file_bytes);
+    free(f);
+
+    /* one node deep in the pyramid no longer bounds its children: named by
+     * level, x and y */
+    f = copy_file();
+    {
+        const ft_pyramid_level *lv = &src.pyr.minmax[2];
+        REQUIRE(lv->width > 3u && lv->height > 1u);
+        size_t at = pyr_offset(&src, lv->max_m) + 4u * (1u * lv->width + 3u);
+        put32f(f + at, get32f(f + at) - 5.0f);
+    }
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("max node below its children", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "min/max pyramid level 2 node (x 3, y 1)");
+    free(f);
+
+    /* the top node claims more than the cells hold (a looser bound is still
+     * not the documented pyramid) */
+    f = copy_file();
+    {
+        const ft_pyramid_level *lv = &src.pyr.minmax[src.pyr.minmax_levels - 1u];
+        put32f(f + pyr_offset(&src, lv->max_m), 8000.0f);
+    }
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("top max too high", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "children span");
+    free(f);
+
+    /* an avg node outside its children's range */
+    f = copy_file();
+    put32f(f + pyr_offset(&src, src.pyr.avg[1].avg_m) + 4u * 2u, -500.0f);
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("avg node off its children", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "avg pyramid level 1 node (x 2, y 0)");
+    free(f);
+
+    /* heights: finite but outside the range every reader and the importer
+     * share */
+    f = copy_file();
+    put32f(f + 256 + 4u * (4u * W + 6u), 3.0e38f);
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("height 3e38", f, g_file_bytes, g_file_bytes, FT_ERR_NUMERIC, 0,
+                "height 3e+38 m at row 4 col 6 (row 0 = south) is outside -12000..9000 m");
+    free(f);
+    f = copy_file();
+    put32f(f + 108, 3.0e38f); /* header max_height_m */
+    fix_header_crc(f);
+    expect_fail("header max 3e38", f, g_file_bytes, g_file_bytes, FT_ERR_NUMERIC, 1,
+                "-12000..9000");
+    free(f);
+
+    /* spacing_x (offset 40) = 1e305 in a metre file: cell size out of range */
+    f = copy_file();
+    put64d(f + 40, 1e305);
+    fix_header_crc(f);
+    expect_fail("spacing_x 1e305", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "test.ftt: terrain cell_x_m 1e+305 m is outside 0.001..200000 m");
+    save_case("ftt_spacing_1e305.ftt", f, g_file_bytes);
+    free(f);
+    f = copy_file();
+    put64d(f + 48, 1e308);
+    fix_header_crc(f);
+    expect_fail("spacing_y 1e308", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "cell_y_m 1e+308 m is outside");
+    save_case("ftt_spacing_1e308.ftt", f, g_file_bytes);
+    free(f);
+    /* cell size fine, but the grid reaches past the coordinate range */
+    f = copy_file();
+    put64d(f + 40, 1.0e5);
+    put64d(f + 56, 9.99e7);
+    fix_header_crc(f);
+    expect_fail("east edge past 1e8 m", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "east edge x_m");
+    free(f);
+    f = copy_file();
+    put64d(f + 48, 1.9e5); /* 22 * 190 km: extent 4.18e6 m is fine ... */
+    put64d(f + 64, -1.5e8); /* ... origin_y is not */
+    fix_header_crc(f);
+    expect_fail("origin_y -1.5e8 m", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "origin_world_y_m -1.5e+08 m is outside -1e+08..1e+08 m");
+    free(f);
+
+    /* degree files: origin_x (offset 56) = 1e15 is range-checked before it
+     * becomes the anchor */
+    f = copy_file();
+    put32(f + 24, 1u); /* unit degree */
+    put64d(f + 40, 1.0 / 1200.0);
+    put64d(f + 48, 1.0 / 1200.0);
+    put64d(f + 56, 8.0);
+    put64d(f + 64, 46.0);
+    fix_header_crc(f);
+    {
+        /* first the plausible degree file loads, with a finite frame */
+        ft_terrain t;
+        int in_probe = 0;
+        ft_status st = load_bytes(f, g_file_bytes, g_file_bytes, &t, &err, &in_probe);
+        if (st != FT_OK) fprintf(stderr, "degree file: %s\n", err.text);
+        CHECK(st == FT_OK);
+        CHECK(t.anchor_lon_deg == 8.0 && t.anchor_lat_deg == 46.0);
+        CHECK_NEAR(t.cell_y_m, 92.66, 0.01);
+        if (!in_probe) free_terrain(&t);
+    }
+    put64d(f + 56, 1e15);
+    fix_header_crc(f);
+    expect_fail("degree origin_x 1e15", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "origin_x (longitude) 1e+15 deg is outside -360..360 deg");
+    save_case("ftt_deg_origin_1e15.ftt", f, g_file_bytes);
+    put64d(f + 56, 8.0);
+    put64d(f + 64, 89.99);
+    fix_header_crc(f);
+    expect_fail("degree grid past the pole", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "northern edge");
+    put64d(f + 64, 46.0);
+    put64d(f + 40, 20.0); /* 36 * 20 deg of longitude */
+    fix_header_crc(f);
+    expect_fail("degree lon extent 720", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "longitude extent");
+    free(f);
+
+    /* crs with a non-ASCII byte (what a UTF-8 name would leave) */
+    f = copy_file();
+    memcpy(f + 128, "R\xc3\xa9seau", 8);
+    fix_header_crc(f);
+    expect_fail("crs non-ASCII", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 1,
+                "crs has a non-printable byte 0xc3 at offset 1");
+    free(f);
+
+    /* Nothing non-finite reaches a caller (the --stats JSON prints these):
+     * every f64 header field set to hostile values, crc fixed; whatever the
+     * probe accepts has finite derived quantities inside the ranges. */
+    {
+        static const double hostile[] = {0.0, -0.0, 1e-320, 1e-9, 1e-3, 1.0, 89.5, 359.0,
+                                         1e5, 2e5, 1e7, 9.9e7, 1e8, 1e15, 1e305, 1e308,
+                                         -1e308, INFINITY, -INFINITY, NAN, -1.0, -1e5};
+        const size_t nh = sizeof hostile / sizeof hostile[0];
+        unsigned accepted = 0, tried = 0;
+        for (uint32_t unit = 0; unit < 2u; ++unit) {
+            for (int field = 0; field < 6; ++field) {
+                for (size_t k = 0; k < nh; ++k) {
+                    f = copy_file();
+                    put32(f + 24, unit);
+                    if (unit == 1u) {
+                        put64d(f + 40, 1.0 / 1200.0);
+                        put64d(f + 48, 1.0 / 1200.0);
+                        put64d(f + 56, 8.0);
+                        put64d(f + 64, 46.0);
+                    }
+                    put64d(f + 40 + 8 * field, hostile[k]);
+                    fix_header_crc(f);
+                    ft_reader r;
+                    ft_mem_reader m;
+                    ft_terrain t;
+                    ft_tfile_header hdr;
+                    ft_mem_reader_init(&r, &m, f, g_file_bytes, "hostile.ftt");
+                    ++tried;
+                    if (ft_tfile_probe(&r, &t, &hdr, &err) == FT_OK) {
+                        ++accepted;
+                        int fin = isfinite(t.cell_x_m) && isfinite(t.cell_y_m) &&
+                                  isfinite(t.origin_world_x_m) && isfinite(t.origin_world_y_m) &&
+                                  isfinite(t.anchor_lat_deg) && isfinite(t.anchor_lon_deg) &&
+                                  isfinite(t.min_height_m) && isfinite(t.max_height_m);
+                        double ex = t.origin_world_x_m + (double)(W - 1u) * t.cell_x_m;
+                        double ny = t.origin_world_y_m + (double)(H - 1u) * t.cell_y_m;
+                        int in_range = t.cell_x_m >= FT_CELL_MIN_M &&
+                                       t.cell_x_m <= FT_CELL_MAX_M &&
+                                       t.cell_y_m >= FT_CELL_MIN_M &&
+                                       t.cell_y_m <= FT_CELL_MAX_M &&
+                                       fabs(ex) <= FT_COORD_MAX_M && fabs(ny) <= FT_COORD_MAX_M;
+                        if (!fin || !in_range) {
+                            fprintf(stderr, "hostile unit %u field %d value %g accepted: cell %g x "
+                                            "%g, origin %g %g\n",
+                                    unit, field, hostile[k], t.cell_x_m, t.cell_y_m,
+                                    t.origin_world_x_m, t.origin_world_y_m);
+                        }
+                        CHECK(fin && in_range);
+                    } else {
+                        CHECK(err.text[0] != '\0');
+                    }
+                    free(f);
+                }
+            }
+        }
+        printf("  hostile header values: %u tried, %u accepted, all finite and in range\n",
+               tried, accepted);
+        CHECK(accepted > 0u && accepted < tried);
+    }
+
+    /* ---- the writer refuses what the reader would refuse ---- */
+    {
+        ft_writer w;
+        ft_mem_writer mw;
+        uint8_t *out = (uint8_t *)malloc(cap);
+        REQUIRE(out != NULL);
+        float keep = src.heights_m[7];
+        src.heights_m[7] = 3.0e38f;
+        ft_mem_writer_init(&w, &mw, out, cap, "w.ftt");
+        CHECK(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_ERR_NUMERIC);
+        CHECK(strstr(err.text, "w.ftt: height 3e+38 m at row 0 col 7") != NULL);
+        CHECK(mw.pos == 0u);
+        src.heights_m[7] = keep;
+        /* heights changed after the pyramids were built */
+        float keep11 = src.heights_m[W + 1u];
+        src.heights_m[W + 1u] = 5000.0f;
+        ft_mem_writer_init(&w, &mw, out, cap, "w.ftt");
+        CHECK(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_ERR_FORMAT);
+        CHECK(strstr(err.text, "min/max pyramid level 0 node (x 0, y 0)") != NULL);
+        src.heights_m[W + 1u] = keep11;
+        char crs_keep[FT_CRS_TEXT_MAX];
+        memcpy(crs_keep, src.crs, sizeof crs_keep);
+        strcpy(src.crs, "R\xc3\xa9seau");
+        ft_mem_writer_init(&w, &mw, out, cap, "w.ftt");
+        CHECK(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_ERR_FORMAT);
+        CHECK(strstr(err.text, "non-printable byte 0xc3") != NULL);
+        memcpy(src.crs, crs_keep, sizeof crs_keep);
+        double sp = src.spacing_x;
+        src.spacing_x = 1e305;
+        ft_mem_writer_init(&w, &mw, out, cap, "w.ftt");
+        CHECK(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_ERR_FORMAT);
+        CHECK(strstr(err.text, "w.ftt: terrain cell_x_m") != NULL);
+        src.spacing_x = sp;
+        ft_mem_writer_init(&w, &mw, out, cap, "w.ftt");
+        CHECK(ft_tfile_write(&src, -32768.0f, &w, &err) == FT_OK);
+        free(out);
+    }
+    /* crs sanitising (what the importer stores for a non-ASCII name) */
+    {
+        char out[FT_CRS_TEXT_MAX];
+        CHECK(ft_terrain_sanitize_crs("R\xc3\xa9seau g\xc3\xa9od\xc3\xa9sique fran\xc3\xa7" "ais",
+                                      out) == 4u);
+        CHECK(strcmp(out, "R?seau g?od?sique fran?ais") == 0);
+        CHECK(ft_terrain_check_crs(out, sizeof out, "x", &err) == FT_OK);
+        CHECK(ft_terrain_sanitize_crs("EPSG:4326", out) == 0u && strcmp(out, "EPSG:4326") == 0);
+        char longname[200];
+        memset(longname, 'a', sizeof longname - 1u);
+        longname[sizeof longname - 1u] = '\0';
+        CHECK(ft_terrain_sanitize_crs(longname, out) == 0u && strlen(out) == FT_CRS_TEXT_MAX - 1u);
+    }
 
     free(g_file);
     free_terrain(&src);

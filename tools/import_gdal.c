@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dem_hgt.h"
 #include "platform_api.h"
 #include "pyramid.h"
 #include "terrain.h"
@@ -54,11 +55,21 @@ static int describe_crs(GDALDatasetH ds, double x, double y, ft_terrain *t, char
     }
     const char *auth = OSRGetAuthorityName(srs, NULL);
     const char *code = OSRGetAuthorityCode(srs, NULL);
+    /* The runtime takes printable ASCII only (ft_terrain_check_crs): a name
+     * such as "Réseau géodésique français" is stored with each run of other
+     * bytes replaced by '?' (ft_terrain_sanitize_crs), and the user is told. */
+    char raw[256];
     if (auth != NULL && code != NULL) {
-        (void)snprintf(t->crs, sizeof t->crs, "%s:%s", auth, code);
+        (void)snprintf(raw, sizeof raw, "%s:%s", auth, code);
     } else {
         const char *name = OSRGetName(srs);
-        (void)snprintf(t->crs, sizeof t->crs, "%.63s", name != NULL ? name : "unknown");
+        (void)snprintf(raw, sizeof raw, "%s", name != NULL ? name : "unknown");
+    }
+    if (ft_terrain_sanitize_crs(raw, t->crs) > 0u || strlen(raw) >= sizeof t->crs) {
+        fprintf(stderr,
+                "fixterrain import: warning: CRS name \"%s\" stored as \"%s\" (printable ASCII, "
+                "at most %u bytes)\n",
+                raw, t->crs, FT_CRS_TEXT_MAX - 1u);
     }
     if (OSRIsGeographic(srs)) {
         t->unit = FT_UNIT_DEGREE;
@@ -93,6 +104,14 @@ static int describe_crs(GDALDatasetH ds, double x, double y, ft_terrain *t, char
     return ok;
 }
 
+/* The void rule of the header comment: NaN/Inf, the band's nodata value,
+ * -32768 in an Int16 band. */
+static int void_value(float v, int has_nodata, double nodata, int int16)
+{
+    return !isfinite(v) || (has_nodata && (double)v == (double)(float)nodata) ||
+           (int16 && v == -32768.0f);
+}
+
 int ft_cmd_import(int argc, char **argv)
 {
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
@@ -108,6 +127,7 @@ int ft_cmd_import(int argc, char **argv)
     float *heights = NULL;
     uint8_t *voids = NULL;
     void *pyr = NULL;
+    void *fill_scratch = NULL;
     ft_terrain t;
     ft_error err;
     char why[256] = "";
@@ -161,13 +181,19 @@ int ft_cmd_import(int argc, char **argv)
         fprintf(stderr, "fixterrain import: %s: %s\n", in, err.text);
         goto close_dataset;
     }
+    if (ft_terrain_check_crs(t.crs, sizeof t.crs, in, &err) != FT_OK) {
+        fprintf(stderr, "fixterrain import: %s\n", err.text);
+        goto close_dataset;
+    }
 
     const size_t n = (size_t)w * (size_t)h;
     heights = malloc(n * sizeof(float));
     voids = malloc(n);
     size_t pyr_bytes = ft_pyramid_bytes(t.width, t.height);
     pyr = aligned_alloc(64, (pyr_bytes + 63u) & ~(size_t)63u);
-    if (heights == NULL || voids == NULL || pyr == NULL) {
+    const size_t fill_bytes = ft_void_fill_scratch_bytes(t.width, t.height);
+    fill_scratch = malloc(fill_bytes);
+    if (heights == NULL || voids == NULL || pyr == NULL || fill_scratch == NULL) {
         fprintf(stderr, "fixterrain import: %s: out of memory for %dx%d samples\n", in, w, h);
         goto free_buffers;
     }
@@ -175,6 +201,14 @@ int ft_cmd_import(int argc, char **argv)
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
     const int int16 = GDALGetRasterDataType(band) == GDT_Int16;
+    /* Heights the runtime refuses are refused here (not imported and then
+     * rejected at load): the shared range of terrain.h, or SRTM's own range
+     * for an .hgt, which the runtime's .hgt reader applies. */
+    GDALDriverH drv = GDALGetDatasetDriver(ds);
+    const char *drv_name = drv != NULL ? GDALGetDriverShortName(drv) : NULL;
+    const int srtm = drv_name != NULL && strcmp(drv_name, "SRTMHGT") == 0;
+    const double h_lo = srtm ? (double)FT_HGT_MIN_VALID_M : FT_HEIGHT_MIN_M;
+    const double h_hi = srtm ? (double)FT_HGT_MAX_VALID_M : FT_HEIGHT_MAX_M;
     /* Read north-up rows straight into their flipped place, row by row. */
     for (int row = 0; row < h; ++row) {
         int dst_row = north_up ? h - 1 - row : row;
@@ -184,12 +218,24 @@ int ft_cmd_import(int argc, char **argv)
                     CPLGetLastErrorMsg());
             goto free_buffers;
         }
+        const float *got = heights + (size_t)dst_row * (size_t)w;
+        for (int c = 0; c < w; ++c) {
+            float v = got[c];
+            int is_void = void_value(v, has_nodata, nodata, int16);
+            int ok = srtm ? ft_hgt_height_ok((double)v) : ft_terrain_height_ok((double)v);
+            if (!is_void && !ok) {
+                fprintf(stderr,
+                        "fixterrain import: %s: height %g m at row %d col %d is outside the "
+                        "%g..%g m the runtime accepts%s (mark it nodata or fix the source)\n",
+                        in, (double)v, row, c, h_lo, h_hi, srtm ? " from an SRTM .hgt" : "");
+                goto free_buffers;
+            }
+        }
     }
     uint32_t void_count = 0;
     for (size_t i = 0; i < n; ++i) {
         float v = heights[i];
-        int is_void = !isfinite(v) || (has_nodata && (double)v == (double)(float)nodata) ||
-                      (int16 && v == -32768.0f);
+        int is_void = void_value(v, has_nodata, nodata, int16);
         voids[i] = (uint8_t)is_void;
         void_count += (uint32_t)is_void;
         if (is_void) {
@@ -197,9 +243,15 @@ int ft_cmd_import(int argc, char **argv)
         }
     }
     int all_void = 0;
-    (void)ft_void_fill(heights, voids, t.width, t.height, &all_void);
+    uint32_t filled = ft_void_fill(heights, voids, t.width, t.height, fill_scratch, fill_bytes,
+                                   &all_void);
     if (all_void) {
         fprintf(stderr, "fixterrain import: %s: every sample is a void\n", in);
+        goto free_buffers;
+    }
+    if (filled != void_count) {
+        fprintf(stderr, "fixterrain import: %s: void fill filled %u of %u voids\n", in, filled,
+                void_count);
         goto free_buffers;
     }
     t.void_count = void_count;
@@ -229,6 +281,7 @@ int ft_cmd_import(int argc, char **argv)
     rc = FT_EXIT_OK;
 
 free_buffers:
+    free(fill_scratch);
     free(pyr);
     free(voids);
     free(heights);

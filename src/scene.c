@@ -93,6 +93,34 @@ ft_status ft_pose_check(const ft_pose *p, const char *where, ft_error *err)
     return FT_OK;
 }
 
+/* The pose field a CAN quantity drives (-1: a rate or velocity, no pose field). */
+static int can_qty_pose_field(ft_pose_qty q)
+{
+    switch (q) {
+    case FT_QTY_LAT: return FT_POSE_LAT;
+    case FT_QTY_LON: return FT_POSE_LON;
+    case FT_QTY_ALT: return FT_POSE_ALT;
+    case FT_QTY_HEADING: return FT_POSE_HEADING;
+    case FT_QTY_PITCH: return FT_POSE_PITCH;
+    case FT_QTY_ROLL: return FT_POSE_ROLL;
+    default: return -1;
+    }
+}
+
+/* The CANaerospace default map accepts latitudes to +-90; the decoder's
+ * valid range of a position or attitude entry is kept inside the pose range
+ * table, so CAN can deliver no pose a scene could not state. */
+static void can_map_to_pose_ranges(ft_can_map *m)
+{
+    for (uint32_t i = 0; i < m->count && i < FT_CAN_MAP_MAX; ++i) {
+        const int f = can_qty_pose_field(m->e[i].qty);
+        if (f < 0) continue;
+        const ft_pose_range *r = &k_pose_range[f];
+        m->e[i].min_value = fmax(m->e[i].min_value, r->min);
+        m->e[i].max_value = fmin(m->e[i].max_value, r->max);
+    }
+}
+
 void ft_scene_defaults(ft_scene *s)
 {
     memset(s, 0, sizeof *s);
@@ -146,6 +174,7 @@ void ft_scene_defaults(ft_scene *s)
     s->can_backup_iface[0] = '\0';
     s->can_failover_ms = 200;
     ft_canaero_default_map(&s->can_map);
+    can_map_to_pose_ranges(&s->can_map);
     s->gpio_chip[0] = '\0';
     for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
         s->gpio_input_line[i] = -1;
@@ -598,6 +627,7 @@ static int on_key(void *user, const char *section, const char *key, const char *
                 /* only the CAN map: [gpio], [build] and the rest keep what
                  * the file said before this line */
                 ft_canaero_default_map(&s->can_map);
+                can_map_to_pose_ranges(&s->can_map);
             } else {
                 memset(&s->can_map, 0, sizeof s->can_map);
             }
@@ -614,6 +644,14 @@ static int on_key(void *user, const char *section, const char *key, const char *
                 return fail_key(c, section, key, value,
                                 "expected ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY] "
                                 "(id 0..2047, timeout 1..60000 ms, priority 0..255)");
+            }
+            const int f = can_qty_pose_field(e.qty);
+            if (f >= 0 && (e.min_value < k_pose_range[f].min || e.max_value > k_pose_range[f].max)) {
+                char why[128];
+                (void)snprintf(why, sizeof why, "MIN,MAX must lie within pose.%s [%g, %g] %s",
+                               k_pose_range[f].key, k_pose_range[f].min, k_pose_range[f].max,
+                               k_pose_range[f].unit);
+                return fail_key(c, section, key, value, why);
             }
             ft_error e2;
             if (can_map_upsert(&s->can_map, &e, &e2) != FT_OK) {

@@ -262,6 +262,19 @@ int main(void)
         CHECK(parse(text, &a, &err) == FT_OK);
         CHECK(ft_pose_get(&a.pose, (ft_pose_field)f) == r->max);
     }
+    /* CAN is a way a pose enters too: a position or attitude entry's valid
+     * range lies within the table (the default map's latitude is narrowed) */
+    expect_error("[can_map]\nalt = 320,1,-1000,1e300,500\n", "within pose.alt_m [-12000, 1e+06] m");
+    expect_error("[can_map]\nlat = 1036,1,-90,90,500\n", "within pose.lat_deg [-89, 89] deg");
+    expect_error("[can_map]\npitch = 311,1,-91,90,100\n", "can_map.pitch");
+    CHECK(parse("[can_map]\nlat = 1036,1,-89,89,500\nground_speed = 1039,1,0,1e6,500\n", &a,
+                &err) == FT_OK);
+    ft_scene_defaults(&a);
+    for (uint32_t i = 0; i < a.can_map.count; ++i) {
+        if (a.can_map.e[i].qty == FT_QTY_LAT) {
+            CHECK(a.can_map.e[i].min_value == -89.0 && a.can_map.e[i].max_value == 89.0);
+        }
+    }
     ft_scene_defaults(&a);
     a.pose.alt_m = 1e300; /* what a command line could set: validate names it */
     CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG && strstr(err.text, "pose.alt_m") != NULL);

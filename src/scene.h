@@ -81,7 +81,9 @@
  *                         valid in [MIN, MAX], stale after TIMEOUT_MS; replaces
  *                         the quantity's entry with the same id or priority (an
  *                         id mapped to another quantity is an error); at most
- *                         FT_CAN_MAP_MAX (24) entries
+ *                         FT_CAN_MAP_MAX (24) entries; for lat, lon, alt, heading,
+ *                         pitch and roll, [MIN, MAX] lies within the pose range
+ *                         table (the default map's latitude is narrowed to +-89)
  *   gpio.chip             gpiochip name or path (live input; empty = no GPIO)
  *   gpio.freeze_line      input: hold the drawn pose while active [-1 = none, 0..511]
  *   gpio.source_line      input: use can.backup_interface while active

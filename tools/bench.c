@@ -835,7 +835,7 @@ static int write_plot(const bench_opts *o, const ft_scene *base, const char *pat
     memset(&ch, 0, sizeof ch);
     char title[200], paths[256];
     paths_text(paths, sizeof paths);
-    (void)snprintf(title, sizeof title, "%s %ux%u: %s", base->name, base->width_px,
+    (void)snprintf(title, sizeof title, "%.63s %ux%u: %.100s", base->name, base->width_px,
                    base->height_px, paths);
     ch.title = title;
     ch.x_label = "median frame time, ms (LOD selection + draw + readback)";

@@ -40,6 +40,87 @@ const char *ft_gpio_input_name(ft_gpio_input i)
     return ((unsigned)i < FT_GPIO_INPUT_COUNT) ? k_gpio_input_name[i] : "?";
 }
 
+static const ft_pose_range k_pose_range[FT_POSE_FIELD_COUNT] = {
+#define FT_POSE_FIELD_RANGE(id, field, lo, hi, unit) [id] = {#field, lo, hi, unit},
+    FT_POSE_FIELD_LIST(FT_POSE_FIELD_RANGE)
+#undef FT_POSE_FIELD_RANGE
+};
+
+const ft_pose_range *ft_pose_range_of(ft_pose_field f)
+{
+    return ((unsigned)f < FT_POSE_FIELD_COUNT) ? &k_pose_range[f] : NULL;
+}
+
+double *ft_pose_field_ptr(ft_pose *p, ft_pose_field f)
+{
+    switch (f) {
+#define FT_POSE_FIELD_CASE(id, field, lo, hi, unit) \
+    case id: return &p->field;
+        FT_POSE_FIELD_LIST(FT_POSE_FIELD_CASE)
+#undef FT_POSE_FIELD_CASE
+    default: return NULL;
+    }
+}
+
+double ft_pose_get(const ft_pose *p, ft_pose_field f)
+{
+    switch (f) {
+#define FT_POSE_FIELD_GET(id, field, lo, hi, unit) \
+    case id: return p->field;
+        FT_POSE_FIELD_LIST(FT_POSE_FIELD_GET)
+#undef FT_POSE_FIELD_GET
+    default: return NAN;
+    }
+}
+
+int ft_pose_field_ok(ft_pose_field f, double v)
+{
+    const ft_pose_range *r = ft_pose_range_of(f);
+    return r != NULL && isfinite(v) && v >= r->min && v <= r->max;
+}
+
+ft_status ft_pose_check(const ft_pose *p, const char *where, ft_error *err)
+{
+    for (int f = 0; f < FT_POSE_FIELD_COUNT; ++f) {
+        const double v = ft_pose_get(p, (ft_pose_field)f);
+        if (!ft_pose_field_ok((ft_pose_field)f, v)) {
+            const ft_pose_range *r = &k_pose_range[f];
+            return ft_fail(err, FT_ERR_ARG, "%s: pose.%s = %g %s (want a finite value in [%g, %g] %s)",
+                           where, r->key, v, isfinite(v) ? "is out of range" : "is not finite",
+                           r->min, r->max, r->unit);
+        }
+    }
+    return FT_OK;
+}
+
+/* The pose field a CAN quantity drives (-1: a rate or velocity, no pose field). */
+static int can_qty_pose_field(ft_pose_qty q)
+{
+    switch (q) {
+    case FT_QTY_LAT: return FT_POSE_LAT;
+    case FT_QTY_LON: return FT_POSE_LON;
+    case FT_QTY_ALT: return FT_POSE_ALT;
+    case FT_QTY_HEADING: return FT_POSE_HEADING;
+    case FT_QTY_PITCH: return FT_POSE_PITCH;
+    case FT_QTY_ROLL: return FT_POSE_ROLL;
+    default: return -1;
+    }
+}
+
+/* The CANaerospace default map accepts latitudes to +-90; the decoder's
+ * valid range of a position or attitude entry is kept inside the pose range
+ * table, so CAN can deliver no pose a scene could not state. */
+static void can_map_to_pose_ranges(ft_can_map *m)
+{
+    for (uint32_t i = 0; i < m->count && i < FT_CAN_MAP_MAX; ++i) {
+        const int f = can_qty_pose_field(m->e[i].qty);
+        if (f < 0) continue;
+        const ft_pose_range *r = &k_pose_range[f];
+        m->e[i].min_value = fmax(m->e[i].min_value, r->min);
+        m->e[i].max_value = fmin(m->e[i].max_value, r->max);
+    }
+}
+
 void ft_scene_defaults(ft_scene *s)
 {
     memset(s, 0, sizeof *s);
@@ -93,6 +174,7 @@ void ft_scene_defaults(ft_scene *s)
     s->can_backup_iface[0] = '\0';
     s->can_failover_ms = 200;
     ft_canaero_default_map(&s->can_map);
+    can_map_to_pose_ranges(&s->can_map);
     s->gpio_chip[0] = '\0';
     for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
         s->gpio_input_line[i] = -1;
@@ -323,27 +405,16 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return RANGE(parse_f64(value, 1.0, 170.0, &s->fovy_deg), "expected 1..170");
         }
     } else if (strcmp(section, "pose") == 0) {
-        double big = 1e9;
         s->pose_given = 1;
-        if (strcmp(key, "lat_deg") == 0) {
-            return RANGE(parse_f64(value, -89.0, 89.0, &s->pose.lat_deg), "expected -89..89");
-        }
-        if (strcmp(key, "lon_deg") == 0) {
-            return RANGE(parse_f64(value, -360.0, 360.0, &s->pose.lon_deg),
-                         "expected -360..360");
-        }
-        if (strcmp(key, "alt_m") == 0) {
-            return RANGE(parse_f64(value, -12000.0, 1e6, &s->pose.alt_m),
-                         "expected -12000..1e6");
-        }
-        if (strcmp(key, "heading_deg") == 0) {
-            return RANGE(parse_f64(value, -big, big, &s->pose.heading_deg), "not a number");
-        }
-        if (strcmp(key, "pitch_deg") == 0) {
-            return RANGE(parse_f64(value, -90.0, 90.0, &s->pose.pitch_deg), "expected -90..90");
-        }
-        if (strcmp(key, "roll_deg") == 0) {
-            return RANGE(parse_f64(value, -big, big, &s->pose.roll_deg), "not a number");
+        for (int f = 0; f < FT_POSE_FIELD_COUNT; ++f) {
+            const ft_pose_range *r = &k_pose_range[f];
+            if (strcmp(key, r->key) != 0) {
+                continue;
+            }
+            char why[96];
+            (void)snprintf(why, sizeof why, "expected %g..%g %s", r->min, r->max, r->unit);
+            return RANGE(parse_f64(value, r->min, r->max, ft_pose_field_ptr(&s->pose, (ft_pose_field)f)),
+                         why);
         }
     } else if (strcmp(section, "terrain") == 0) {
         if (strcmp(key, "dem") == 0) {
@@ -554,16 +625,10 @@ static int on_key(void *user, const char *section, const char *key, const char *
                 return fail_key(c, section, key, value, "expected 0 or 1");
             }
             if (v) {
+                /* only the CAN map: [gpio], [build] and the rest keep what
+                 * the file said before this line */
                 ft_canaero_default_map(&s->can_map);
-    s->gpio_chip[0] = '\0';
-    for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
-        s->gpio_input_line[i] = -1;
-    }
-    s->gpio_heartbeat_line = -1;
-    s->gpio_active_low = 0;
-    s->gpio_debounce_ms = 10;
-    s->build_inputs = FT_BUILD_INPUT_REPLAY | FT_BUILD_INPUT_CAN | FT_BUILD_INPUT_GPIO;
-    s->build_png = 1;
+                can_map_to_pose_ranges(&s->can_map);
             } else {
                 memset(&s->can_map, 0, sizeof s->can_map);
             }
@@ -580,6 +645,14 @@ static int on_key(void *user, const char *section, const char *key, const char *
                 return fail_key(c, section, key, value,
                                 "expected ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY] "
                                 "(id 0..2047, timeout 1..60000 ms, priority 0..255)");
+            }
+            const int f = can_qty_pose_field(e.qty);
+            if (f >= 0 && (e.min_value < k_pose_range[f].min || e.max_value > k_pose_range[f].max)) {
+                char why[128];
+                (void)snprintf(why, sizeof why, "MIN,MAX must lie within pose.%s [%g, %g] %s",
+                               k_pose_range[f].key, k_pose_range[f].min, k_pose_range[f].max,
+                               k_pose_range[f].unit);
+                return fail_key(c, section, key, value, why);
             }
             ft_error e2;
             if (can_map_upsert(&s->can_map, &e, &e2) != FT_OK) {
@@ -632,12 +705,9 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
     if (!(s->fovy_deg >= 1.0 && s->fovy_deg <= 170.0)) {
         return ft_fail(err, FT_ERR_CONFIG, "view.fovy_deg %g outside 1..170", s->fovy_deg);
     }
-    const ft_pose *p = &s->pose;
-    if (!isfinite(p->lat_deg) || !isfinite(p->lon_deg) || !isfinite(p->alt_m) ||
-        !isfinite(p->heading_deg) || !isfinite(p->pitch_deg) || !isfinite(p->roll_deg) ||
-        fabs(p->lat_deg) > 89.0 || fabs(p->pitch_deg) > 90.0) {
-        return ft_fail(err, FT_ERR_CONFIG,
-                       "pose is not finite or outside |lat| <= 89, |pitch| <= 90 deg");
+    ft_error pose_err;
+    if (ft_pose_check(&s->pose, "scene", &pose_err) != FT_OK) {
+        return ft_fail(err, FT_ERR_CONFIG, "%s", pose_err.text);
     }
     if (s->brute_patch_cells < 1 || s->brute_patch_cells > 180) {
         return ft_fail(err, FT_ERR_CONFIG, "brute.patch_cells %u outside 1..180",
@@ -692,35 +762,37 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
 
 ft_status ft_pose_parse(const char *text, ft_pose *out, ft_error *err)
 {
-    double v[6];
+    double v[FT_POSE_FIELD_COUNT];
     const char *p = text;
-    for (int i = 0; i < 6; ++i) {
+    for (int i = 0; i < FT_POSE_FIELD_COUNT; ++i) {
+        const ft_pose_range *r = &k_pose_range[i];
         char *end = NULL;
-        errno = 0;
-        v[i] = strtod(p, &end);
-        if (end == p || errno != 0 || !isfinite(v[i])) {
+        v[i] = strtod(p, &end); /* 1e999 overflows to inf: caught by the range below */
+        if (end == p) {
             return ft_fail(err, FT_ERR_ARG,
-                           "--pose '%.80s': field %d is not a finite number "
+                           "--pose '%.80s': field %d (%s) is not a number "
                            "(want LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG)",
-                           text, i + 1);
+                           text, i + 1, r->key);
         }
-        if (i < 5 && *end != ',') {
+        if (i < FT_POSE_FIELD_COUNT - 1 && *end != ',') {
             return ft_fail(err, FT_ERR_ARG, "--pose '%.80s': expected 6 comma-separated numbers",
                            text);
         }
-        if (i == 5 && *end != '\0') {
+        if (i == FT_POSE_FIELD_COUNT - 1 && *end != '\0') {
             return ft_fail(err, FT_ERR_ARG, "--pose '%.80s': trailing characters", text);
+        }
+        if (!ft_pose_field_ok((ft_pose_field)i, v[i])) {
+            return ft_fail(err, FT_ERR_ARG,
+                           "--pose '%.80s': field %d, %s = %g, %s (want a finite value in "
+                           "[%g, %g] %s, as pose.%s in a scene)",
+                           text, i + 1, r->key, v[i],
+                           isfinite(v[i]) ? "is out of range" : "is not finite", r->min, r->max,
+                           r->unit, r->key);
         }
         p = end + 1;
     }
-    if (fabs(v[0]) > 89.0 || fabs(v[1]) > 360.0 || fabs(v[4]) > 90.0) {
-        return ft_fail(err, FT_ERR_ARG, "--pose: need |lat| <= 89, |lon| <= 360, |pitch| <= 90");
+    for (int i = 0; i < FT_POSE_FIELD_COUNT; ++i) {
+        *ft_pose_field_ptr(out, (ft_pose_field)i) = v[i];
     }
-    out->lat_deg = v[0];
-    out->lon_deg = v[1];
-    out->alt_m = v[2];
-    out->heading_deg = v[3];
-    out->pitch_deg = v[4];
-    out->roll_deg = v[5];
     return FT_OK;
 }

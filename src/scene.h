@@ -18,7 +18,9 @@
  *   view.width_px, view.height_px   [16, 8192]
  *   view.fovy_deg         [1, 170]
  *   pose.lat_deg [-89,89] pose.lon_deg [-360,360] pose.alt_m [-12000, 1e6]
- *   pose.heading_deg pose.pitch_deg pose.roll_deg     (any finite)
+ *   pose.heading_deg [-1e9,1e9] pose.pitch_deg [-90,90] pose.roll_deg [-1e9,1e9]
+ *                         (FT_POSE_FIELD_LIST: the same ranges for --pose, bench
+ *                         --centre and the CAN map's position/attitude entries)
  *   terrain.dem           path to .ftt or .hgt, relative to the scene file; empty = synthetic
  *   terrain.synth_side    [3, 16385]   terrain.synth_spacing_m (0, 1e5]
  *   terrain.synth_relief_m [0, 9000]   terrain.synth_seed, terrain.synth_octaves [1,16]
@@ -79,7 +81,9 @@
  *                         valid in [MIN, MAX], stale after TIMEOUT_MS; replaces
  *                         the quantity's entry with the same id or priority (an
  *                         id mapped to another quantity is an error); at most
- *                         FT_CAN_MAP_MAX (24) entries
+ *                         FT_CAN_MAP_MAX (24) entries; for lat, lon, alt, heading,
+ *                         pitch and roll, [MIN, MAX] lies within the pose range
+ *                         table (the default map's latitude is narrowed to +-89)
  *   gpio.chip             gpiochip name or path (live input; empty = no GPIO)
  *   gpio.freeze_line      input: hold the drawn pose while active [-1 = none, 0..511]
  *   gpio.source_line      input: use can.backup_interface while active
@@ -215,7 +219,47 @@ ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name,
 /* Range checks across fields (after parsing and command-line overrides). */
 ft_status ft_scene_validate(const ft_scene *s, ft_error *err);
 
-/* Parses "LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG". */
+/* The range of every pose field: one table for every way a pose enters (a
+ * scene's [pose], --pose, bench --centre, the CAN map's position and attitude
+ * entries), so no path can hand the renderer what a scene may not say.
+ * X(id, field of ft_pose, min, max, unit); the order is --pose's order. */
+#define FT_POSE_FIELD_LIST(X)                              \
+    X(FT_POSE_LAT, lat_deg, -89.0, 89.0, "deg")            \
+    X(FT_POSE_LON, lon_deg, -360.0, 360.0, "deg")          \
+    X(FT_POSE_ALT, alt_m, -12000.0, 1e6, "m")              \
+    X(FT_POSE_HEADING, heading_deg, -1e9, 1e9, "deg")      \
+    X(FT_POSE_PITCH, pitch_deg, -90.0, 90.0, "deg")        \
+    X(FT_POSE_ROLL, roll_deg, -1e9, 1e9, "deg")
+
+typedef enum ft_pose_field {
+#define FT_POSE_FIELD_ENUM(id, field, lo, hi, unit) id,
+    FT_POSE_FIELD_LIST(FT_POSE_FIELD_ENUM)
+#undef FT_POSE_FIELD_ENUM
+    FT_POSE_FIELD_COUNT
+} ft_pose_field;
+
+typedef struct ft_pose_range {
+    const char *key; /* "alt_m": the scene key in [pose] */
+    double min, max; /* inclusive */
+    const char *unit;
+} ft_pose_range;
+
+/* The field's range (NULL for an id outside the table). */
+const ft_pose_range *ft_pose_range_of(ft_pose_field f);
+
+/* The field's value in p, or a pointer to it. */
+double ft_pose_get(const ft_pose *p, ft_pose_field f);
+double *ft_pose_field_ptr(ft_pose *p, ft_pose_field f);
+
+/* 1 when v is finite and inside the field's range. */
+int ft_pose_field_ok(ft_pose_field f, double v);
+
+/* FT_ERR_ARG naming the first field of p that is not finite or out of its
+ * range, and that range: "WHERE: pose.alt_m = 1e+300 outside [-12000, 1e+06] m". */
+ft_status ft_pose_check(const ft_pose *p, const char *where, ft_error *err);
+
+/* Parses "LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG"; every field within
+ * FT_POSE_FIELD_LIST (an error names the field and its range). */
 ft_status ft_pose_parse(const char *text, ft_pose *out, ft_error *err);
 
 #endif

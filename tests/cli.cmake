@@ -9,6 +9,12 @@ if(TARGET fixterrain)
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_lean_build.sh ${CMAKE_SOURCE_DIR}
                       ${CMAKE_BINARY_DIR}/lean ${CMAKE_C_COMPILER} $<TARGET_FILE:fixterrain>)
   set_tests_properties(lean_build PROPERTIES TIMEOUT 900)
+
+  # The lean build's profile is read by the runtime's scene parser (configures only).
+  add_test(NAME lean_profile
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_profile.sh ${CMAKE_SOURCE_DIR}
+                      ${CMAKE_BINARY_DIR}/lean-profile ${CMAKE_C_COMPILER} $<TARGET_FILE:fixterrain>)
+  set_tests_properties(lean_profile PROPERTIES TIMEOUT 600)
 endif()
 
 # The whole tree (every option on, tests included) must also build warning-free

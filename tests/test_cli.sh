@@ -24,6 +24,15 @@ expect 2 "--size wants WxH" -- "$bin" render --size 10x10
 expect 2 "unknown backend" -- "$bin" render --backend vulkan
 expect 2 "unknown method" -- "$bin" render --method magic
 expect 2 "6 comma-separated" -- "$bin" render --pose 46,8,3000
+# --pose keeps the scene's ranges (one table): named field and range, nothing drawn
+expect 2 "alt_m = 1e+300, is out of range (want a finite value in [-12000, 1e+06] m" -- \
+  "$bin" render --pose 46.5,8.2,1e300,0,-30,0 --out "$out/pose.png"
+[ -e "$out/pose.png" ] && fail "an out-of-range --pose wrote an image"
+expect 2 "lat_deg = 89.5" -- "$bin" render --pose 89.5,8.2,3000,0,-30,0 --out "$out/pose.png"
+expect 2 "pitch_deg = nan, is not finite" -- "$bin" render --pose 46.5,8.2,3000,0,nan,0 --out "$out/pose.png"
+expect 2 "heading_deg = inf" -- "$bin" render --pose 46.5,8.2,3000,1e999,-30,0 --out "$out/pose.png"
+printf '[pose]\nalt_m = 1e300\n' > "$out/alt.ini"
+expect 1 "pose.alt_m = '1e300': expected -12000..1e+06 m" -- "$bin" render --scene "$out/alt.ini"
 expect 1 "cannot open" -- "$bin" render --scene "$out/none.ini"
 
 # The default scene: no arguments at all, in an empty directory.

@@ -410,23 +410,6 @@ static void test_chart(void)
 #define CSV_COLS_MAX 32
 #define CSV_ROWS_MAX 64
 
-static int split_csv(char *line, char *fields[], int max)
-{
-    int n = 0;
-    char *p = line;
-    for (;;) {
-        if (n >= max) return n;
-        fields[n++] = p;
-        char *c = strchr(p, ',');
-        if (c == NULL) break;
-        *c = '\0';
-        p = c + 1;
-    }
-    char *nl = strpbrk(fields[n - 1], "\r\n");
-    if (nl != NULL) *nl = '\0';
-    return n;
-}
-
 static int col(char *const head[], int n, const char *name)
 {
     for (int i = 0; i < n; ++i) {
@@ -447,17 +430,26 @@ static double num(const char *s)
 static int check_bench(const char *csv, const char *png, int frames, int measured, int nrows,
                        char **rows)
 {
-    FILE *f = fopen(csv, "r");
+    FILE *f = fopen(csv, "rb");
     REQUIRE(f != NULL);
+    static char text[CSV_ROWS_MAX * 1024];
+    const size_t len = fread(text, 1, sizeof text - 1u, f);
+    fclose(f);
+    REQUIRE(len < sizeof text - 1u);
+    text[len] = '\0';
+    /* RFC 4180 records: a quoted field may hold commas, quotes and line ends */
     static char lines[CSV_ROWS_MAX][1024];
     static char *cells[CSV_ROWS_MAX][CSV_COLS_MAX];
     int ncols[CSV_ROWS_MAX];
     int nl = 0;
-    while (nl < CSV_ROWS_MAX && fgets(lines[nl], sizeof lines[nl], f) != NULL) {
-        ncols[nl] = split_csv(lines[nl], cells[nl], CSV_COLS_MAX);
+    const char *at = text;
+    while (nl < CSV_ROWS_MAX) {
+        ncols[nl] = plot_csv_record(&at, lines[nl], sizeof lines[nl], cells[nl], CSV_COLS_MAX);
+        CHECK(ncols[nl] >= 0);
+        if (ncols[nl] <= 0) break;
         ++nl;
     }
-    fclose(f);
+    CHECK(*at == '\0');
     REQUIRE(nl >= 1);
     static const char *const want_head[] = {
         "method", "setting", "paths", "frames", "time_median_ms", "time_p99_ms", "time_max_ms",
@@ -538,6 +530,40 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
     return ft_test_result("test_plot --check-bench");
 }
 
+/* CSV fields: written quoted when they must be, read back unchanged */
+static void test_csv(void)
+{
+    static const char *const field[] = {"pgrid", "grid=200x800 gamma_px=1", "a,b", "say \"hi\"",
+                                        "two\nlines", "cr\r", "", "valley+q\"x.wp"};
+    const int n = (int)(sizeof field / sizeof field[0]);
+    char line[512] = "", one[128];
+    for (int i = 0; i < n; ++i) {
+        REQUIRE(plot_csv_field(one, sizeof one, field[i]));
+        if (i) strcat(line, ",");
+        strcat(line, one);
+    }
+    strcat(line, "\r\nnext,row\n");
+    CHECK(plot_csv_field(one, sizeof one, "a,b") && strcmp(one, "\"a,b\"") == 0);
+    CHECK(plot_csv_field(one, sizeof one, "say \"hi\"") && strcmp(one, "\"say \"\"hi\"\"\"") == 0);
+    CHECK(plot_csv_field(one, sizeof one, "plain") && strcmp(one, "plain") == 0);
+    CHECK(!plot_csv_field(one, 4, "a,b")); /* "a,b" needs 6 bytes */
+    char buf[512];
+    char *cells[16];
+    const char *at = line;
+    CHECK(plot_csv_record(&at, buf, sizeof buf, cells, 16) == n);
+    for (int i = 0; i < n; ++i) CHECK(strcmp(cells[i], field[i]) == 0);
+    CHECK(plot_csv_record(&at, buf, sizeof buf, cells, 16) == 2);
+    CHECK(strcmp(cells[0], "next") == 0 && strcmp(cells[1], "row") == 0);
+    CHECK(plot_csv_record(&at, buf, sizeof buf, cells, 16) == 0);
+    static const char *const bad[] = {"\"open,1\n", "\"a\"b,1\n", "a\"b,1\n"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        at = bad[i];
+        CHECK(plot_csv_record(&at, buf, sizeof buf, cells, 16) == -1);
+    }
+    at = "a,b,c\n";
+    CHECK(plot_csv_record(&at, buf, sizeof buf, cells, 2) == -1); /* more fields than room */
+}
+
 int main(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "--check-bench") == 0) {
@@ -554,5 +580,6 @@ int main(int argc, char **argv)
     test_axes();
     test_png();
     test_chart();
+    test_csv();
     return ft_test_result("test_plot");
 }

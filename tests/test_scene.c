@@ -1,5 +1,6 @@
 /* test_scene.c - the scene file: the embedded default resolves to exactly the
  * documented defaults, every error names the line and key, and ranges hold. */
+#include <math.h>
 #include <string.h>
 
 #include "scene.h"
@@ -161,6 +162,23 @@ int main(void)
           a.gpio_heartbeat_line == 7 && strcmp(a.gpio_chip, "gpiochip1") == 0);
     expect_error("[pose_input]\nhorizon_ms = 5000\n", "expected 0..1000");
 
+    /* [can_map] defaults = 1 resets the CAN map only: a [gpio] or [build]
+     * section before it keeps every key it set */
+    CHECK(parse("[gpio]\nchip = gpiochip2\nfreeze_line = 4\nsource_line = 5\ntest_line = 6\n"
+                "heartbeat_line = 9\nactive_low = 1\ndebounce_ms = 25\n"
+                "[build]\ninputs = replay,gpio\npng = 0\n"
+                "[can_map]\ndefaults = 0\npitch = 311,1,-90,90,100\ndefaults = 1\n",
+                &a, &err) == FT_OK);
+    CHECK(strcmp(a.gpio_chip, "gpiochip2") == 0);
+    CHECK(a.gpio_input_line[FT_GPIO_FREEZE] == 4 && a.gpio_input_line[FT_GPIO_SOURCE] == 5 &&
+          a.gpio_input_line[FT_GPIO_TEST] == 6 && a.gpio_heartbeat_line == 9);
+    CHECK(a.gpio_active_low == 1 && a.gpio_debounce_ms == 25u);
+    CHECK(a.build_inputs == (FT_BUILD_INPUT_REPLAY | FT_BUILD_INPUT_GPIO) && a.build_png == 0);
+    ft_scene_defaults(&b);
+    CHECK(memcmp(&a.can_map, &b.can_map, sizeof a.can_map) == 0); /* the default map again */
+    CHECK(parse("[build]\ninputs = can\n[can_map]\ndefaults = 0\n", &a, &err) == FT_OK);
+    CHECK(a.can_map.count == 0u && a.build_inputs == FT_BUILD_INPUT_CAN);
+
     /* Errors carry the line number, the key and the reason. */
     expect_error("[view]\nwidth_px = 8193\n", "test.ini:2: view.width_px");
     expect_error("[view]\nwidth_px = 12abc\n", "expected 16..8192");
@@ -209,5 +227,56 @@ int main(void)
     CHECK(ft_pose_parse("46.85,x,4500,90,-10,5", &p, &err) == FT_ERR_ARG);
     CHECK(ft_pose_parse("95,0,4500,90,-10,5", &p, &err) == FT_ERR_ARG);
     CHECK(ft_pose_parse("46,0,nan,90,-10,5", &p, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "alt_m") != NULL && strstr(err.text, "not finite") != NULL);
+
+    /* One range table for every way a pose enters: --pose says what the
+     * scene's [pose] says, naming the field and its range. */
+    CHECK(ft_pose_parse("46.5,8.2,1e300,0,-30,0", &p, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "alt_m = 1e+300") != NULL &&
+          strstr(err.text, "[-12000, 1e+06] m") != NULL);
+    CHECK(ft_pose_parse("46.5,8.2,1e999,0,-30,0", &p, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "alt_m") != NULL);
+    CHECK(ft_pose_parse("46.5,8.2,-12001,0,-30,0", &p, &err) == FT_ERR_ARG);
+    CHECK(ft_pose_parse("46.5,400,3000,0,-30,0", &p, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "lon_deg") != NULL && strstr(err.text, "[-360, 360]") != NULL);
+    CHECK(ft_pose_parse("46.5,8,3000,inf,-30,0", &p, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "heading_deg") != NULL);
+    CHECK(ft_pose_parse("46.5,8,3000,0,-30,-2e9", &p, &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "roll_deg") != NULL);
+    CHECK(ft_pose_parse("46.5,8,1e6,0,-90,0", &p, &err) == FT_OK); /* the edges are in */
+    CHECK(ft_pose_parse("-89,-360,-12000,1e9,90,-1e9", &p, &err) == FT_OK);
+    for (int f = 0; f < FT_POSE_FIELD_COUNT; ++f) {
+        /* the scene's [pose] uses the same table: just outside each end fails */
+        const ft_pose_range *r = ft_pose_range_of((ft_pose_field)f);
+        REQUIRE(r != NULL);
+        char text[128];
+        const double out_of[2] = {r->min - fabs(r->min) * 1e-3 - 1e-3,
+                                  r->max + fabs(r->max) * 1e-3 + 1e-3};
+        for (int e = 0; e < 2; ++e) {
+            (void)snprintf(text, sizeof text, "[pose]\n%s = %.17g\n", r->key, out_of[e]);
+            char needle[64];
+            (void)snprintf(needle, sizeof needle, "pose.%s", r->key);
+            expect_error(text, needle);
+        }
+        (void)snprintf(text, sizeof text, "[pose]\n%s = %.17g\n", r->key, r->max);
+        CHECK(parse(text, &a, &err) == FT_OK);
+        CHECK(ft_pose_get(&a.pose, (ft_pose_field)f) == r->max);
+    }
+    /* CAN is a way a pose enters too: a position or attitude entry's valid
+     * range lies within the table (the default map's latitude is narrowed) */
+    expect_error("[can_map]\nalt = 320,1,-1000,1e300,500\n", "within pose.alt_m [-12000, 1e+06] m");
+    expect_error("[can_map]\nlat = 1036,1,-90,90,500\n", "within pose.lat_deg [-89, 89] deg");
+    expect_error("[can_map]\npitch = 311,1,-91,90,100\n", "can_map.pitch");
+    CHECK(parse("[can_map]\nlat = 1036,1,-89,89,500\nground_speed = 1039,1,0,1e6,500\n", &a,
+                &err) == FT_OK);
+    ft_scene_defaults(&a);
+    for (uint32_t i = 0; i < a.can_map.count; ++i) {
+        if (a.can_map.e[i].qty == FT_QTY_LAT) {
+            CHECK(a.can_map.e[i].min_value == -89.0 && a.can_map.e[i].max_value == 89.0);
+        }
+    }
+    ft_scene_defaults(&a);
+    a.pose.alt_m = 1e300; /* what a command line could set: validate names it */
+    CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG && strstr(err.text, "pose.alt_m") != NULL);
     return ft_test_result("test_scene");
 }

@@ -57,6 +57,7 @@ typedef struct bench_axis {
     char key[BENCH_NAME_LEN];    /* key, or "grid" = grid_cols x grid_rows */
     char values[BENCH_VALUES_MAX][BENCH_VALUE_LEN];
     int count;
+    int user; /* from --settings (else a default axis) */
 } bench_axis;
 
 typedef struct bench_setting {
@@ -255,9 +256,36 @@ static int parse_grid(const char *v, unsigned *cols, unsigned *rows)
 
 /* ---- settings -------------------------------------------------------------------- */
 
+/* A setting becomes INI lines parsed over the scene: a control character
+ * (a newline) in it could start a line of its own, e.g. a [pose] section. */
+static int settings_text_ok(const char *spec)
+{
+    for (size_t i = 0; spec[i] != '\0'; ++i) {
+        const unsigned char c = (unsigned char)spec[i];
+        if (c < 0x20u || c > 0x7eu) {
+            fprintf(stderr, "fixterrain bench: --settings: byte 0x%02x at offset %zu is %s; a "
+                            "setting is printable ASCII (METHOD.KEY=V1,V2,...)\n",
+                    c, i, c < 0x20u || c == 0x7fu ? "a control character" : "not ASCII");
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* A scene key: lower-case letters, digits and '_' (so no '[' or '=' either). */
+static int key_name_ok(const char *k)
+{
+    if (k[0] == '\0') return 0;
+    for (const char *p = k; *p != '\0'; ++p) {
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9') || *p == '_')) return 0;
+    }
+    return 1;
+}
+
 /* One --settings SPEC: "method.key=v1,v2[;method.key=...]". */
 static int parse_settings_spec(const char *spec)
 {
+    if (!settings_text_ok(spec)) return 0;
     const char *p = spec;
     while (*p != '\0') {
         const char *e = strchr(p, ';');
@@ -296,23 +324,60 @@ static int parse_settings_spec(const char *spec)
                     item, dot + 1, BENCH_VALUES_MAX, BENCH_VALUE_LEN - 1);
             return 0;
         }
+        if (!key_name_ok(a->key)) {
+            fprintf(stderr, "fixterrain bench: --settings %s.%s: not a scene key (a-z, 0-9, _)\n",
+                    item, a->key);
+            return 0;
+        }
+        a->user = 1;
         ++g_user_axis_count;
     }
     return 1;
 }
 
-static void add_axis(bench_method *bm, const bench_axis *a)
+/* The scene keys an axis writes ("grid" writes grid_cols and grid_rows). */
+static int axis_writes(const bench_axis *a, const char *scene_key)
 {
-    for (int i = 0; i < bm->axis_count; ++i) {
-        if (strcmp(bm->axes[i].key, a->key) == 0) {
-            bm->axes[i] = *a; /* --settings narrows (replaces) a default axis */
-            return;
-        }
+    if (strcmp(a->key, "grid") == 0) {
+        return strcmp(scene_key, "grid_cols") == 0 || strcmp(scene_key, "grid_rows") == 0 ||
+               strcmp(scene_key, "grid") == 0;
     }
-    if (bm->axis_count < BENCH_AXES_MAX) bm->axes[bm->axis_count++] = *a;
+    return strcmp(a->key, scene_key) == 0 ||
+           (strcmp(scene_key, "grid") == 0 &&
+            (strcmp(a->key, "grid_cols") == 0 || strcmp(a->key, "grid_rows") == 0));
 }
 
-static void method_axes(bench_method *bm)
+/* Adds axis a to bm; an axis of --settings replaces (narrows) a default axis
+ * that writes the same scene key. Two --settings axes writing one key, or
+ * more than BENCH_AXES_MAX axes, cannot be honoured: 0 with the reason. */
+static int add_axis(bench_method *bm, const bench_axis *a)
+{
+    for (int i = 0; i < bm->axis_count; ++i) {
+        if (!axis_writes(&bm->axes[i], a->key)) continue;
+        if (bm->axes[i].user && a->user) {
+            fprintf(stderr, "fixterrain bench: --settings %s.%s and %s.%s set the same key: "
+                            "give its values once\n",
+                    bm->name, bm->axes[i].key, bm->name, a->key);
+            return 0;
+        }
+        bm->axes[i] = *a;
+        return 1;
+    }
+    if (bm->axis_count >= BENCH_AXES_MAX) {
+        char have[BENCH_AXES_MAX * (BENCH_NAME_LEN + 1)] = "";
+        for (int i = 0; i < bm->axis_count; ++i) {
+            (void)append(have, sizeof have, "%s%s", i ? ", " : "", bm->axes[i].key);
+        }
+        fprintf(stderr, "fixterrain bench: --settings %s.%s: %s already sweeps %d axes (%s; "
+                        "defaults included), the most a method has\n",
+                bm->name, a->key, bm->name, bm->axis_count, have);
+        return 0;
+    }
+    bm->axes[bm->axis_count++] = *a;
+    return 1;
+}
+
+static int method_axes(bench_method *bm)
 {
     bm->axis_count = 0;
     for (size_t i = 0; i < sizeof k_default_axes / sizeof k_default_axes[0]; ++i) {
@@ -322,11 +387,14 @@ static void method_axes(bench_method *bm)
         set_str(a.method, sizeof a.method, bm->name);
         set_str(a.key, sizeof a.key, k_default_axes[i].key);
         (void)split_values(k_default_axes[i].values, a.values, BENCH_VALUES_MAX, &a.count);
-        add_axis(bm, &a);
+        if (!add_axis(bm, &a)) return 0;
     }
     for (int i = 0; i < g_user_axis_count; ++i) {
-        if (strcmp(g_user_axes[i].method, bm->name) == 0) add_axis(bm, &g_user_axes[i]);
+        if (strcmp(g_user_axes[i].method, bm->name) == 0 && !add_axis(bm, &g_user_axes[i])) {
+            return 0;
+        }
     }
+    return 1;
 }
 
 static const char *abbrev(const char *key)
@@ -687,6 +755,15 @@ static void paths_text(char *buf, size_t cap)
     }
 }
 
+/* A text field, quoted as RFC 4180 wants when it holds , " CR or LF. */
+static void csv_text(FILE *f, const char *text, int first)
+{
+    char q[600]; /* the paths text (256) with every byte doubled, and quotes */
+    if (!first) fputc(',', f);
+    if (plot_csv_field(q, sizeof q, text)) fputs(q, f);
+    else fputs("\"(too long)\"", f);
+}
+
 static void csv_num(FILE *f, double v, int decimals)
 {
     if (isnan(v)) fputs(",", f);
@@ -712,7 +789,10 @@ static int write_csv(const char *path)
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
         if (!w->ok) continue;
-        fprintf(f, "%s,%s,%s,%d", w->method, w->setting.label, paths, w->frames);
+        csv_text(f, w->method, 1);
+        csv_text(f, w->setting.label, 0);
+        csv_text(f, paths, 0);
+        fprintf(f, ",%d", w->frames);
         csv_num(f, w->t_med_ms, 3);
         csv_num(f, w->t_p99_ms, 3);
         csv_num(f, w->t_max_ms, 3);
@@ -755,7 +835,7 @@ static int write_plot(const bench_opts *o, const ft_scene *base, const char *pat
     memset(&ch, 0, sizeof ch);
     char title[200], paths[256];
     paths_text(paths, sizeof paths);
-    (void)snprintf(title, sizeof title, "%s %ux%u: %s", base->name, base->width_px,
+    (void)snprintf(title, sizeof title, "%.63s %ux%u: %.100s", base->name, base->width_px,
                    base->height_px, paths);
     ch.title = title;
     ch.x_label = "median frame time, ms (LOD selection + draw + readback)";
@@ -983,7 +1063,9 @@ static void print_help(void)
         "                     pgm.grid=150x600,200x800,430x430,300x900,600x600,400x1600\n"
         "                     pgrid.grid=200x800 pgrid.gamma_px=0.5,1,2,4\n"
         "                     (grid = COLSxROWS: METHOD.grid_cols, .grid_rows). Any key of\n"
-        "                     the method's scene section can be swept. Repeatable.\n"
+        "                     the method's scene section can be swept. Repeatable. At\n"
+        "                     most 6 axes per method (defaults included), each key once;\n"
+        "                     printable ASCII only (a control character is refused).\n"
         "  --csv, --plot, --report   outputs (default bench.csv, bench.png; no report)\n"
         "  --plot-error KIND  max (default) or p999 on the plot's y axis (log scale)\n"
         "  --ref-cache-mb N   keep reference images for reuse across runs (default 2048)\n"
@@ -1066,10 +1148,21 @@ static int resolve_scene(const bench_opts *o, ft_scene *s)
     if (o->centre != NULL) {
         double lat, lon;
         char tail;
-        if (sscanf(o->centre, "%lf,%lf%c", &lat, &lon, &tail) != 2 || !(fabs(lat) <= 85.0) ||
-            !(fabs(lon) <= 180.0)) {
-            fprintf(stderr, "fixterrain bench: --centre wants LAT,LON (|lat| <= 85)\n");
+        if (sscanf(o->centre, "%lf,%lf%c", &lat, &lon, &tail) != 2) {
+            fprintf(stderr, "fixterrain bench: --centre wants LAT,LON\n");
             return BENCH_EXIT_USAGE;
+        }
+        /* the pose range table (scene.h), as for pose.lat_deg/lon_deg in a scene */
+        const ft_pose_field fields[2] = {FT_POSE_LAT, FT_POSE_LON};
+        const double values[2] = {lat, lon};
+        for (int i = 0; i < 2; ++i) {
+            const ft_pose_range *r = ft_pose_range_of(fields[i]);
+            if (!ft_pose_field_ok(fields[i], values[i])) {
+                fprintf(stderr, "fixterrain bench: --centre '%.80s': %s = %g is outside [%g, %g] %s "
+                                "(pose.%s)\n",
+                        o->centre, r->key, values[i], r->min, r->max, r->unit, r->key);
+                return BENCH_EXIT_USAGE;
+            }
         }
         s->pose.lat_deg = lat;
         s->pose.lon_deg = lon;
@@ -1202,7 +1295,7 @@ static int setup_methods(const bench_opts *o)
         memset(bm, 0, sizeof *bm);
         set_str(bm->name, sizeof bm->name, names[i]);
         bm->kind = k;
-        method_axes(bm);
+        if (!method_axes(bm)) return 0;
     }
     for (int i = 0; i < g_user_axis_count; ++i) {
         int used = 0;

@@ -624,3 +624,69 @@ int plot_write_png(const char *path, const plot_image *im, char *err, size_t err
     }
     return 0;
 }
+
+/* ---- CSV ---------------------------------------------------------------------- */
+
+int plot_csv_field(char *dst, size_t cap, const char *src)
+{
+    if (cap == 0u) return 0;
+    const int quote = strpbrk(src, ",\"\r\n") != NULL;
+    size_t n = 0;
+    if (quote) {
+        if (n + 1u >= cap) return 0;
+        dst[n++] = '"';
+    }
+    for (const char *p = src; *p != '\0'; ++p) {
+        const size_t need = (*p == '"') ? 2u : 1u;
+        if (n + need >= cap) return 0;
+        if (*p == '"') dst[n++] = '"';
+        dst[n++] = *p;
+    }
+    if (quote) {
+        if (n + 1u >= cap) return 0;
+        dst[n++] = '"';
+    }
+    dst[n] = '\0';
+    return 1;
+}
+
+int plot_csv_record(const char **text, char *buf, size_t cap, char *fields[], int max)
+{
+    const char *p = *text;
+    if (*p == '\0') return 0;
+    size_t n = 0;
+    int count = 0;
+    for (;;) { /* one field per pass; bounded by the text's length */
+        if (count >= max || n >= cap) return -1;
+        fields[count++] = buf + n;
+        if (*p == '"') {
+            ++p;
+            for (;;) {
+                if (*p == '\0') return -1; /* unclosed quote */
+                if (*p == '"') {
+                    if (p[1] != '"') break;
+                    ++p; /* "" is one quote */
+                }
+                if (n + 1u >= cap) return -1;
+                buf[n++] = *p++;
+            }
+            ++p; /* the closing quote */
+            if (*p != ',' && *p != '\r' && *p != '\n' && *p != '\0') return -1;
+        } else {
+            while (*p != ',' && *p != '\r' && *p != '\n' && *p != '\0') {
+                if (*p == '"' || n + 1u >= cap) return -1; /* a quote inside a bare field */
+                buf[n++] = *p++;
+            }
+        }
+        if (n >= cap) return -1;
+        buf[n++] = '\0';
+        if (*p == ',') {
+            ++p;
+            continue;
+        }
+        if (*p == '\r') ++p;
+        if (*p == '\n') ++p;
+        *text = p;
+        return count;
+    }
+}

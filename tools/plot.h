@@ -124,4 +124,17 @@ int plot_chart_draw(plot_image *im, const plot_chart *ch, plot_axis *xa, plot_ax
  * else -1 with a reason in err. */
 int plot_write_png(const char *path, const plot_image *im, char *err, size_t err_cap);
 
+/* ---- CSV (RFC 4180) -------------------------------------------------------- */
+/* The bench writes its table as CSV; a text field that holds a comma, a
+ * double quote, CR or LF is written quoted ("a ""b"", c"), any other as is. */
+
+/* src as one CSV field into dst (NUL-terminated); 0 when it does not fit. */
+int plot_csv_field(char *dst, size_t cap, const char *src);
+
+/* Reads one record from *text (advanced past it and its line end): fields
+ * unquoted into buf (cap bytes), field i at fields[i]. Returns the field
+ * count (0 at the end of the text), -1 on a malformed record (an unclosed
+ * quote, text after a closing quote) or one that does not fit buf or max. */
+int plot_csv_record(const char **text, char *buf, size_t cap, char *fields[], int max);
+
 #endif

@@ -1,82 +1,107 @@
 # profile.cmake - a lean build sized to one scene ("leave out what a scene
 # does not need"): cmake -DFIXTERRAIN_PROFILE=config/minimal.ini
 #
-# Reads the scene file and forces every FIXTERRAIN_WITH_* option from what
-# the scene uses: its method (scene.method), backend (scene.backend),
-# display (scene.display), pose inputs (build.inputs: replay, can, gpio),
-# PNG output (build.png) and error metric (metric.enabled). Everything else
-# is OFF, the GDAL import tool included. Keys absent from the file take the
-# scene defaults (src/scene.c). Included by CMakeLists.txt before option().
+# Forces every FIXTERRAIN_WITH_* option from what the scene uses: its method
+# (scene.method), backend (scene.backend), display (scene.display), pose
+# inputs (build.inputs: replay, can, gpio), PNG output (build.png) and error
+# metric (metric.enabled). Everything else is OFF, the GDAL import tool
+# included. Included by CMakeLists.txt before option().
+#
+# One parser: the scene is read by the runtime's own reader and parser
+# (src/scene.c via tools/scene_options.c, compiled for the build host here
+# and run at once), so a scene the runtime would refuse fails the configure
+# with the runtime's message, keys absent from the file take the runtime's
+# defaults, and every value means what it means at run time (metric.enabled
+# is 0 or 1, build.inputs a comma list of whole words).
 set(FIXTERRAIN_PROFILE "" CACHE FILEPATH "scene file whose needs decide the build options")
 if(FIXTERRAIN_PROFILE)
   if(NOT EXISTS "${FIXTERRAIN_PROFILE}")
     message(FATAL_ERROR "FIXTERRAIN_PROFILE: no such scene file: ${FIXTERRAIN_PROFILE}")
   endif()
-  # defaults of src/scene.c
-  set(_p_scene_method brute)
-  set(_p_scene_backend egl-gles3)
-  set(_p_scene_display none)
-  set(_p_build_inputs "replay,can,gpio")
-  set(_p_build_png 1)
-  set(_p_metric_enabled 0)
-  file(STRINGS "${FIXTERRAIN_PROFILE}" _p_lines)
-  set(_p_section "")
-  foreach(_l IN LISTS _p_lines)  # INI comments start with ';': CMake splits there
-    string(STRIP "${_l}" _l)
-    if(_l MATCHES "^\\[([a-z_]+)\\]$")
-      set(_p_section "${CMAKE_MATCH_1}")
-    elseif(_l MATCHES "^([a-z_]+)[ \t]*=[ \t]*(.*)$")
-      string(STRIP "${CMAKE_MATCH_2}" _v)
-      set(_p_${_p_section}_${CMAKE_MATCH_1} "${_v}")
+  if(CMAKE_CROSSCOMPILING AND NOT CMAKE_CROSSCOMPILING_EMULATOR)
+    message(FATAL_ERROR "FIXTERRAIN_PROFILE: the scene is read by the runtime's parser, built "
+                        "and run at configure time; a cross build needs "
+                        "CMAKE_CROSSCOMPILING_EMULATOR (or set the FIXTERRAIN_WITH_* options)")
+  endif()
+  find_package(PkgConfig REQUIRED)
+  pkg_check_modules(FT_PROFILE_INIH REQUIRED inih)
+  # the parser and what it links, nothing else (no GL, no driver)
+  set(_p_sources tools/scene_options.c src/scene.c src/gpu.c src/canaero.c src/pose_state.c
+                 src/mem_budget.c src/ft_status.c src/io.c platform/file_posix.c)
+  list(TRANSFORM _p_sources PREPEND "${CMAKE_SOURCE_DIR}/")
+  set(_p_dir "${CMAKE_BINARY_DIR}/profile")
+  set(_p_tool "${_p_dir}/fixterrain-scene-options${CMAKE_EXECUTABLE_SUFFIX}")
+  try_compile(_p_built "${_p_dir}/build"
+    SOURCES ${_p_sources}
+    CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${CMAKE_SOURCE_DIR}/src;${FT_PROFILE_INIH_INCLUDE_DIRS}"
+    LINK_LIBRARIES ${FT_PROFILE_INIH_LINK_LIBRARIES} m
+    C_STANDARD 11 C_STANDARD_REQUIRED ON C_EXTENSIONS OFF
+    OUTPUT_VARIABLE _p_log
+    COPY_FILE "${_p_tool}")
+  if(NOT _p_built)
+    message(FATAL_ERROR "FIXTERRAIN_PROFILE: building the scene parser (tools/scene_options.c) "
+                        "failed:\n${_p_log}")
+  endif()
+  execute_process(COMMAND ${CMAKE_CROSSCOMPILING_EMULATOR} "${_p_tool}" "${FIXTERRAIN_PROFILE}"
+                  RESULT_VARIABLE _p_rc OUTPUT_VARIABLE _p_out ERROR_VARIABLE _p_err)
+  if(NOT _p_rc EQUAL 0)
+    string(STRIP "${_p_err}" _p_err)
+    message(FATAL_ERROR "FIXTERRAIN_PROFILE: the runtime refuses this scene:\n  ${_p_err}")
+  endif()
+  # an edited scene (or parser) configures again
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${FIXTERRAIN_PROFILE}"
+               ${_p_sources})
+  string(REGEX MATCHALL "[a-z_]+=[a-z0-9-]*" _p_pairs "${_p_out}")
+  foreach(_kv IN LISTS _p_pairs)
+    string(REGEX MATCH "^([a-z_]+)=(.*)$" _kv "${_kv}")
+    set(_p_${CMAKE_MATCH_1} "${CMAKE_MATCH_2}")
+  endforeach()
+  foreach(_k method backend display inputs_replay inputs_can inputs_gpio png metric)
+    if(NOT DEFINED _p_${_k})
+      message(FATAL_ERROR "FIXTERRAIN_PROFILE: the scene parser did not say '${_k}':\n${_p_out}")
     endif()
   endforeach()
+
   macro(_ft_force opt value)
     set(FIXTERRAIN_WITH_${opt} ${value} CACHE BOOL "set by FIXTERRAIN_PROFILE" FORCE)
   endmacro()
   foreach(m BRUTE BINTREE PGM PGRID)
     _ft_force(METHOD_${m} OFF)
   endforeach()
-  string(TOUPPER "${_p_scene_method}" _m)
+  string(TOUPPER "${_p_method}" _m)
   if(NOT _m MATCHES "^(BRUTE|BINTREE|PGM|PGRID)$")
-    message(FATAL_ERROR "FIXTERRAIN_PROFILE: scene.method '${_p_scene_method}' has no build option")
+    message(FATAL_ERROR "FIXTERRAIN_PROFILE: scene.method '${_p_method}' has no build option")
   endif()
   _ft_force(METHOD_${_m} ON)
-  if(_p_scene_backend MATCHES "^egl-gles[23]$")
+  if(_p_backend MATCHES "^egl-gles[23]$")
     _ft_force(EGL ON)
     _ft_force(OSMESA OFF)
-  elseif(_p_scene_backend STREQUAL "osmesa")
+  elseif(_p_backend STREQUAL "osmesa")
     _ft_force(EGL OFF)
     _ft_force(OSMESA ON)
   else()
-    message(FATAL_ERROR "FIXTERRAIN_PROFILE: unknown scene.backend '${_p_scene_backend}'")
+    message(FATAL_ERROR "FIXTERRAIN_PROFILE: scene.backend '${_p_backend}' has no build option")
   endif()
   _ft_force(X11 OFF)
   _ft_force(KMS OFF)
-  if(_p_scene_display STREQUAL "x11")
+  if(_p_display STREQUAL "x11")
     _ft_force(X11 ON)
-  elseif(_p_scene_display MATCHES "^kms")
+  elseif(_p_display STREQUAL "kms")
     _ft_force(KMS ON)
   endif()
-  _ft_force(CAN OFF)
-  _ft_force(GPIO OFF)
-  if(_p_build_inputs MATCHES "can")
-    _ft_force(CAN ON)
-  endif()
-  if(_p_build_inputs MATCHES "gpio")
-    _ft_force(GPIO ON)
-  endif()
-  if(_p_build_png)
-    _ft_force(PNG ON)
-  else()
-    _ft_force(PNG OFF)
-  endif()
-  if(_p_metric_enabled)
-    _ft_force(REFERENCE ON)
-  else()
-    _ft_force(REFERENCE OFF)
-  endif()
+  # the parser's 0/1 answers, never CMake truthiness of the file's text
+  foreach(_pair "CAN;inputs_can" "GPIO;inputs_gpio" "PNG;png" "REFERENCE;metric")
+    list(GET _pair 0 _opt)
+    list(GET _pair 1 _k)
+    if(_p_${_k} STREQUAL "1")
+      _ft_force(${_opt} ON)
+    else()
+      _ft_force(${_opt} OFF)
+    endif()
+  endforeach()
   _ft_force(GDAL_TOOLS OFF)
-  message(STATUS "fixterrain profile ${FIXTERRAIN_PROFILE}: method ${_p_scene_method}, "
-                 "backend ${_p_scene_backend}, display ${_p_scene_display}, "
-                 "inputs ${_p_build_inputs}, png ${_p_build_png}, metric ${_p_metric_enabled}")
+  message(STATUS "fixterrain profile ${FIXTERRAIN_PROFILE} (read by the runtime's parser): "
+                 "method ${_p_method}, backend ${_p_backend}, display ${_p_display}, inputs "
+                 "replay ${_p_inputs_replay} can ${_p_inputs_can} gpio ${_p_inputs_gpio}, "
+                 "png ${_p_png}, metric ${_p_metric}")
 endif()

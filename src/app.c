@@ -34,24 +34,47 @@ static int ends_with(const char *s, const char *suffix)
     return 1;
 }
 
-static ft_status probe_terrain(ft_app *app, ft_file *file, ft_error *err)
+/* Header only: size, spacing, georeference (and the height range where the
+ * header holds it). `file` is left open for the load that follows. */
+static ft_status probe_terrain_of(const ft_scene *s, ft_file *file, ft_terrain *t,
+                                  ft_dem_kind *kind, ft_tfile_header *hdr, ft_error *err)
 {
-    const ft_scene *s = &app->scene;
-    memset(&app->terrain, 0, sizeof app->terrain);
+    memset(t, 0, sizeof *t);
     if (s->dem_path[0] == '\0') {
-        app->dem_kind = FT_DEM_SYNTH;
-        return ft_synth_probe(&s->synth, &app->terrain, err);
+        *kind = FT_DEM_SYNTH;
+        return ft_synth_probe(&s->synth, t, err);
     }
     ft_status st = ft_plat_file_open_read(file, s->dem_path, err);
     if (st != FT_OK) {
         return st;
     }
     if (ends_with(s->dem_path, ".hgt")) {
-        app->dem_kind = FT_DEM_HGT;
-        return ft_hgt_probe(&file->reader, s->dem_path, &app->terrain, err);
+        *kind = FT_DEM_HGT;
+        return ft_hgt_probe(&file->reader, s->dem_path, t, err);
     }
-    app->dem_kind = FT_DEM_FTT;
-    return ft_tfile_probe(&file->reader, &app->terrain, &app->tfile_header, err);
+    *kind = FT_DEM_FTT;
+    return ft_tfile_probe(&file->reader, t, hdr, err);
+}
+
+static ft_status probe_terrain(ft_app *app, ft_file *file, ft_error *err)
+{
+    return probe_terrain_of(&app->scene, file, &app->terrain, &app->dem_kind,
+                            &app->tfile_header, err);
+}
+
+ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *err)
+{
+    ft_file file;
+    ft_dem_kind kind;
+    ft_tfile_header hdr;
+    memset(&file, 0, sizeof file);
+    file.fd = -1;
+    ft_status st = probe_terrain_of(scene, &file, t, &kind, &hdr, err);
+    ft_plat_file_close(&file);
+    if (st == FT_OK) {
+        t->curv_drop_per_m2 = ft_terrain_curvature_drop(scene->curvature, t->unit);
+    }
+    return st;
 }
 
 static void plan(ft_app *app)

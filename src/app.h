@@ -51,6 +51,11 @@ size_t ft_png_scratch_bytes(uint32_t width_px);
 
 ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err);
 
+/* The terrain the scene names, its header only (size, spacing, georeference;
+ * no heights, no memory from the arena): for a tool that must know where
+ * the terrain lies before it initialises a run. */
+ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *err);
+
 /* One colour frame at `pose`, read back into app->renderer.rgba, and shown
  * on the display when the scene has one. */
 ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_frame_stats *st,

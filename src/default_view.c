@@ -62,3 +62,10 @@ void ft_terrain_extent_geo(const ft_terrain *t, double *lat_min_deg, double *lat
     world_to_geo(t, x0, y0, lat_min_deg, lon_min_deg);
     world_to_geo(t, x1, y1, lat_max_deg, lon_max_deg);
 }
+
+void ft_terrain_centre_geo(const ft_terrain *t, double *lat_deg, double *lon_deg)
+{
+    double x0, y0, x1, y1;
+    extent_world(t, &x0, &y0, &x1, &y1);
+    world_to_geo(t, 0.5 * (x0 + x1), 0.5 * (y0 + y1), lat_deg, lon_deg);
+}

@@ -28,4 +28,7 @@ int ft_pose_over_terrain(const ft_terrain *t, const ft_pose *p);
 void ft_terrain_extent_geo(const ft_terrain *t, double *lat_min_deg, double *lat_max_deg,
                            double *lon_min_deg, double *lon_max_deg);
 
+/* The geodetic position (deg) of the terrain's centre. */
+void ft_terrain_centre_geo(const ft_terrain *t, double *lat_deg, double *lon_deg);
+
 #endif

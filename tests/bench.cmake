@@ -56,3 +56,13 @@ if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BR
             ${CMAKE_SOURCE_DIR} $<TARGET_FILE:test_plot> ${FT_PGRID_REPORT_ROWS})
   set_tests_properties(pgrid_report_smoke PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
 endif()
+
+# A newcomer's bench: the embedded default scene (its measurement budgets are
+# 0: the bench sizes its own) with a DEM its pose does not lie over (the
+# paths move to the terrain's centre, and the bench says so).
+if(TARGET fixterrain AND FIXTERRAIN_WITH_METHOD_BINTREE AND FIXTERRAIN_WITH_REFERENCE)
+  add_test(NAME bench_newcomer
+    COMMAND sh -c "test -f \"$1/N42E001.hgt\" || { echo 'no ../shared/data: skipped'; exit 77; }; out=\"$2/bench-newcomer\"; rm -rf \"$out\"; mkdir -p \"$out\" && \"$0\" bench --dem \"$1/N42E001.hgt\" --methods bintree --settings 'bintree.tau_px=2;bintree.template_k=3' --path hover --frames 2 --size 160x120 --csv \"$out/b.csv\" --plot \"$out/b.png\" --quiet 2> \"$out/err.txt\" && cat \"$out/err.txt\" && grep -q 'paths centred on the terrain.s centre (--centre 42.500000,1.500000)' \"$out/err.txt\" && grep -q '^bintree,template_k=3 tau_px=2,hover,2,' \"$out/b.csv\""
+            $<TARGET_FILE:fixterrain> ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out)
+  set_tests_properties(bench_newcomer PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
+endif()

@@ -602,7 +602,7 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
         "  \"draw_ms_max\": %.3f,\n  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
         "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
-        "  \"tau_max_px\": %.4f\n}\n",
+        "  \"tau_max_px\": %.4f,\n  \"frames_off_terrain\": %u\n}\n",
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
         (unsigned long long)r->timestamps_backwards,
@@ -613,7 +613,7 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
         r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
         r->degrade.over_budget, r->degrade.enabled, r->degrade.raises, r->degrade.lowers,
-        r->degrade_scale_max, r->tau_max_px);
+        r->degrade_scale_max, r->tau_max_px, r->frames_off_terrain);
     return write_stats_text(path, len, "replay", err);
 }
 
@@ -715,6 +715,17 @@ static int cmd_replay(int argc, char **argv)
         }
         if (r.last_view.annunciate) {
             printf("replay: the last frame is annunciated: %s\n", r.last_view.reason);
+        }
+        if (r.frames_off_terrain > 0u) {
+            double lat0, lat1, lon0, lon1;
+            ft_terrain_extent_geo(&g_app.terrain, &lat0, &lat1, &lon0, &lon1);
+            fprintf(stderr,
+                    "fixterrain replay: warning: %u of %u frames were drawn from a position "
+                    "that does not lie over the terrain %s (lat %.6f..%.6f, lon %.6f..%.6f); "
+                    "the last at lat %.6f, lon %.6f\n",
+                    r.frames_off_terrain, r.frames,
+                    scene.dem_path[0] != '\0' ? scene.dem_path : "(synthetic terrain)", lat0,
+                    lat1, lon0, lon1, r.last_off_lat_deg, r.last_off_lon_deg);
         }
         printf("replay: budget %.3f ms: %u frames over it (slowest %.1f ms); degradation %s "
                "(%u raises, %u lowers, LOD scale up to %.2f, error bound up to %.3f px)\n",

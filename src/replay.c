@@ -1,6 +1,8 @@
 /* replay.c - see replay.h. */
 #include "replay.h"
 
+#include "default_view.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -236,6 +238,12 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         r->frames_predicted += (uint32_t)v.predicted;
         r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
         r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);
+        if ((v.stale_mask & FT_QTY_POSITION_MASK) == 0u &&
+            !ft_pose_over_terrain(&app->terrain, &v.pose)) {
+            r->frames_off_terrain += 1u;
+            r->last_off_lat_deg = v.pose.lat_deg;
+            r->last_off_lon_deg = v.pose.lon_deg;
+        }
         if (v.annunciate) {
             r->frames_annunciated += 1u;
             if (r->first_annunciated == UINT32_MAX) r->first_annunciated = k;

@@ -72,6 +72,9 @@ typedef struct ft_replay_result {
     uint32_t frames_predicted;  /* frames whose attitude was predicted from the rates */
     uint32_t frames_pos_predicted;  /* frames whose position was predicted from a velocity */
     uint32_t frames_velocity_stale; /* frames with a velocity quantity stale (or never received) */
+    uint32_t frames_off_terrain;    /* frames drawn from a fresh position that does not lie
+                                     * over the terrain (the frame shows no terrain there) */
+    double last_off_lat_deg, last_off_lon_deg; /* the last such position */
     double log_first_s, log_last_s;
     double draw_ms_max;      /* slowest frame (select + draw + readback), information only */
     ft_degrade degrade;      /* frame.budget_ms: frames over it, LOD scale steps */

@@ -5,7 +5,10 @@
  * Input: 4 bytes of set-up, then 16-byte frame records.
  *   set-up: u16 prediction horizon (ms; % 1001 unless bit 15 is set, so
  *   out-of-range values reach the init checks too), u8 converge (x 40 ms),
- *   u8 snap (1 + x * 400 m; bit 0 of byte 1 = velocity required).
+ *   u8 snap (1 + x * 400 m); bit 0 of byte 1 = velocity required; bit 1 of
+ *   byte 1: 8 more set-up bytes, a little-endian double that replaces the
+ *   scale of every map entry (the decoder's scaled-value checks; the map
+ *   checks refuse a scale that is 0 or not finite).
  *   record: u16 id selector (bit 15 clear: the id of default-map entry
  *   sel % count, so most frames reach the decoder's later checks; set: raw
  *   id sel & 0x1FFF), u8 dlc (low 4 bits) | extended (bit 4) | time mode
@@ -41,6 +44,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     ft_canaero_default_map(&map);
     uint16_t h = fuzz_u16(data);
     uint32_t horizon_ms = (h & 0x8000u) ? (uint32_t)(h & 0x7FFFu) : (uint32_t)h % 1001u;
+    size_t first = 4u;
+    if ((data[1] & 2u) != 0u) {
+        if (size < 12u) {
+            return 0;
+        }
+        uint64_t bits = (uint64_t)fuzz_u32(data + 4) | ((uint64_t)fuzz_u32(data + 8) << 32);
+        double scale;
+        memcpy(&scale, &bits, sizeof scale);
+        for (uint32_t i = 0u; i < map.count; ++i) {
+            map.e[i].scale = scale;
+        }
+        first = 12u;
+    }
     ft_pose fallback;
     memset(&fallback, 0, sizeof fallback);
     fallback.lat_deg = 46.5;
@@ -60,7 +76,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     uint64_t t_ns = UINT64_C(1700000000000000000);
     uint64_t frames = 0u;
-    for (size_t off = 4u; off + REC_BYTES <= size; off += REC_BYTES) {
+    for (size_t off = first; off + REC_BYTES <= size; off += REC_BYTES) {
         const uint8_t *r = data + off;
         uint16_t sel = fuzz_u16(r);
         ft_can_frame f;

@@ -194,6 +194,17 @@ static void setup(rec_builder *rb, uint16_t horizon_ms)
     rb->b[rb->n++] = 1u;  /* snap 401 m */
 }
 
+/* set-up with bit 1 of byte 1: a scale for every map entry follows */
+static void setup_scaled(rec_builder *rb, uint16_t horizon_ms, double scale)
+{
+    uint64_t bits;
+    memcpy(&bits, &scale, sizeof bits);
+    setup(rb, (uint16_t)(horizon_ms | 0x0200u));
+    for (uint32_t k = 0u; k < 8u; ++k) {
+        rb->b[rb->n++] = (uint8_t)(bits >> (8u * k));
+    }
+}
+
 static void make_canaero(void)
 {
     static rec_builder rb;
@@ -247,6 +258,18 @@ static void make_canaero(void)
     rec(&rb, 311u, 8u, 2u, 1u, fbits(2.0f), 3u, 0u);
     rec(&rb, 311u, 8u, 2u, 2u, fbits(3.0f), 1u, 65535u);
     put("canaero", "clock_end", rb.b, rb.n);
+
+    /* every entry scaled: 1e308 overflows a float value to inf (NONFINITE
+     * after scale), 0.01 keeps 150 deg of pitch in range */
+    setup_scaled(&rb, 100u, 1e308);
+    rec(&rb, 311u, 8u, 2u, 0u, fbits(10.0f), 0u, 100u);
+    rec(&rb, 311u, 8u, 2u, 1u, fbits(0.0f), 0u, 100u);
+    put("canaero", "scale_overflow", rb.b, rb.n);
+    setup_scaled(&rb, 100u, 0.01);
+    rec(&rb, 311u, 8u, 2u, 0u, fbits(150.0f), 0u, 100u);
+    rec(&rb, 1036u, 8u, 30u, 0u, (uint32_t)(lat_bits >> 32), 0u, 250u);
+    rec(&rb, 1036u, 8u, 31u, 1u, (uint32_t)lat_bits, 0u, 250u);
+    put("canaero", "scale_small", rb.b, rb.n);
 
     setup(&rb, 0x8000u | 2000u); /* horizon out of range: init refuses */
     rec(&rb, 311u, 8u, 2u, 0u, fbits(1.0f), 0u, 100u);

@@ -60,9 +60,9 @@ refused "$dir/gpiochip.ini"
 # [can_map] defaults = 1 after [build] keeps build.* (the runtime's rule)
 printf '[build]\ninputs = replay\npng = 0\n[can_map]\ndefaults = 1\n' > "$dir/map.ini"
 chosen "$dir/map.ini" CAN=OFF GPIO=OFF PNG=OFF
-# keys absent: the runtime's defaults (brute, EGL, replay+can+gpio, PNG, no metric)
+# keys absent: the runtime's defaults (pgrid, EGL, replay+can+gpio, PNG, no metric)
 printf '[view]\nwidth_px = 64\n' > "$dir/empty.ini"
-chosen "$dir/empty.ini" METHOD_BRUTE=ON EGL=ON OSMESA=OFF CAN=ON GPIO=ON PNG=ON REFERENCE=OFF GDAL_TOOLS=OFF
+chosen "$dir/empty.ini" METHOD_PGRID=ON METHOD_BRUTE=OFF EGL=ON OSMESA=OFF CAN=ON GPIO=ON PNG=ON REFERENCE=OFF GDAL_TOOLS=OFF
 # any other error the runtime finds: same message
 printf '[view]\nwidht_px = 64\n' > "$dir/typo.ini"
 refused "$dir/typo.ini"

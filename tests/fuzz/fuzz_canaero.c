@@ -129,6 +129,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         lost += g_feed.dec.st[i].lost;
     }
     FUZZ_CHECK(lost == g_feed.dec.lost);
+    /* an out-of-sequence frame counts once, and only a frame can be one */
+    uint64_t oos = 0u;
+    for (uint32_t i = 0u; i < FT_CAN_MAP_MAX; ++i) {
+        oos += g_feed.dec.st[i].out_of_sequence;
+    }
+    FUZZ_CHECK(oos == g_feed.dec.out_of_sequence && oos <= frames);
     uint64_t rej_by_qty = 0u;
     for (uint32_t q = 0u; q < FT_QTY_COUNT; ++q) {
         rej_by_qty += g_feed.dec.rejects_by_qty[q];

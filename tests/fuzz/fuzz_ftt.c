@@ -67,6 +67,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     void *pyr = NULL;
     if (st == FT_OK) {
         FUZZ_CHECK(hdr.valid);
+        /* every derived quantity of an accepted header is finite and in range */
+        FUZZ_CHECK(isfinite(t.cell_x_m) && isfinite(t.cell_y_m) && t.cell_x_m > 0.0 &&
+                   t.cell_y_m > 0.0);
+        FUZZ_CHECK(isfinite(t.origin_world_x_m) && isfinite(t.origin_world_y_m));
+        FUZZ_CHECK(isfinite(t.cell_x_m * (double)(t.width - 1u)) &&
+                   isfinite(t.cell_y_m * (double)(t.height - 1u)));
+        FUZZ_CHECK(isfinite(t.anchor_lat_deg) && isfinite(t.anchor_lon_deg));
         FUZZ_CHECK(t.width >= FT_GRID_SIDE_MIN && t.width <= FT_GRID_SIDE_MAX);
         FUZZ_CHECK(t.height >= FT_GRID_SIDE_MIN && t.height <= FT_GRID_SIDE_MAX);
         size_t hb = (size_t)t.width * t.height * sizeof(float);

@@ -53,7 +53,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     FUZZ_CHECK(g_path.finished && g_path.count >= 2u && g_path.count <= FLIGHT_WAYPOINTS_MAX);
     double t0 = flight_path_t0_s(&g_path), dur = flight_path_duration_s(&g_path);
-    FUZZ_CHECK(isfinite(t0) && isfinite(dur) && dur > 0.0);
+    FUZZ_CHECK(isfinite(t0) && isfinite(dur) && dur >= FLIGHT_DURATION_MIN_S);
     flight_sample s;
     flight_path_sample(&g_path, t0, &s);
     check_sample(&s);

@@ -3,7 +3,7 @@
 # added every minute by the test, replayed through ft_app_replay at 64x48,
 # 20 frames/s (37,200 frames): flat RSS and arena, 0 GL errors (glGetError
 # after every frame), no deadline-miss drift. Wall time on 2 shared cores:
-# about 3-4 minutes (see the README); run it with `ctest -L soak`.
+# 70-100 s measured (about 67 s of CPU); run it with `ctest -L soak`.
 if(TARGET ft_app AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_BINTREE
    AND TARGET fixterrain-flightgen)
   set(_soak_dir ${CMAKE_BINARY_DIR}/test-out/soak)

@@ -145,6 +145,16 @@ typedef void (*ft_pfn_get_query_object_ui64v)(GLuint id, GLenum pname, uint64_t 
 typedef void (*ft_gl_proc)(void);
 typedef ft_gl_proc (*ft_gl_get_proc_fn)(const char *name);
 
+/* The optional timer-query entry points, as a list like the two above (the
+ * recording layer below wraps them too). */
+#define FT_GL_OPT_FUNCS(X)                                   \
+    X(ft_pfn_gen_queries, GenQueries)                        \
+    X(ft_pfn_delete_queries, DeleteQueries)                  \
+    X(ft_pfn_begin_query, BeginQuery)                        \
+    X(ft_pfn_end_query, EndQuery)                            \
+    X(ft_pfn_get_query_object_uiv, GetQueryObjectuiv)        \
+    X(ft_pfn_get_query_object_ui64v, GetQueryObjectui64v)
+
 typedef struct ft_gl {
 #define FT_GL_MEMBER(type, name) type name;
     FT_GL_ES2_FUNCS(FT_GL_MEMBER)
@@ -152,13 +162,10 @@ typedef struct ft_gl {
 #undef FT_GL_MEMBER
     ft_gl_api api;
     ft_gl_caps caps;
-    /* optional: GPU timer queries */
-    ft_pfn_gen_queries GenQueries;
-    ft_pfn_delete_queries DeleteQueries;
-    ft_pfn_begin_query BeginQuery;
-    ft_pfn_end_query EndQuery;
-    ft_pfn_get_query_object_uiv GetQueryObjectuiv;
-    ft_pfn_get_query_object_ui64v GetQueryObjectui64v;
+    /* optional: GPU timer queries (all NULL when caps.has_timer_query = 0) */
+#define FT_GL_MEMBER(type, name) type name;
+    FT_GL_OPT_FUNCS(FT_GL_MEMBER)
+#undef FT_GL_MEMBER
 } ft_gl;
 
 /* Loads the table for `api` (ES3 entry points only when api is ES3) and
@@ -171,5 +178,54 @@ int ft_gl_has_extension(const ft_gl *gl, const char *name);
 
 /* Drains glGetError; returns FT_ERR_GPU naming `where` and the first code. */
 ft_status ft_gl_check(const ft_gl *gl, const char *where, ft_error *err);
+
+/* ---- call recording (tests: the safety-critical subset after init) ----------
+ *
+ * ft_gl_trace_start swaps every loaded entry point of the table for a wrapper
+ * that counts the call (per entry point: calls, first and last frame) and
+ * forwards it; ft_gl_trace_stop puts the loaded pointers back. Nothing is
+ * wrapped unless a test starts a trace, so the runtime pays nothing; the
+ * trace is caller storage (no heap). One trace at a time per process (the
+ * wrappers forward through one saved copy of the table); GL is used from one
+ * thread. glReadPixels is also measured: bytes per frame (format x type x
+ * width x height), the largest frame and which frame it was. */
+typedef enum ft_gl_entry {
+#define FT_GL_ENTRY_ENUM(type, name) FT_GLE_##name,
+    FT_GL_ES2_FUNCS(FT_GL_ENTRY_ENUM)
+    FT_GL_ES3_FUNCS(FT_GL_ENTRY_ENUM)
+    FT_GL_OPT_FUNCS(FT_GL_ENTRY_ENUM)
+#undef FT_GL_ENTRY_ENUM
+    FT_GL_ENTRY_COUNT
+} ft_gl_entry;
+
+#define FT_GL_TRACE_NO_FRAME UINT32_MAX
+
+typedef struct ft_gl_trace_count {
+    uint64_t calls;
+    uint32_t first_frame, last_frame; /* FT_GL_TRACE_NO_FRAME: before the first frame mark */
+} ft_gl_trace_count;
+
+typedef struct ft_gl_trace {
+    uint32_t frame;  /* the frame calls are charged to (ft_gl_trace_frame) */
+    uint32_t frames; /* frame marks seen */
+    ft_gl_trace_count count[FT_GL_ENTRY_COUNT];
+    uint64_t read_bytes_frame;     /* glReadPixels bytes in the current frame */
+    uint64_t read_bytes_max;       /* largest frame so far (closed frames) */
+    uint32_t read_bytes_max_frame;
+    uint64_t read_bytes_total;
+    uint64_t calls_total;
+} ft_gl_trace;
+
+/* "gl" + the entry point's name, e.g. "glBufferData". */
+const char *ft_gl_entry_name(ft_gl_entry e);
+/* Clears t and starts recording the table's calls into it (calls before the
+ * first ft_gl_trace_frame are charged to FT_GL_TRACE_NO_FRAME). Returns 0
+ * when another trace is active. */
+int ft_gl_trace_start(ft_gl *gl, ft_gl_trace *t);
+/* Closes the current frame's readback count and charges what follows to
+ * frame. */
+void ft_gl_trace_frame(ft_gl_trace *t, uint32_t frame);
+/* Closes the last frame and restores the table's loaded entry points. */
+void ft_gl_trace_stop(ft_gl *gl, ft_gl_trace *t);
 
 #endif

@@ -136,12 +136,18 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_pgm_up);
     FT_UNIFORM(u_pgm_rect);
     FT_UNIFORM(u_pgm_eye);
+    FT_UNIFORM(u_pgrid_dist);
+    FT_UNIFORM(u_pgrid_mm);
+    FT_UNIFORM(u_pgrid_mm_info);
+    FT_UNIFORM(u_pgrid_mm_levels);
 #undef FT_UNIFORM
     /* the pgm level table element by element (the GL subset has no Uniform4fv) */
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
         char name[32];
         (void)snprintf(name, sizeof name, "u_pgm_level[%u]", l);
         p->u_pgm_level[l] = gl->GetUniformLocation(prog, name);
+        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
+        p->u_pgrid_mm_level[l] = gl->GetUniformLocation(prog, name);
     }
 }
 
@@ -449,7 +455,24 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
             return st;
         }
     }
+#ifdef NDEBUG
+    r->gl_error_checks = 0;
+#else
+    r->gl_error_checks = 1;
+#endif
     return ft_gl_check(gl, "renderer init", err);
+}
+
+/* The frame path's only glGetError (r->gl_error_checks = 1): counts what it
+ * drains and fails the frame naming the step. */
+static ft_status frame_error_check(ft_renderer *r, const char *where, ft_error *err)
+{
+    if (!r->gl_error_checks) {
+        return FT_OK;
+    }
+    ft_status st = ft_gl_check(r->gl, where, err);
+    r->gl_errors += (st != FT_OK) ? 1u : 0u;
+    return st;
 }
 
 /* ---- camera ------------------------------------------------------------------------ */
@@ -559,7 +582,7 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     st->depth_res_far_m =
         ft_camera_depth_step_m(cam->near_m, cam->far_m, r->depth_bits, r->depth_float, cam->far_m);
     r->frames += 1u;
-    return ft_gl_check(gl, "frame draw", err);
+    return FT_OK; /* GL errors, when checked, are read once at the readback */
 }
 
 /* GL rows run bottom-up; ours run top-down. Swap rows in place (no buffer). */
@@ -611,7 +634,11 @@ ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err)
     gl->ReadPixels(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px, GL_RGBA, GL_UNSIGNED_BYTE,
                    r->rgba);
     flip_rows(r->rgba, (size_t)r->width_px * 4u, r->height_px);
-    return ft_gl_check(gl, "colour readback", err);
+    ft_status st = frame_error_check(r, "frame (draw, overlay, colour readback)", err);
+    if (r->frame_done != NULL) {
+        r->frame_done(r->frame_done_ctx, r);
+    }
+    return st;
 }
 
 ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_error *err)
@@ -633,7 +660,7 @@ ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_er
     gl->ReadPixels(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px, GL_RGBA, GL_FLOAT, r->pos);
     flip_rows((uint8_t *)r->pos, (size_t)r->width_px * 16u, r->height_px);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
-    return ft_gl_check(gl, "position pass", err);
+    return frame_error_check(r, "position pass", err);
 }
 
 ft_status ft_renderer_present(ft_renderer *r, ft_error *err)
@@ -652,7 +679,7 @@ ft_status ft_renderer_present(ft_renderer *r, ft_error *err)
     gl->EnableVertexAttribArray(0);
     gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    return ft_gl_check(gl, "present", err);
+    return frame_error_check(r, "present", err);
 }
 
 void ft_renderer_shutdown(ft_renderer *r)

@@ -33,6 +33,9 @@ typedef struct ft_terrain_program {
     GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
     GLint u_pgm_fwd, u_pgm_right, u_pgm_up, u_pgm_rect, u_pgm_eye;
     GLint u_pgm_level[FT_PYRAMID_LEVELS_MAX]; /* one location per element */
+    /* pgrid: min/max atlas and row distribution (shaders/pgrid.vert.glsl) */
+    GLint u_pgrid_dist, u_pgrid_mm, u_pgrid_mm_info, u_pgrid_mm_levels;
+    GLint u_pgrid_mm_level[FT_PYRAMID_LEVELS_MAX];
 } ft_terrain_program;
 
 /* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
@@ -93,6 +96,19 @@ typedef struct ft_renderer {
     float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
     uint64_t gpu_bytes;
     uint64_t frames;
+    /* glGetError in the frame path. 0: none (the safety-critical frame loop
+     * never branches on glGetError: after init a frame only sets state,
+     * draws and reads back). 1: one drain at the end of each frame (colour
+     * readback) and of present, each error counted in gl_errors and the
+     * frame failed with FT_ERR_GPU naming the step. Default set by
+     * ft_renderer_init: 1 in builds without NDEBUG (development and tests),
+     * 0 with NDEBUG (Release, deployment); a test or soak may set either. */
+    int gl_error_checks;
+    uint64_t gl_errors;
+    /* Optional observer called at the end of every colour readback (the
+     * frame's last GL step), for soak tests and instrumentation; NULL: none. */
+    void (*frame_done)(void *ctx, const struct ft_renderer *r);
+    void *frame_done_ctx;
 } ft_renderer;
 
 /* Adds this scene's CPU pool needs (readback, staging, method) to the plan. */

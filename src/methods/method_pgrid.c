@@ -24,6 +24,60 @@
 #include "renderer.h"
 #include "shade.h"
 
+/* The ray-cast program's uniform locations, looked up once at init (a frame
+ * makes no glGetUniformLocation call). They live in the same arena block as
+ * the error pass's program, right after it: m->err_prog points at the first
+ * member of this struct. */
+typedef struct pgrid_rc_locs {
+    GLint err, heights, mm, thr, pack, grid_size, mm_info, mm_levels, eye_g, cell_m, drop;
+    GLint fwd, right, up, tan, size, view_proj, mode, sky, ramp_h, ramp_rgb, sun, light;
+    GLint mm_level[FT_PYRAMID_LEVELS_MAX];
+} pgrid_rc_locs;
+
+typedef struct pgrid_programs {
+    ft_terrain_program err; /* first: m->err_prog == &block->err */
+    pgrid_rc_locs rc;
+} pgrid_programs;
+
+static pgrid_rc_locs *rc_locs(const ft_pgrid_method *m)
+{
+    return &((pgrid_programs *)(void *)m->err_prog)->rc;
+}
+
+static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
+{
+#define U(field, name) u->field = gl->GetUniformLocation(prog, name)
+    U(err, "u_err");
+    U(heights, "u_heights");
+    U(mm, "u_pgrid_mm");
+    U(thr, "u_rc_thr");
+    U(pack, "u_pack");
+    U(grid_size, "u_grid_size");
+    U(mm_info, "u_pgrid_mm_info");
+    U(mm_levels, "u_pgrid_mm_levels");
+    U(eye_g, "u_rc_eye_g");
+    U(cell_m, "u_cell_m");
+    U(drop, "u_earth_drop_per_m2");
+    U(fwd, "u_rc_fwd");
+    U(right, "u_rc_right");
+    U(up, "u_rc_up");
+    U(tan, "u_rc_tan");
+    U(size, "u_rc_size");
+    U(view_proj, "u_view_proj");
+    U(mode, "u_rc_mode");
+    U(sky, "u_rc_sky");
+    U(ramp_h, "u_ramp_height_m");
+    U(ramp_rgb, "u_ramp_rgb");
+    U(sun, "u_sun_dir");
+    U(light, "u_light");
+#undef U
+    for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
+        u->mm_level[l] = gl->GetUniformLocation(prog, name);
+    }
+}
+
 static void pgm_scene(const ft_scene *s, ft_scene *out)
 {
     *out = *s;
@@ -42,7 +96,7 @@ void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     }
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)hw * 2u * h * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)s->width_px * s->height_px * 5u +
-                                         sizeof(ft_terrain_program) + 64u);
+                                         sizeof(pgrid_programs) + 64u);
 }
 
 static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
@@ -184,13 +238,13 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
         st = ft_arena_take(a, FT_POOL_METHOD, px, (void **)&m->work, err);
     }
     if (st == FT_OK) {
-        st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program), (void **)&m->err_prog,
+        st = ft_arena_take(a, FT_POOL_METHOD, sizeof(pgrid_programs), (void **)&m->err_prog,
                            err);
     }
     if (st != FT_OK) {
         return st;
     }
-    memset(m->err_prog, 0, sizeof *m->err_prog);
+    memset(m->err_prog, 0, sizeof(pgrid_programs));
     ft_gpu_terrain gt;
     memset(&gt, 0, sizeof gt);
     gt.format = m->mm_fmt.format;
@@ -212,6 +266,7 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
         if (st != FT_OK) {
             return st;
         }
+        locate_rc(gl, m->rc_prog, rc_locs(m));
         gl->GenBuffers(1, &m->quad_vbo);
         gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
@@ -236,8 +291,9 @@ void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_ca
     ft_pgm_method_select(&m->pgm, t, cam);
 }
 
-/* Uniforms of pgrid.vert.glsl beyond pgm's, on program prog. */
-static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, GLuint prog)
+/* Uniforms of pgrid.vert.glsl beyond pgm's, on program p (locations from
+ * init: ft_terrain_program carries them). */
+static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p)
 {
     const ft_pgm_sampling *s = &m->pgm.sampling;
     float s0 = 0.0f, s1 = 0.0f;
@@ -245,18 +301,14 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, GLuint prog)
         s0 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[1]);
         s1 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[3]);
     }
-    gl->Uniform4f(gl->GetUniformLocation(prog, "u_pgrid_dist"), (float)m->distribution, s0, s1,
-                  (float)s->depression_rad);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_pgrid_mm"), 2);
-    gl->Uniform4f(gl->GetUniformLocation(prog, "u_pgrid_mm_info"), (float)m->mm_half_w,
-                  (float)m->mm_h, m->mm_fmt.pack_min,
+    gl->Uniform4f(p->u_pgrid_dist, (float)m->distribution, s0, s1, (float)s->depression_rad);
+    gl->Uniform1i(p->u_pgrid_mm, 2);
+    gl->Uniform4f(p->u_pgrid_mm_info, (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_pgrid_mm_levels"), (float)m->mm_levels);
+    gl->Uniform1f(p->u_pgrid_mm_levels, (float)m->mm_levels);
     for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        char name[40];
-        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
-        gl->Uniform4f(gl->GetUniformLocation(prog, name), m->mm_level_px[l][0],
-                      m->mm_level_px[l][1], m->mm_level_px[l][2], m->mm_level_px[l][3]);
+        gl->Uniform4f(p->u_pgrid_mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
+                      m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
 }
 
@@ -304,54 +356,51 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     const GLuint prog = m->rc_prog;
     const int pos_pass = (p->u_ramp_height_m < 0);
     gl->UseProgram(prog);
-#define U(name) gl->GetUniformLocation(prog, name)
+    const pgrid_rc_locs *u = rc_locs(m);
     gl->ActiveTexture(GL_TEXTURE3);
     gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
     gl->ActiveTexture(GL_TEXTURE0);
-    gl->Uniform1i(U("u_err"), 3);
-    gl->Uniform1i(U("u_heights"), 0);
-    gl->Uniform1i(U("u_pgrid_mm"), 2);
-    gl->Uniform1f(U("u_rc_thr"), (float)m->thr);
-    gl->Uniform2f(U("u_pack"), m->mm_fmt.pack_min,
+    gl->Uniform1i(u->err, 3);
+    gl->Uniform1i(u->heights, 0);
+    gl->Uniform1i(u->mm, 2);
+    gl->Uniform1f(u->thr, (float)m->thr);
+    gl->Uniform2f(u->pack, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
-    gl->Uniform2f(U("u_grid_size"), (float)t->width, (float)t->height);
-    gl->Uniform4f(U("u_pgrid_mm_info"), (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
+    gl->Uniform2f(u->grid_size, (float)t->width, (float)t->height);
+    gl->Uniform4f(u->mm_info, (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
-    gl->Uniform1f(U("u_pgrid_mm_levels"), (float)m->mm_levels);
+    gl->Uniform1f(u->mm_levels, (float)m->mm_levels);
     for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        char name[40];
-        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
-        gl->Uniform4f(U(name), m->mm_level_px[l][0], m->mm_level_px[l][1], m->mm_level_px[l][2],
-                      m->mm_level_px[l][3]);
+        gl->Uniform4f(u->mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
+                      m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
-    gl->Uniform3f(U("u_rc_eye_g"), (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
+    gl->Uniform3f(u->eye_g, (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
                   (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
                   (float)cam->eye_m[2]);
-    gl->Uniform2f(U("u_cell_m"), (float)t->cell_x_m, (float)t->cell_y_m);
-    gl->Uniform1f(U("u_earth_drop_per_m2"), (float)t->curv_drop_per_m2);
-    gl->Uniform3f(U("u_rc_fwd"), (float)cam->forward[0], (float)cam->forward[1],
+    gl->Uniform2f(u->cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform1f(u->drop, (float)t->curv_drop_per_m2);
+    gl->Uniform3f(u->fwd, (float)cam->forward[0], (float)cam->forward[1],
                   (float)cam->forward[2]);
-    gl->Uniform3f(U("u_rc_right"), (float)cam->right[0], (float)cam->right[1],
+    gl->Uniform3f(u->right, (float)cam->right[0], (float)cam->right[1],
                   (float)cam->right[2]);
-    gl->Uniform3f(U("u_rc_up"), (float)cam->up[0], (float)cam->up[1], (float)cam->up[2]);
+    gl->Uniform3f(u->up, (float)cam->up[0], (float)cam->up[1], (float)cam->up[2]);
     const double ty = tan(0.5 * cam->fovy_rad);
-    gl->Uniform3f(U("u_rc_tan"), (float)(ty * (double)cam->width_px / (double)cam->height_px),
+    gl->Uniform3f(u->tan, (float)(ty * (double)cam->width_px / (double)cam->height_px),
                   (float)ty, 0.0f);
-    gl->Uniform2f(U("u_rc_size"), (float)m->w_px, (float)m->h_px);
-    gl->UniformMatrix4fv(U("u_view_proj"), 1, GL_FALSE, cam->view_proj);
-    gl->Uniform1f(U("u_rc_mode"), pos_pass ? 1.0f : 0.0f);
-    gl->Uniform4f(U("u_rc_sky"), FT_SKY_R, FT_SKY_G, FT_SKY_B, 1.0f);
+    gl->Uniform2f(u->size, (float)m->w_px, (float)m->h_px);
+    gl->UniformMatrix4fv(u->view_proj, 1, GL_FALSE, cam->view_proj);
+    gl->Uniform1f(u->mode, pos_pass ? 1.0f : 0.0f);
+    gl->Uniform4f(u->sky, FT_SKY_R, FT_SKY_G, FT_SKY_B, 1.0f);
     if (!pos_pass) {
-        gl->Uniform1fv(U("u_ramp_height_m"), FT_RAMP_STOPS, ft_ramp_height_m);
-        gl->Uniform3fv(U("u_ramp_rgb"), FT_RAMP_STOPS, &ft_ramp_rgb[0][0]);
+        gl->Uniform1fv(u->ramp_h, FT_RAMP_STOPS, ft_ramp_height_m);
+        gl->Uniform3fv(u->ramp_rgb, FT_RAMP_STOPS, &ft_ramp_rgb[0][0]);
         const float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
                               FT_SUN_DIR_Z * FT_SUN_DIR_Z);
-        gl->Uniform3f(U("u_sun_dir"), FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
-        gl->Uniform2f(U("u_light"), FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+        gl->Uniform3f(u->sun, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
+        gl->Uniform2f(u->light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
     }
-#undef U
     gl->DepthFunc(GL_ALWAYS);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
     gl->EnableVertexAttribArray(0);
@@ -370,7 +419,7 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
     gl->ActiveTexture(GL_TEXTURE0);
-    set_grid_uniforms(m, gl, p->program);
+    set_grid_uniforms(m, gl, p);
     ft_pgm_method_draw(&m->pgm, gl, p, t, cam, st);
     const int pos_pass = (p->u_ramp_height_m < 0);
     /* 2. the error buffer (the position pass reuses the colour pass's) */
@@ -386,7 +435,7 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
         gl->Uniform2f(m->u_err_k_gamma, (float)cam->px_per_rad_k, (float)m->gamma_px);
         gl->Uniform3f(m->u_err_fwd, (float)cam->forward[0], (float)cam->forward[1],
                       (float)cam->forward[2]);
-        set_grid_uniforms(m, gl, e->program);
+        set_grid_uniforms(m, gl, e);
         ft_method_draw_stats dummy;
         memset(&dummy, 0, sizeof dummy);
         ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);

@@ -8,7 +8,7 @@ rm -rf "$dir"; mkdir -p "$dir"
 off="-DFIXTERRAIN_WITH_EGL=OFF -DFIXTERRAIN_WITH_X11=OFF -DFIXTERRAIN_WITH_KMS=OFF -DFIXTERRAIN_WITH_OSMESA=OFF -DFIXTERRAIN_WITH_METHOD_BRUTE=OFF
      -DFIXTERRAIN_WITH_METHOD_BINTREE=OFF -DFIXTERRAIN_WITH_METHOD_PGM=OFF -DFIXTERRAIN_WITH_METHOD_PGRID=OFF -DFIXTERRAIN_WITH_CAN=OFF -DFIXTERRAIN_WITH_GPIO=OFF
      -DFIXTERRAIN_WITH_REFERENCE=OFF -DFIXTERRAIN_WITH_PNG=OFF -DFIXTERRAIN_WITH_GDAL_TOOLS=OFF
-     -DFIXTERRAIN_BUILD_TESTS=OFF"
+     -DFIXTERRAIN_BUILD_TESTS=OFF -DFIXTERRAIN_WERROR=${FT_WERROR:-OFF}"
 # shellcheck disable=SC2086
 cmake -S "$src" -B "$dir/off" -DCMAKE_C_COMPILER="$cc" $off > "$dir/off.log"
 cmake --build "$dir/off" -j2 >> "$dir/off.log" 2>&1 || { cat "$dir/off.log"; exit 1; }
@@ -30,6 +30,7 @@ grep -q "triangles" "$dir/min-run.log" || { cat "$dir/min-run.log"; exit 1; }
 # and leave out what it does not use.
 # shellcheck disable=SC2086
 cmake -S "$src" -B "$dir/profile" -DCMAKE_C_COMPILER="$cc" -DFIXTERRAIN_BUILD_TESTS=OFF \
+      -DFIXTERRAIN_WERROR="${FT_WERROR:-OFF}" \
       -DFIXTERRAIN_PROFILE="$src/config/minimal.ini" > "$dir/profile.log"
 cmake --build "$dir/profile" -j2 >> "$dir/profile.log" 2>&1 || { cat "$dir/profile.log"; exit 1; }
 pbin="$dir/profile/fixterrain"

@@ -110,7 +110,8 @@ int main(void)
     CHECK(a.unit == FT_UNIT_METRE && a.cell_x_m == 30.0 && strcmp(a.crs, "local") == 0);
     CHECK(a.anchor_lat_deg == 46.5 && a.anchor_lon_deg == 8.0);
 
-    /* another seed gives another terrain */
+    /* another seed gives another terrain (run() allocates anew: free the first b) */
+    free(b.heights_m);
     d.seed = 2;
     run(&d, &b);
     CHECK(memcmp(a.heights_m, b.heights_m, 129u * 129u * sizeof(float)) != 0);

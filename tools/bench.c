@@ -105,7 +105,7 @@ typedef struct bench_row {
     double init_ms;
     double t_med_ms, t_p99_ms, t_max_ms, sel_med_ms;
     double err_max_px, err_p999_px, err_mean_px;
-    char err_max_where[48]; /* "valley frame 12" */
+    char err_max_where[56]; /* "valley frame 12": %.32s + " frame " + an int */
     uint32_t cov_max_px;
     double cov_mean_px;
     uint32_t occl_max_px;     /* occlusion-mismatch pixels, worst frame */
@@ -834,7 +834,8 @@ static int write_plot(const bench_opts *o, const ft_scene *base, const char *pat
                                         {227, 119, 194, 255}, {23, 190, 207, 255}};
     plot_chart ch;
     memset(&ch, 0, sizeof ch);
-    char title[200], paths[256];
+    char paths[256];
+    char title[FT_SCENE_NAME_MAX + 32 + sizeof paths]; /* name, " WxH: ", paths: never cut */
     paths_text(paths, sizeof paths);
     (void)snprintf(title, sizeof title, "%.63s %ux%u: %.100s", base->name, base->width_px,
                    base->height_px, paths);

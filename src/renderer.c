@@ -8,6 +8,10 @@
 #include "shade.h"
 #include "shaders.h"
 
+#ifndef FT_GL_ERROR_CHECKS_DEFAULT
+#error "FT_GL_ERROR_CHECKS_DEFAULT comes from CMakeLists.txt (0 or 1 by build type)"
+#endif
+
 #define FT_PI 3.14159265358979323846
 #define FT_SHADER_LOG_MAX 1024
 
@@ -455,11 +459,7 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
             return st;
         }
     }
-#ifdef NDEBUG
-    r->gl_error_checks = 0;
-#else
-    r->gl_error_checks = 1;
-#endif
+    r->gl_error_checks = FT_GL_ERROR_CHECKS_DEFAULT;
     return ft_gl_check(gl, "renderer init", err);
 }
 

@@ -101,8 +101,9 @@ typedef struct ft_renderer {
      * draws and reads back). 1: one drain at the end of each frame (colour
      * readback) and of present, each error counted in gl_errors and the
      * frame failed with FT_ERR_GPU naming the step. Default set by
-     * ft_renderer_init: 1 in builds without NDEBUG (development and tests),
-     * 0 with NDEBUG (Release, deployment); a test or soak may set either. */
+     * ft_renderer_init: 1 in Debug and RelWithDebInfo builds (development
+     * and tests), 0 in Release and MinSizeRel (deployment); a test or soak
+     * may set either. */
     int gl_error_checks;
     uint64_t gl_errors;
     /* Optional observer called at the end of every colour readback (the

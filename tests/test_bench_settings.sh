@@ -6,14 +6,7 @@
 set -u
 bin=$1; tp=$2; src=$3; out=$4/bench-settings
 rm -rf "$out"; mkdir -p "$out"
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-expect() {
-  code=$1; needle=$2; shift 3
-  text=$("$@" 2>&1); rc=$?
-  [ "$rc" -eq "$code" ] || fail "'$*' exited $rc, expected $code: $text"
-  case "$text" in *"$needle"*) ;; *) fail "'$*' output lacks '$needle': $text" ;; esac
-}
+. "$(dirname "$0")/expect.sh"
 
 # a newline in a value would have written a [pose] section into the setting
 nl_spec=$(printf 'bintree.tau_px=1\n[pose]\nalt_m=5')

@@ -4,16 +4,7 @@
 set -u
 bin=$1; out=$2/cli; data=$3
 mkdir -p "$out"; rm -f "$out"/*
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-
-# expect CODE NEEDLE -- CMD...: exit status CODE and NEEDLE in stdout+stderr
-expect() {
-  code=$1; needle=$2; shift 3
-  text=$("$@" 2>&1); rc=$?
-  [ "$rc" -eq "$code" ] || fail "'$*' exited $rc, expected $code: $text"
-  case "$text" in *"$needle"*) ;; *) fail "'$*' output lacks '$needle': $text" ;; esac
-}
+. "$(dirname "$0")/expect.sh"
 
 expect 0 "usage: fixterrain COMMAND" -- "$bin" help
 expect 0 "usage: fixterrain render" -- "$bin" render --help

@@ -40,11 +40,17 @@ static void ts_text(uint64_t t_ns, char out[32])
 }
 
 
+/* A long path keeps its end (the file's name says which log), not its start. */
+#define LOG_NAME_KEPT 60u
+
 static void keep_error(ft_replay_result *r, const char *log, uint64_t line_no, const char *text)
 {
     if (r->errors_kept < FT_REPLAY_ERRORS_KEPT) {
-        (void)snprintf(r->errors[r->errors_kept], FT_REPLAY_ERROR_TEXT_MAX, "%.60s:%llu: %.120s", log,
-                       (unsigned long long)line_no, text);
+        const size_t len = strlen(log);
+        const char *lead = len > LOG_NAME_KEPT ? "..." : "";
+        const char *tail = len > LOG_NAME_KEPT ? log + (len - (LOG_NAME_KEPT - 3u)) : log;
+        (void)snprintf(r->errors[r->errors_kept], FT_REPLAY_ERROR_TEXT_MAX, "%s%s:%llu: %.120s", lead,
+                       tail, (unsigned long long)line_no, text);
         r->errors_kept += 1u;
     }
 }

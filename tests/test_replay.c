@@ -384,6 +384,16 @@ static void test_timestamps(void)
                                   "earlier than the previous accepted frame's "
                                   "18446744014.000000 s") != NULL);
 
+    /* A path longer than the kept text keeps its end: the file's name. */
+    const char *back_long = FT_TEST_OUT_DIR "/replay_ts_backwards_in_a_file_whose_name_alone_is_"
+                                            "longer_than_sixty_characters.log";
+    write_text(back_long, "(18446744014.000000) vcan0 137#01020000A6652EE1\n"
+                          "(1.000000) vcan0 137#01020001A6652EE1\n");
+    CHECK(run_replay(back_long, NULL, &st, &err));
+    printf("long path: kept \"%s\"\n", g_res.errors_kept == 1u ? g_res.errors[0] : "");
+    CHECK(g_res.errors_kept == 1u && strncmp(g_res.errors[0], "...", 3) == 0 &&
+          strstr(g_res.errors[0], "_sixty_characters.log:2: timestamp 1.000000 s is earlier") != NULL);
+
     /* The display clock wrapping past 2^64 ns: the second frame is 615 ns
      * before the end of the clock, so no display time can reach it. */
     const char *wrap = FT_TEST_OUT_DIR "/replay_ts_wrap.log";

@@ -45,12 +45,16 @@ uniform vec3 u_pgm_up;
 uniform vec4 u_pgm_rect;         /* (x0, y0, x1, y1): image plane at distance 1 */
 uniform vec2 u_pgm_eye;          /* (h: sampling eye above the base plane, floor of -d_z) */
 
+/* A fragment shader that places grid vertices (pgrid's vertex pass) defines
+ * FT_PGM_GRID_NO_IO: it has neither the attribute nor the varyings. */
+#ifndef FT_PGM_GRID_NO_IO
 FT_IN_VS vec2 a_uv;
 
 FT_OUT_VS vec3 v_pos_rel_eye_m;
 FT_OUT_VS vec3 v_normal;
 FT_OUT_VS float v_height_m;
 FT_OUT_VS float v_morph; /* the continuous level L + w (captured by the tests) */
+#endif
 
 float ft_decode(vec4 t, vec2 pack)
 {
@@ -163,6 +167,7 @@ vec3 ft_pgm_vertex(vec2 ij, out vec2 pc, out float morph)
     return s;
 }
 
+#ifndef FT_PGM_GRID_NO_IO
 /* The vertex's outputs: placed at (pc, height s.x), drawn with the viewing
  * camera; the normal from the sample's gradient. */
 void ft_pgm_emit(vec2 pc, vec3 s, float morph)
@@ -174,3 +179,4 @@ void ft_pgm_emit(vec2 pc, vec3 s, float morph)
     v_pos_rel_eye_m = ft_earth_curve(vec3(pc, s.x + u_origin_rel_eye_m.z));
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }
+#endif

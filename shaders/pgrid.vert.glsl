@@ -10,27 +10,18 @@
  * The placement is shaders/pgm_grid.glsl (shared with 'pgm'). */
 #include "curvature.glsl"
 #include "pgm_grid.glsl"
+#include "pgrid_rows.glsl"
 
-uniform vec4 u_pgrid_dist;       /* (mode, s0, s1, dep_s) */
 uniform sampler2D u_pgrid_mm;    /* min (x < half) | max (x >= half) atlas, levels >= 2 */
 uniform vec4 u_pgrid_mm_info;    /* (half width, height, pack min, pack range or 0) */
 uniform vec4 u_pgrid_mm_level[FT_PGM_LEVELS]; /* origin xy, size zw per min/max level */
 uniform float u_pgrid_mm_levels;
-uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the vertex at its region's max (min) */
+uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the upper (lower) envelope */
+uniform highp sampler2D u_pgrid_quad; /* tight bound: e_Q per grid quad (m), src/pgrid.h 6 */
+uniform float u_pgrid_tight;     /* 1: delta from u_pgrid_quad; 0: the relief bound (2) */
 
 FT_OUT_VS float v_delta_m;
 
-/* src/pgrid.h 1: mode 1 (view) spaces rows evenly in s = asinh(ground
- * distance / h); mode 0 keeps pgm's uniform y */
-float ft_row_y(float t, float y)
-{
-    if (u_pgrid_dist.x > 0.5) {
-        float s = mix(u_pgrid_dist.y, u_pgrid_dist.z, t);
-        float sh = 0.5 * (exp(s) - exp(-s));
-        return tan(u_pgrid_dist.w - atan(1.0, sh));
-    }
-    return y;
-}
 
 float ft_height_at(vec2 ij)
 {
@@ -95,12 +86,41 @@ vec2 ft_region_minmax(vec2 a, vec2 b)
     return r;
 }
 
+/* Float margin of the tight bound (m): the quad pass evaluates planes through
+ * heights in float32 (measured against the CPU rule in double: <= 0.006 m at
+ * 2000 m), and the vertex pass places the grid in a fragment shader, this
+ * shader again (the two agree to about 1e-4 m). */
+#define FT_PGRID_TIGHT_EPS_M(h_m) (0.005 + 4e-6 * abs(h_m))
+
+/* src/pgrid.h 6: the largest quad bound of the <= 4 quads around ij */
+float ft_tight_delta(vec2 ij, float h_m)
+{
+    float d = 0.0;
+#if FT_ES3
+    vec2 last = u_pgm_grid.xy - 1.0;
+    for (int y = 0; y < 2; ++y) {
+        for (int x = 0; x < 2; ++x) {
+            vec2 q = clamp(ij - vec2(float(x), float(y)), vec2(0.0), last);
+            d = max(d, texelFetch(u_pgrid_quad, ivec2(q), 0).r);
+        }
+    }
+#endif
+    return d + FT_PGRID_TIGHT_EPS_M(h_m);
+}
+
 void main()
 {
     vec2 ij = vec2(a_uv.x, a_uv.y + u_pgm_grid.z);
     vec2 pc;
     float morph;
     vec3 s = ft_pgm_vertex(ij, pc, morph);
+    if (u_pgrid_tight > 0.5) {
+        v_delta_m = ft_tight_delta(ij, s.x);
+        /* the envelopes: the mesh moved up (down) by its bound encloses H */
+        s.x += u_pgrid_envelope * v_delta_m;
+        ft_pgm_emit(pc, s, morph);
+        return;
+    }
     vec2 inv_cell = 1.0 / u_cell_m;
     vec2 lo = u_origin_rel_eye_m.xy;
     {

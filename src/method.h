@@ -94,6 +94,18 @@ typedef struct ft_pgrid_method {
     struct ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
     int err_prog_built;
     GLint u_err_k_gamma, u_err_fwd, u_err_envelope; /* err_prog's own uniforms */
+    /* the tight bound (src/pgrid.h 6; GLES 3 with ray casting): residual
+     * atlas (levels >= FT_PGRID_RES_L0), the vertex pass's and quad-bound
+     * pass's targets (grid-sized RGBA32F) and programs */
+    int tight;
+    GLuint res_tex, vtx_tex, vtx_fbo, quad_tex, quad_fbo, quad_prog;
+    uint32_t res_levels;
+    float res_level_px[FT_PYRAMID_LEVELS_MAX][4];
+    struct ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */
+    int vtx_prog_built;
+    GLint uq_vtx, uq_res, uq_heights, uq_grid_size, uq_cell_m, uq_origin, uq_pack, uq_drop;
+    GLint uq_res_levels, uq_res_level[FT_PYRAMID_LEVELS_MAX];
+    uint64_t terrain_px;            /* the last decision's terrain pixels (undilated code > 0) */
     uint32_t w_px, h_px;
     int distribution, ray_casting, es3;
     double gamma_px;
@@ -172,6 +184,10 @@ ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
 /* Cell rows drawn by band b (the last band may be shorter). */
 uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
+/* Binds the avg atlas (unit 1) and sets program p's pgm uniforms for the
+ * selected sampling (u_pgm_grid with band row 0), without drawing. */
+void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
+                        const struct ft_terrain_program *p);
 void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                         const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);

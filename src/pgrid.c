@@ -175,3 +175,145 @@ void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32
     *half_w = w0 + col_w;
     *height_px = (y > h0) ? y : h0;
 }
+
+/* ---- 6. the tight bound ---------------------------------------------------- */
+
+void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
+                              uint32_t *height_px)
+{
+    const ft_pyramid *p = &t->pyr;
+    const uint32_t l0 = FT_PGRID_RES_L0;
+    *width_px = *height_px = 1u;
+    if (p->minmax_levels <= l0) {
+        return; /* level 0 comes from the heights */
+    }
+    /* level l0 at (0, 0); levels l0 + 1.. stacked in a column right of it */
+    const uint32_t w0 = p->minmax[l0].width, h0 = p->minmax[l0].height;
+    uint32_t col_w = 0u, y = 0u;
+    origin_px[l0][0] = 0u;
+    origin_px[l0][1] = 0u;
+    for (uint32_t l = l0 + 1u; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        origin_px[l][0] = w0;
+        origin_px[l][1] = y;
+        y += p->minmax[l].height;
+        col_w = (p->minmax[l].width > col_w) ? p->minmax[l].width : col_w;
+    }
+    *width_px = w0 + col_w;
+    *height_px = (y > h0) ? y : h0;
+}
+
+typedef struct node_box {
+    uint32_t x0, x1, y0, y1;
+    double m, bx, by; /* plane: centre value, rise across the node in x and y */
+} node_box;
+
+static node_box node_of(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j)
+{
+    node_box n;
+    const uint32_t s = 1u << level;
+    n.x0 = i * s;
+    n.y0 = j * s;
+    n.x1 = (n.x0 + s < t->width - 1u) ? n.x0 + s : t->width - 1u;
+    n.y1 = (n.y0 + s < t->height - 1u) ? n.y0 + s : t->height - 1u;
+    const float *h = t->heights_m;
+    const double h00 = h[(size_t)n.y0 * t->width + n.x0], h10 = h[(size_t)n.y0 * t->width + n.x1];
+    const double h01 = h[(size_t)n.y1 * t->width + n.x0], h11 = h[(size_t)n.y1 * t->width + n.x1];
+    n.m = 0.25 * (h00 + h10 + h01 + h11);
+    n.bx = 0.5 * (h10 + h11 - h00 - h01);
+    n.by = 0.5 * (h01 + h11 - h00 - h10);
+    return n;
+}
+
+static double plane_at(const node_box *n, double gx, double gy)
+{
+    const double u = (gx - (double)n->x0) / (double)(n->x1 - n->x0) - 0.5;
+    const double v = (gy - (double)n->y0) / (double)(n->y1 - n->y0) - 0.5;
+    return n->m + n->bx * u + n->by * v;
+}
+
+double ft_pgrid_node_plane(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j,
+                           double gx, double gy)
+{
+    const node_box n = node_of(t, level, i, j);
+    return plane_at(&n, gx, gy);
+}
+
+double ft_pgrid_node_residual(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j)
+{
+    const node_box n = node_of(t, level, i, j);
+    double r = 0.0;
+    for (uint32_t y = n.y0; y <= n.y1; ++y) {
+        const float *row = t->heights_m + (size_t)y * t->width;
+        for (uint32_t x = n.x0; x <= n.x1; ++x) {
+            const double d = fabs((double)row[x] - plane_at(&n, (double)x, (double)y));
+            r = (d > r) ? d : r;
+        }
+    }
+    return r;
+}
+
+void ft_pgrid_residual_fill(const ft_terrain *t, float *atlas, uint32_t width_px,
+                            uint32_t height_px)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], w = 1u, h = 1u;
+    ft_pgrid_residual_layout(t, origin, &w, &h);
+    for (size_t k = 0; k < (size_t)width_px * height_px; ++k) {
+        atlas[k] = 0.0f;
+    }
+    const ft_pyramid *p = &t->pyr;
+    for (uint32_t l = FT_PGRID_RES_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        const ft_pyramid_level *lv = &p->minmax[l];
+        for (uint32_t j = 0; j < lv->height; ++j) {
+            float *row = atlas + (size_t)(origin[l][1] + j) * width_px + origin[l][0];
+            for (uint32_t i = 0; i < lv->width; ++i) {
+                /* float rounds to nearest: one ulp up keeps it a bound */
+                const double r = ft_pgrid_node_residual(t, l, i, j);
+                row[i] = nextafterf((float)r, INFINITY);
+            }
+        }
+    }
+}
+
+double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q)
+{
+    const double(*g)[2] = q->g;
+    const double *h = q->h_m;
+    double lo_x = g[0][0], hi_x = g[0][0], lo_y = g[0][1], hi_y = g[0][1];
+    for (int k = 1; k < 4; ++k) {
+        lo_x = fmin(lo_x, g[k][0]);
+        hi_x = fmax(hi_x, g[k][0]);
+        lo_y = fmin(lo_y, g[k][1]);
+        hi_y = fmax(hi_y, g[k][1]);
+    }
+    const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
+    lo_x = clampd(lo_x, 0.0, wx);
+    hi_x = clampd(hi_x, 0.0, wx);
+    lo_y = clampd(lo_y, 0.0, wy);
+    hi_y = clampd(hi_y, 0.0, wy);
+    const double side = fmax(fmax(hi_x - lo_x, hi_y - lo_y), 1.0);
+    uint32_t level = (uint32_t)fmax(0.0, ceil(log2(side)));
+    const ft_pyramid *p = &t->pyr;
+    if (level >= p->minmax_levels) {
+        level = p->minmax_levels - 1u;
+    }
+    const ft_pyramid_level *lv = &p->minmax[level];
+    const double scale = exp2((double)level);
+    const uint32_t i0 = (uint32_t)fmin(floor(lo_x / scale), (double)(lv->width - 1u));
+    const uint32_t j0 = (uint32_t)fmin(floor(lo_y / scale), (double)(lv->height - 1u));
+    uint32_t i1 = (uint32_t)fmin(floor(hi_x / scale), (double)(lv->width - 1u));
+    uint32_t j1 = (uint32_t)fmin(floor(hi_y / scale), (double)(lv->height - 1u));
+    if (i1 > i0 + 1u) i1 = i0 + 1u; /* side <= 2^L: never more than 2 nodes */
+    if (j1 > j0 + 1u) j1 = j0 + 1u;
+    double e = 0.0;
+    for (uint32_t j = j0; j <= j1; ++j) {
+        for (uint32_t i = i0; i <= i1; ++i) {
+            const node_box n = node_of(t, level, i, j);
+            double off = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                off = fmax(off, fabs(plane_at(&n, g[k][0], g[k][1]) - h[k]));
+            }
+            e = fmax(e, ft_pgrid_node_residual(t, level, i, j) + off);
+        }
+    }
+    return e;
+}

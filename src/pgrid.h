@@ -128,4 +128,55 @@ void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *wo
 void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
                             uint32_t *height_px);
 
+/* 6. The tight bound (GLES 3 with ray casting): what the error buffer needs
+ *    is |L(x) - H(x)|, L the drawn surface (the grid's linear interpolation
+ *    of its vertex heights), H the bilinear truth, not the relief of H
+ *    around a vertex (2), which on real terrain exceeds gamma's worth of
+ *    metres at almost every vertex.
+ *    Plane-residual pyramid: node (i, j) of level L covers the same samples
+ *    as min/max texel (i, j) of level L, [x0, x1] x [y0, y1] with x0 = i 2^L,
+ *    x1 = min(x0 + 2^L, width - 1). Its plane p is the least-squares plane of
+ *    its four corner samples: centre value m = mean of the corners, slopes
+ *    bx = (h10 + h11 - h00 - h01) / 2 across x1 - x0, by likewise. Its
+ *    residual r = max |H - p| over the node, exact from the samples alone
+ *    (H - p is bilinear on every cell, so its extremes are at samples). At
+ *    level 0 (one cell) r = |h00 - h10 - h01 + h11| / 4, computed from the
+ *    heights; levels FT_PGRID_RES_L0.. are an R32F atlas.
+ *    Quad bound: a grid quad with corners (g_k, h_k) (grid coordinates of
+ *    the drawn vertices and their drawn heights) is covered by <= 2 x 2 nodes
+ *    of the level where its box spans at most 2 nodes (2's rule). Over the
+ *    part of the quad in node N,
+ *        H - L = (H - p_N) + (p_N - L),  |H - p_N| <= r_N,
+ *    and p_N - L is linear on each of the quad's two triangles, so its extreme
+ *    is at a corner: |H - L| <= r_N + max_k |p_N(g_k) - h_k|. The quad's
+ *    bound e_Q is the largest over its nodes, plus the curvature chord (2).
+ *    A vertex's delta is the largest e_Q of the <= 4 quads around it (every
+ *    triangle touching the vertex lies in one of them), so the interpolated
+ *    delta bounds |L - H| over every triangle, as before; the envelopes are
+ *    the mesh moved up and down by delta (they enclose H). */
+#define FT_PGRID_RES_L0 1u
+/* Atlas of the residual levels FT_PGRID_RES_L0.. (level L at origin_px[L]),
+ * width_px x height_px (1 x 1 when the terrain has no such level). */
+void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
+                              uint32_t *height_px);
+/* Residual r of node (i, j) at level (any level, 0 included), from the
+ * heights: max |H - p| over the node's samples. */
+double ft_pgrid_node_residual(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j);
+/* Plane of node (i, j) at level evaluated at grid point (gx, gy). */
+double ft_pgrid_node_plane(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j,
+                           double gx, double gy);
+/* Fills the residual atlas (row-major, width_px x height_px floats; texels
+ * outside every level are 0). Init time: each level visits every sample once. */
+void ft_pgrid_residual_fill(const ft_terrain *t, float *atlas, uint32_t width_px,
+                            uint32_t height_px);
+/* A grid quad as drawn: corners (i, j), (i+1, j), (i, j+1), (i+1, j+1) at
+ * grid coordinates g[k] (clamped into the grid) with drawn heights h_m[k]. */
+typedef struct ft_pgrid_quad {
+    double g[4][2];
+    double h_m[4];
+} ft_pgrid_quad;
+/* The quad bound e_Q (metres, without the chord): the shader's rule in
+ * double. */
+double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q);
+
 #endif

@@ -144,6 +144,8 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_pgrid_mm);
     FT_UNIFORM(u_pgrid_mm_info);
     FT_UNIFORM(u_pgrid_mm_levels);
+    FT_UNIFORM(u_pgrid_quad);
+    FT_UNIFORM(u_pgrid_tight);
 #undef FT_UNIFORM
     /* the pgm level table element by element (the GL subset has no Uniform4fv) */
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {

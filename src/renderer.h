@@ -35,6 +35,7 @@ typedef struct ft_terrain_program {
     GLint u_pgm_level[FT_PYRAMID_LEVELS_MAX]; /* one location per element */
     /* pgrid: min/max atlas and row distribution (shaders/pgrid.vert.glsl) */
     GLint u_pgrid_dist, u_pgrid_mm, u_pgrid_mm_info, u_pgrid_mm_levels;
+    GLint u_pgrid_quad, u_pgrid_tight; /* the tight bound (src/pgrid.h 6) */
     GLint u_pgrid_mm_level[FT_PYRAMID_LEVELS_MAX];
 } ft_terrain_program;
 

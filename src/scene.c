@@ -512,6 +512,13 @@ static int on_key(void *user, const char *section, const char *key, const char *
             }
             return fail_key(c, section, key, value, "expected uniform or view");
         }
+        if (strcmp(key, "error_bound") == 0) {
+            if (strcmp(value, "relief") == 0 || strcmp(value, "residual") == 0) {
+                s->pgrid_residual_bound = (strcmp(value, "residual") == 0);
+                return 1;
+            }
+            return fail_key(c, section, key, value, "expected relief or residual");
+        }
         if (strcmp(key, "ray_casting") == 0) {
             return RANGE(parse_flag(value, &s->pgrid_ray_casting), "expected 0 or 1");
         }

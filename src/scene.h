@@ -181,6 +181,7 @@ typedef struct ft_scene {
     uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */
     uint32_t pgrid_grid_rows;    /* pgrid.grid_rows */
     int pgrid_view_distribution; /* pgrid.distribution: 0 uniform, 1 view */
+    int pgrid_residual_bound;    /* pgrid.error_bound: 0 relief, 1 residual (src/pgrid.h 6) */
     int pgrid_ray_casting;       /* pgrid.ray_casting */
     double pgrid_gamma_px;       /* pgrid.gamma_px */
     uint32_t pgrid_raycast_max_px; /* pgrid.raycast_max_px */

@@ -3,6 +3,7 @@
  * min/max on a known pyramid, the budget threshold and the dilated
  * histogram. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "pgrid.h"
@@ -112,11 +113,122 @@ static void test_budget(void)
     CHECK(hist[200] == 9u && hist[0] == 48u - 9u);
 }
 
+/* The residual bound (src/pgrid.h 6) on a rough 65 x 65 terrain: the atlas
+ * holds each node's residual; the quad bound is never under the true max
+ * of |L - H| (L the quad's two triangles through its drawn corners, H the
+ * bilinear surface: dense sampling), for quads from a quarter cell to 24
+ * cells, axis-aligned or not, with drawn heights on or off the surface; on
+ * a plane it is 0. */
+static float g_rough[65 * 65];
+static float g_rough_pyr[32768];
+static float g_res_atlas[64 * 64];
+
+static double bilinear(const ft_terrain *t, double x, double y)
+{
+    const uint32_t ix = (uint32_t)fmin(floor(x), (double)t->width - 2.0);
+    const uint32_t iy = (uint32_t)fmin(floor(y), (double)t->height - 2.0);
+    const double fx = x - ix, fy = y - iy;
+    const float *h = t->heights_m + (size_t)iy * t->width + ix;
+    return (1.0 - fy) * ((1.0 - fx) * h[0] + fx * h[1]) +
+           fy * ((1.0 - fx) * h[t->width] + fx * h[t->width + 1u]);
+}
+
+static double quad_true_max(const ft_terrain *t, const ft_pgrid_quad *q)
+{
+    const double(*g)[2] = q->g;
+    const double *h = q->h_m;
+    /* corners 0 (u0 v0), 1 (u1 v0), 2 (u0 v1), 3 (u1 v1); triangles 0-1-3, 0-3-2 */
+    double mx = 0.0;
+    const int n = 48;
+    for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+            const double u = (double)i / n, v = (double)j / n;
+            double w0, w1, w2, w3;
+            if (u >= v) { w0 = 1.0 - u; w1 = u - v; w2 = 0.0; w3 = v; }
+            else { w0 = 1.0 - v; w1 = 0.0; w2 = v - u; w3 = u; }
+            const double x = w0 * g[0][0] + w1 * g[1][0] + w2 * g[2][0] + w3 * g[3][0];
+            const double y = w0 * g[0][1] + w1 * g[1][1] + w2 * g[2][1] + w3 * g[3][1];
+            const double l = w0 * h[0] + w1 * h[1] + w2 * h[2] + w3 * h[3];
+            mx = fmax(mx, fabs(l - bilinear(t, x, y)));
+        }
+    }
+    return mx;
+}
+
+static void test_residual_bound(void)
+{
+    ft_terrain t;
+    memset(&t, 0, sizeof t);
+    t.width = t.height = 65u;
+    t.cell_x_m = t.cell_y_m = 30.0;
+    uint32_t seed = 12345u;
+    for (uint32_t i = 0; i < 65u * 65u; ++i) {
+        seed = seed * 1664525u + 1013904223u;
+        const double x = (double)(i % 65u), y = (double)(i / 65u);
+        g_rough[i] = (float)(400.0 + 80.0 * sin(x * 0.21) * cos(y * 0.17) + 3.0 * x +
+                             (double)(seed >> 24) * 0.12);
+    }
+    t.heights_m = g_rough;
+    ft_error err;
+    CHECK(ft_pyramid_layout(&t, g_rough_pyr, sizeof g_rough_pyr, &err) == FT_OK);
+    ft_pyramid_build(&t);
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], aw = 0u, ah = 0u;
+    ft_pgrid_residual_layout(&t, origin, &aw, &ah);
+    CHECK(aw * ah <= 64u * 64u);
+    if (aw * ah > 64u * 64u) return;
+    ft_pgrid_residual_fill(&t, g_res_atlas, aw, ah);
+    /* the atlas holds the residuals; a residual bounds |H - p| at every sample */
+    for (uint32_t l = FT_PGRID_RES_L0; l < t.pyr.minmax_levels; ++l) {
+        for (uint32_t j = 0; j < t.pyr.minmax[l].height; ++j) {
+            for (uint32_t i = 0; i < t.pyr.minmax[l].width; ++i) {
+                const double r = ft_pgrid_node_residual(&t, l, i, j);
+                const float a = g_res_atlas[(origin[l][1] + j) * aw + origin[l][0] + i];
+                CHECK((double)a >= r && (double)a <= r * (1.0 + 1e-6) + 1e-6);
+            }
+        }
+    }
+    double worst_ratio = 0.0, sum_bound = 0.0, sum_true = 0.0;
+    uint32_t under = 0u;
+    for (int k = 0; k < 300; ++k) {
+        seed = seed * 1664525u + 1013904223u;
+        const double side = 0.25 * exp2((double)(k % 7)) * (1.0 + 0.5 * (double)(seed >> 28) / 16.0);
+        const double x0 = 1.0 + (double)(seed % 1000u) / 1000.0 * (62.0 - side);
+        const double y0 = 1.0 + (double)((seed >> 10) % 1000u) / 1000.0 * (62.0 - side);
+        const double skew = (k % 3 == 0) ? 0.3 * side : 0.0;
+        ft_pgrid_quad q = {{{x0, y0}, {x0 + side, y0 + skew}, {x0 + skew, y0 + side},
+                            {x0 + side, y0 + side}}, {0.0, 0.0, 0.0, 0.0}};
+        for (int c = 0; c < 4; ++c) {
+            q.g[c][0] = fmin(q.g[c][0], 64.0);
+            q.g[c][1] = fmin(q.g[c][1], 64.0);
+            /* drawn heights: on the surface, or (a filtered level) a few m off */
+            q.h_m[c] = bilinear(&t, q.g[c][0], q.g[c][1]) + ((k % 2) ? 0.0 : 4.0 * (c - 1.5));
+        }
+        const double b = ft_pgrid_quad_bound(&t, &q);
+        const double e = quad_true_max(&t, &q);
+        under += (b < e - 1e-9);
+        sum_bound += b;
+        sum_true += e;
+        if (e > 0.0 && b / e > worst_ratio) worst_ratio = b / e;
+    }
+    printf("residual bound: 300 quads, %u under the true max; mean bound / mean true %.2f, "
+           "worst ratio %.2f\n", under, sum_bound / sum_true, worst_ratio);
+    CHECK(under == 0u);
+    /* a plane: nothing between the drawn surface and the truth */
+    for (uint32_t i = 0; i < 65u * 65u; ++i) {
+        g_rough[i] = (float)(100.0 + 2.0 * (double)(i % 65u) - 1.5 * (double)(i / 65u));
+    }
+    ft_pyramid_build(&t);
+    ft_pgrid_quad q = {{{3.3, 4.1}, {20.7, 5.0}, {4.0, 18.2}, {21.9, 19.5}}, {0.0, 0.0, 0.0, 0.0}};
+    for (int c = 0; c < 4; ++c) q.h_m[c] = bilinear(&t, q.g[c][0], q.g[c][1]);
+    CHECK(ft_pgrid_quad_bound(&t, &q) < 1e-3);
+}
+
 int main(void)
 {
     test_error_terms();
     test_rows();
     test_region();
     test_budget();
+    test_residual_bound();
     return ft_test_result("test_pgrid");
 }

@@ -251,10 +251,9 @@ void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera
     m->have_sampling = 1;
 }
 
-void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
-                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
+                        const struct ft_terrain_program *p)
 {
-    ft_pgm_method_select(m, t, cam);
     const ft_pgm_sampling *s = &m->sampling;
     gl->ActiveTexture(GL_TEXTURE1);
     gl->BindTexture(GL_TEXTURE_2D, m->atlas_tex);
@@ -275,7 +274,15 @@ void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terra
     gl->Uniform4f(p->u_pgm_rect, (float)s->rect[0], (float)s->rect[1], (float)s->rect[2],
                   (float)s->rect[3]);
     gl->Uniform2f(p->u_pgm_eye, (float)s->height_m, (float)s->min_neg_dz);
+    gl->Uniform4f(p->u_pgm_grid, (float)(m->cols - 1u), (float)(m->rows - 1u), 0.0f,
+                  (float)m->levels);
+}
 
+void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    ft_pgm_method_select(m, t, cam);
+    ft_pgm_method_bind(m, gl, p);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
     gl->EnableVertexAttribArray(FT_ATTRIB_UV);

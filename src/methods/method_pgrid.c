@@ -97,6 +97,154 @@ void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)hw * 2u * h * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)s->width_px * s->height_px * 5u +
                                          sizeof(pgrid_programs) + 64u);
+    ft_arena_plan(a, FT_POOL_METHOD, sizeof(ft_terrain_program) + 64u);
+    /* the residual atlas's staging (reset after upload, like the min/max
+     * atlas's: the larger of the two is what the pool must hold) */
+    uint32_t rw = 1u, rh = 1u;
+    if (t->pyr.minmax_levels > 0u) {
+        ft_pgrid_residual_layout(t, origin, &rw, &rh);
+    }
+    const size_t res_bytes = (size_t)rw * rh * sizeof(float);
+    const size_t mm_bytes = (size_t)hw * 2u * h * sizeof(float);
+    if (res_bytes > mm_bytes) {
+        ft_arena_plan(a, FT_POOL_METHOD, res_bytes - mm_bytes);
+    }
+}
+
+/* ---- the tight bound (src/pgrid.h 6) ------------------------------------------ */
+
+static ft_status upload_residuals(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                                  ft_arena *a, ft_error *err)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    uint32_t w = 1u, h = 1u;
+    memset(m->res_level_px, 0, sizeof m->res_level_px);
+    ft_pgrid_residual_layout(t, origin, &w, &h);
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid: the residual atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", w, h,
+                       gl->caps.max_texture_size);
+    }
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *img = NULL;
+    ft_status st =
+        ft_arena_take(a, FT_POOL_METHOD, (size_t)w * h * sizeof(float), (void **)&img, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    ft_pgrid_residual_fill(t, img, w, h);
+    const ft_pyramid *p = &t->pyr;
+    m->res_levels = p->minmax_levels;
+    for (uint32_t l = FT_PGRID_RES_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        m->res_level_px[l][0] = (float)origin[l][0];
+        m->res_level_px[l][1] = (float)origin[l][1];
+        m->res_level_px[l][2] = (float)p->minmax[l].width;
+        m->res_level_px[l][3] = (float)p->minmax[l].height;
+    }
+    const ft_scalar_format f = {FT_HEIGHT_FORMAT_FLOAT, 0.0f, 1.0f};
+    st = ft_gpu_upload_scalar(gl, &f, img, w, h, GL_TEXTURE6, a, &m->res_tex, &m->gpu_bytes, err);
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    return st;
+}
+
+/* A grid-sized RGBA32F target (NEAREST) on texture unit `unit`. */
+static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit, uint32_t w,
+                                   uint32_t h, GLuint *tex, GLuint *fbo, const char *what,
+                                   ft_error *err)
+{
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED, "pgrid: the %s target %ux%u exceeds "
+                       "GL_MAX_TEXTURE_SIZE %d", what, w, h, gl->caps.max_texture_size);
+    }
+    gl->ActiveTexture(unit);
+    gl->GenTextures(1, tex);
+    gl->BindTexture(GL_TEXTURE_2D, *tex);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
+                   NULL);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->GenFramebuffers(1, fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
+    const GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        return ft_fail(err, FT_ERR_GPU, "pgrid: the %s target %ux%u (RGBA32F) is incomplete: "
+                       "0x%04x", what, w, h, (unsigned)st);
+    }
+    m->gpu_bytes += (uint64_t)w * h * 16u;
+    return FT_OK;
+}
+
+static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                            const ft_gpu_terrain *gt, ft_arena *a, ft_error *err)
+{
+    ft_status st = upload_residuals(m, gl, t, a, err);
+    if (st == FT_OK) {
+        st = make_float_target(m, gl, GL_TEXTURE4, m->pgm.cols, m->pgm.rows, &m->vtx_tex,
+                               &m->vtx_fbo, "vertex pass", err);
+    }
+    if (st == FT_OK) {
+        st = make_float_target(m, gl, GL_TEXTURE5, m->pgm.cols - 1u, m->pgm.rows - 1u,
+                               &m->quad_tex, &m->quad_fbo, "quad bound", err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program),
+                           (void **)&m->vtx_prog, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    memset(m->vtx_prog, 0, sizeof *m->vtx_prog);
+    st = ft_renderer_build_terrain_program(gl, t, gt, "pgrid_pass.vert.glsl",
+                                           "pgrid_vtx.frag.glsl", m->vtx_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->vtx_prog_built = 1;
+    st = ft_renderer_link_program(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", "a_uv",
+                                  &m->quad_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const GLuint q = m->quad_prog;
+    m->uq_vtx = gl->GetUniformLocation(q, "u_pgrid_vtx");
+    m->uq_res = gl->GetUniformLocation(q, "u_pgrid_res");
+    m->uq_heights = gl->GetUniformLocation(q, "u_heights");
+    m->uq_grid_size = gl->GetUniformLocation(q, "u_grid_size");
+    m->uq_cell_m = gl->GetUniformLocation(q, "u_cell_m");
+    m->uq_origin = gl->GetUniformLocation(q, "u_origin_rel_eye_m");
+    m->uq_pack = gl->GetUniformLocation(q, "u_pack");
+    m->uq_drop = gl->GetUniformLocation(q, "u_earth_drop_per_m2");
+    m->uq_res_levels = gl->GetUniformLocation(q, "u_pgrid_res_levels");
+    for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgrid_res_level[%u]", l);
+        m->uq_res_level[l] = gl->GetUniformLocation(q, name);
+    }
+    /* the uniforms that never change */
+    gl->UseProgram(q);
+    gl->Uniform1i(m->uq_heights, 0);
+    gl->Uniform1i(m->uq_vtx, 4);
+    gl->Uniform1i(m->uq_res, 6);
+    gl->Uniform2f(m->uq_grid_size, (float)t->width, (float)t->height);
+    gl->Uniform2f(m->uq_cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform2f(m->uq_pack, gt->pack_min_m,
+                  gt->format == FT_HEIGHT_FORMAT_PACKED ? gt->pack_range_m : 0.0f);
+    gl->Uniform1f(m->uq_drop, (float)t->curv_drop_per_m2);
+    gl->Uniform1f(m->uq_res_levels, (float)m->res_levels);
+    for (uint32_t l = 0; l < m->res_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        gl->Uniform4f(m->uq_res_level[l], m->res_level_px[l][0], m->res_level_px[l][1],
+                      m->res_level_px[l][2], m->res_level_px[l][3]);
+    }
+    gl->UseProgram(0);
+    m->tight = 1;
+    return ft_gl_check(gl, "pgrid init (tight bound: residual atlas, vertex and quad passes)",
+                       err);
 }
 
 static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
@@ -271,6 +419,16 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
         gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
         m->gpu_bytes += sizeof corners;
+        if (s->pgrid_residual_bound && gl->caps.has_float_color_buffer &&
+            gl->caps.has_float_textures) {
+            st = init_tight(m, gl, t, &gt, a, err);
+            if (st != FT_OK) {
+                return st;
+            }
+        } else if (s->pgrid_residual_bound) {
+            (void)fprintf(stderr, "pgrid: error_bound = residual needs float render targets, "
+                                  "which this context lacks: using the relief bound\n");
+        }
     }
     m->thr = FT_PGRID_CODES;
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -310,6 +468,50 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
         gl->Uniform4f(p->u_pgrid_mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
                       m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
+    gl->Uniform1i(p->u_pgrid_quad, 5);
+    gl->Uniform1f(p->u_pgrid_tight, m->tight ? 1.0f : 0.0f);
+}
+
+/* The tight bound's two passes (src/pgrid.h 6), before the grid is drawn:
+ * the grid's vertices into vtx_tex, then every quad's bound into quad_tex,
+ * which the grid's vertex shader reads (unit 5). */
+static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                         const ft_camera *cam, GLint fb)
+{
+    GLint vp[4];
+    gl->GetIntegerv(GL_VIEWPORT, vp);
+    const float ox = (float)(t->origin_world_x_m - cam->eye_m[0]);
+    const float oy = (float)(t->origin_world_y_m - cam->eye_m[1]);
+    const float oz = (float)(0.0 - cam->eye_m[2]);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    /* the vertex pass */
+    const ft_terrain_program *v = m->vtx_prog;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->vtx_fbo);
+    gl->Viewport(0, 0, (GLsizei)m->pgm.cols, (GLsizei)m->pgm.rows);
+    gl->UseProgram(v->program);
+    gl->Uniform3f(v->u_origin_rel_eye_m, ox, oy, oz);
+    set_grid_uniforms(m, gl, v);
+    ft_pgm_method_bind(&m->pgm, gl, v);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    /* the quad bounds */
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->quad_fbo);
+    gl->Viewport(0, 0, (GLsizei)(m->pgm.cols - 1u), (GLsizei)(m->pgm.rows - 1u));
+    gl->UseProgram(m->quad_prog);
+    gl->ActiveTexture(GL_TEXTURE4);
+    gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
+    gl->ActiveTexture(GL_TEXTURE6);
+    gl->BindTexture(GL_TEXTURE_2D, m->res_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform3f(m->uq_origin, ox, oy, oz);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    gl->Viewport(vp[0], vp[1], vp[2], vp[3]);
+    gl->ActiveTexture(GL_TEXTURE5);
+    gl->BindTexture(GL_TEXTURE_2D, m->quad_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
 }
 
 static int same_decision_view(const ft_pgrid_method *m, const ft_camera *cam)
@@ -325,6 +527,11 @@ static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
     gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
                    m->readback);
     ft_pgrid_histogram(m->readback, m->w_px, m->h_px, m->work, m->hist);
+    uint64_t terrain = 0u; /* pixels the mesh (or an envelope) covers: code > 0 */
+    for (size_t k = 0; k < (size_t)m->w_px * m->h_px; ++k) {
+        terrain += (m->readback[4u * k + 1u] != 0u);
+    }
+    m->terrain_px = terrain;
     uint32_t top = 0u; /* largest dilated code present */
     for (uint32_t c = 1; c < FT_PGRID_CODES; ++c) {
         if (m->hist[c] != 0u) top = c;
@@ -415,6 +622,11 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
     GLint fb = 0;
     gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
     ft_pgm_method_select(&m->pgm, t, cam);
+    if (m->tight) {
+        tight_passes(m, gl, t, cam, fb);
+        gl->UseProgram(p->program);
+        st->draw_calls += 2u;
+    }
     /* 1. the mesh, with the pass's program (already in use) */
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
@@ -488,6 +700,16 @@ void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     if (m->rc_prog) gl->DeleteProgram(m->rc_prog);
     if (m->quad_vbo) gl->DeleteBuffers(1, &m->quad_vbo);
     if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
+    if (m->vtx_prog_built && m->vtx_prog->program) gl->DeleteProgram(m->vtx_prog->program);
+    if (m->quad_prog) gl->DeleteProgram(m->quad_prog);
+    if (m->res_tex) gl->DeleteTextures(1, &m->res_tex);
+    if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
+    if (m->quad_tex) gl->DeleteTextures(1, &m->quad_tex);
+    if (m->vtx_fbo) gl->DeleteFramebuffers(1, &m->vtx_fbo);
+    if (m->quad_fbo) gl->DeleteFramebuffers(1, &m->quad_fbo);
+    m->quad_prog = m->res_tex = m->vtx_tex = m->quad_tex = m->vtx_fbo = m->quad_fbo = 0u;
+    m->vtx_prog_built = 0;
+    m->tight = 0;
     m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;
     m->err_prog_built = 0;
 }

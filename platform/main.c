@@ -39,7 +39,7 @@ static void print_render_help(void)
 {
     printf("usage: fixterrain render [options]\n"
            "Renders one frame offscreen to a PNG. With no options: the embedded default\n"
-           "scene (synthetic terrain, method brute, EGL GLES 3) to fixterrain.png.\n\n"
+           "scene (synthetic terrain, method pgrid, EGL GLES 3) to fixterrain.png.\n\n"
            "  --scene FILE        scene file (INI; see config/*.ini); default: embedded\n"
            "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
            "  --method NAME       terrain method: brute | bintree | pgm | pgrid (as built)\n"
@@ -170,6 +170,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"eye_m\": [%.3f, %.3f, %.3f],\n"
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
+        " \"raycast_px\": %llu, \"terrain_px\": %llu,"
         " \"tau_achieved_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
@@ -180,7 +181,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->height, t->cell_x_m, t->cell_y_m, (double)t->min_height_m, (double)t->max_height_m,
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
-        last->draw_calls, last->tiles, last->tau_achieved_px, last->budget_hit, last->select_ms,
+        last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
+        (unsigned long long)last->terrain_px, last->tau_achieved_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
@@ -498,7 +500,8 @@ static int cmd_render(int argc, char **argv)
                    st.tau_achieved_px, st.budget_hit ? " (tile budget hit: tau raised)" : "",
                    st.select_ms);
         } else if (scene.method == FT_METHOD_PGRID) {
-            printf("pgrid: %u pixels ray cast, error bound %.3f px%s\n", st.tiles,
+            printf("pgrid: %llu pixels ray cast (of %llu terrain pixels), error bound %.3f px%s\n",
+                   (unsigned long long)st.raycast_px, (unsigned long long)st.terrain_px,
                    st.tau_achieved_px, st.budget_hit ? " (ray-casting budget hit)" : "");
         }
         if (FT_WITH_PNG) {

@@ -18,6 +18,8 @@ uniform vec4 u_pgrid_mm_level[FT_PGM_LEVELS]; /* origin xy, size zw per min/max 
 uniform float u_pgrid_mm_levels;
 uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the upper (lower) envelope */
 uniform highp sampler2D u_pgrid_quad; /* tight bound: e_Q per grid quad (m), src/pgrid.h 6 */
+uniform highp sampler2D u_pgrid_vtx;  /* the vertex pass: (pc.xy, height, level) */
+uniform highp sampler2D u_pgrid_slope; /* ... and (dh/dgx, dh/dgy) */
 uniform float u_pgrid_tight;     /* 1: delta from u_pgrid_quad; 0: the relief bound (2) */
 
 FT_OUT_VS float v_delta_m;
@@ -86,10 +88,9 @@ vec2 ft_region_minmax(vec2 a, vec2 b)
     return r;
 }
 
-/* Float margin of the tight bound (m): the quad pass evaluates planes through
- * heights in float32 (measured against the CPU rule in double: <= 0.006 m at
- * 2000 m), and the vertex pass places the grid in a fragment shader, this
- * shader again (the two agree to about 1e-4 m). */
+/* Float margin of the tight bound (m): the quad pass evaluates the surface
+ * and the planes through heights in float32 (measured against the CPU rule
+ * in double: <= 0.006 m at 2000 m). */
 #define FT_PGRID_TIGHT_EPS_M(h_m) (0.005 + 4e-6 * abs(h_m))
 
 /* src/pgrid.h 6: the largest quad bound of the <= 4 quads around ij */
@@ -113,14 +114,26 @@ void main()
     vec2 ij = vec2(a_uv.x, a_uv.y + u_pgm_grid.z);
     vec2 pc;
     float morph;
-    vec3 s = ft_pgm_vertex(ij, pc, morph);
+    vec3 s;
     if (u_pgrid_tight > 0.5) {
+        /* the vertex as the vertex pass placed it (the quad bounds were
+         * computed for exactly these positions and heights) */
+#if FT_ES3
+        vec4 v = texelFetch(u_pgrid_vtx, ivec2(ij), 0);
+        vec4 g = texelFetch(u_pgrid_slope, ivec2(ij), 0);
+        pc = v.xy;
+        morph = v.w;
+        s = vec3(v.z, g.xy);
+#else
+        s = ft_pgm_vertex(ij, pc, morph);
+#endif
         v_delta_m = ft_tight_delta(ij, s.x);
         /* the envelopes: the mesh moved up (down) by its bound encloses H */
         s.x += u_pgrid_envelope * v_delta_m;
         ft_pgm_emit(pc, s, morph);
         return;
     }
+    s = ft_pgm_vertex(ij, pc, morph);
     vec2 inv_cell = 1.0 / u_cell_m;
     vec2 lo = u_origin_rel_eye_m.xy;
     {

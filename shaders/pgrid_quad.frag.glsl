@@ -1,7 +1,9 @@
 /* pgrid_quad.frag.glsl - the quad-bound pass of method 'pgrid' (src/pgrid.h
  * 6; src/pgrid.c ft_pgrid_quad_bound is the same rule in double): one
  * fragment per grid quad (i, j), corners (i..i+1, j..j+1) read from the vertex
- * pass; writes e_Q + the curvature chord (metres) into R. GLES 3 only; the
+ * pass; writes e_Q + the curvature chord (metres) into R: the exact max
+ * of |L - H| for a quad inside a window of 4 x 4 cells, else the residual
+ * rule. GLES 3 only; the
  * GLES 2 variant exists so every shader validates in both languages. */
 precision highp float;
 
@@ -44,6 +46,73 @@ vec4 ft_vtx(vec2 ij) { return vec4(0.0); }
 float ft_res(vec2 a) { return 0.0; }
 #endif
 
+/* src/pgrid.h: FT_PGRID_EXACT_CELLS */
+#define FT_EXACT_CELLS 4
+#define FT_EXACT_SAMPLES 5
+
+/* |f| at a quadratic piece's ends (values fa, fb at ta, tb; f'' = 2 gam)
+ * and at its stationary point */
+float ft_piece_max(float ta, float tb, float fa, float fb, float gam)
+{
+    float m = max(abs(fa), abs(fb));
+    float w = tb - ta;
+    if (w > 0.0 && gam != 0.0) {
+        float sl = (fb - fa) / w;
+        float ts = 0.5 * (ta + tb) - sl / (2.0 * gam);
+        if (ts > ta && ts < tb) {
+            m = max(m, abs(fa + (ts - ta) * sl + gam * (ts - ta) * (ts - tb)));
+        }
+    }
+    return m;
+}
+
+/* the exact max of |H - L| along edge p -> r (drawn heights hp, hr) inside
+ * the window's cell (cx, cy) with corner samples h00 h10 h01 h11 */
+float ft_edge_in_cell(vec2 p, vec2 r, float hp, float hr, vec2 c0, float h00, float h10,
+                      float h01, float h11)
+{
+    vec2 dl = r - p;
+    float ta = 0.0, tb = 1.0;
+    if (dl.x != 0.0) {
+        float t0 = (c0.x - p.x) / dl.x, t1 = (c0.x + 1.0 - p.x) / dl.x;
+        ta = max(ta, min(t0, t1));
+        tb = min(tb, max(t0, t1));
+    } else if (p.x < c0.x || p.x > c0.x + 1.0) {
+        return 0.0;
+    }
+    if (dl.y != 0.0) {
+        float t0 = (c0.y - p.y) / dl.y, t1 = (c0.y + 1.0 - p.y) / dl.y;
+        ta = max(ta, min(t0, t1));
+        tb = min(tb, max(t0, t1));
+    } else if (p.y < c0.y || p.y > c0.y + 1.0) {
+        return 0.0;
+    }
+    if (ta > tb) {
+        return 0.0;
+    }
+    float d = h00 - h10 - h01 + h11;
+    vec2 ua = p + ta * dl - c0, ub = p + tb * dl - c0;
+    float fa = h00 + (h10 - h00) * ua.x + (h01 - h00) * ua.y + d * ua.x * ua.y - (hp + ta * (hr - hp));
+    float fb = h00 + (h10 - h00) * ub.x + (h01 - h00) * ub.y + d * ub.x * ub.y - (hp + tb * (hr - hp));
+    return ft_piece_max(ta, tb, fa, fb, d * dl.x * dl.y);
+}
+
+/* |H - L| at sample x (height hs) if it lies in triangle a b c, else 0 */
+float ft_sample_in_tri(vec2 x, float hs, vec2 a, vec2 b, vec2 c, float ha, float hb, float hc)
+{
+    float det = (b.y - c.y) * (a.x - c.x) + (c.x - b.x) * (a.y - c.y);
+    if (abs(det) < 1e-12) {
+        return 0.0;
+    }
+    float w0 = ((b.y - c.y) * (x.x - c.x) + (c.x - b.x) * (x.y - c.y)) / det;
+    float w1 = ((c.y - a.y) * (x.x - c.x) + (a.x - c.x) * (x.y - c.y)) / det;
+    float w2 = 1.0 - w0 - w1;
+    if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) {
+        return 0.0;
+    }
+    return abs(hs - (w0 * ha + w1 * hb + w2 * hc));
+}
+
 void main()
 {
     vec2 q = floor(gl_FragCoord.xy);
@@ -51,11 +120,61 @@ void main()
     vec4 c2 = ft_vtx(q + vec2(0.0, 1.0)), c3 = ft_vtx(q + vec2(1.0, 1.0));
     vec2 lo = u_origin_rel_eye_m.xy;
     vec2 inv_cell = 1.0 / u_cell_m;
-    vec2 g0 = (c0.xy - lo) * inv_cell, g1 = (c1.xy - lo) * inv_cell;
-    vec2 g2 = (c2.xy - lo) * inv_cell, g3 = (c3.xy - lo) * inv_cell;
     vec2 hi_g = u_grid_size - 1.0;
-    vec2 a = clamp(min(min(g0, g1), min(g2, g3)), vec2(0.0), hi_g);
-    vec2 b = clamp(max(max(g0, g1), max(g2, g3)), vec2(0.0), hi_g);
+    /* the vertices were clamped into the grid in metres; the clamp again in
+     * grid units keeps a rounding off the edge from leaving the grid */
+    vec2 g0 = clamp((c0.xy - lo) * inv_cell, vec2(0.0), hi_g);
+    vec2 g1 = clamp((c1.xy - lo) * inv_cell, vec2(0.0), hi_g);
+    vec2 g2 = clamp((c2.xy - lo) * inv_cell, vec2(0.0), hi_g);
+    vec2 g3 = clamp((c3.xy - lo) * inv_cell, vec2(0.0), hi_g);
+    vec2 bmin = min(min(g0, g1), min(g2, g3)), bmax = max(max(g0, g1), max(g2, g3));
+    /* the chord: the mesh interpolates the curvature drop linearly, over a
+     * span of length L the chord lies up to k L^2 / 4 under the surface */
+    vec2 ext = max(max(c0.xy, c1.xy), max(c2.xy, c3.xy)) - min(min(c0.xy, c1.xy), min(c2.xy, c3.xy));
+    float chord_m = 0.25 * u_earth_drop_per_m2 * dot(ext, ext);
+
+    /* exact when the quad's box fits FT_EXACT_CELLS^2 cells (src/pgrid.h) */
+    float n = float(FT_EXACT_CELLS);
+    vec2 o = max(vec2(0.0), min(floor(bmin), hi_g - n));
+    if (all(greaterThanEqual(bmin, o)) && all(lessThanEqual(bmax, o + n))) {
+        float hs[FT_EXACT_SAMPLES * FT_EXACT_SAMPLES];
+        for (int y = 0; y < FT_EXACT_SAMPLES; ++y) {
+            for (int x = 0; x < FT_EXACT_SAMPLES; ++x) {
+                hs[y * FT_EXACT_SAMPLES + x] = ft_h(min(o + vec2(float(x), float(y)), hi_g));
+            }
+        }
+        float ex = 0.0;
+        for (int y = 0; y < FT_EXACT_CELLS; ++y) {
+            for (int x = 0; x < FT_EXACT_CELLS; ++x) {
+                vec2 cc = o + vec2(float(x), float(y));
+                if (cc.x + 1.0 > hi_g.x || cc.y + 1.0 > hi_g.y) continue;
+                if (cc.x > bmax.x || cc.x + 1.0 < bmin.x || cc.y > bmax.y || cc.y + 1.0 < bmin.y) continue;
+                float h00 = hs[y * FT_EXACT_SAMPLES + x], h10 = hs[y * FT_EXACT_SAMPLES + x + 1];
+                float h01 = hs[(y + 1) * FT_EXACT_SAMPLES + x];
+                float h11 = hs[(y + 1) * FT_EXACT_SAMPLES + x + 1];
+                /* the 5 edges of triangles 0-1-3 and 0-3-2 (the grid's order) */
+                ex = max(ex, ft_edge_in_cell(g0, g1, c0.z, c1.z, cc, h00, h10, h01, h11));
+                ex = max(ex, ft_edge_in_cell(g1, g3, c1.z, c3.z, cc, h00, h10, h01, h11));
+                ex = max(ex, ft_edge_in_cell(g3, g2, c3.z, c2.z, cc, h00, h10, h01, h11));
+                ex = max(ex, ft_edge_in_cell(g2, g0, c2.z, c0.z, cc, h00, h10, h01, h11));
+                ex = max(ex, ft_edge_in_cell(g0, g3, c0.z, c3.z, cc, h00, h10, h01, h11));
+            }
+        }
+        for (int y = 0; y < FT_EXACT_SAMPLES; ++y) {
+            for (int x = 0; x < FT_EXACT_SAMPLES; ++x) {
+                vec2 sp = o + vec2(float(x), float(y));
+                if (sp.x > hi_g.x || sp.y > hi_g.y || any(lessThan(sp, bmin)) || any(greaterThan(sp, bmax))) continue;
+                float h = hs[y * FT_EXACT_SAMPLES + x];
+                ex = max(ex, ft_sample_in_tri(sp, h, g0, g1, g3, c0.z, c1.z, c3.z));
+                ex = max(ex, ft_sample_in_tri(sp, h, g0, g3, g2, c0.z, c3.z, c2.z));
+            }
+        }
+        FT_FRAG_OUT = vec4(ex + chord_m, 0.0, 0.0, 1.0);
+        return;
+    }
+
+    vec2 a = clamp(bmin, vec2(0.0), hi_g);
+    vec2 b = clamp(bmax, vec2(0.0), hi_g);
     float side = max(max(b.x - a.x, b.y - a.y), 1.0);
     float level = max(0.0, ceil(log2(side)));
     if (level > 0.0 && exp2(level - 1.0) >= side) {
@@ -92,8 +211,5 @@ void main()
             e = max(e, r + off);
         }
     }
-    /* the mesh interpolates the curvature drop linearly: over a span of
-     * length L the chord lies up to k L^2 / 4 under the curved surface */
-    vec2 ext = max(max(c0.xy, c1.xy), max(c2.xy, c3.xy)) - min(min(c0.xy, c1.xy), min(c2.xy, c3.xy));
-    FT_FRAG_OUT = vec4(e + 0.25 * u_earth_drop_per_m2 * dot(ext, ext), 0.0, 0.0, 1.0);
+    FT_FRAG_OUT = vec4(e + chord_m, 0.0, 0.0, 1.0);
 }

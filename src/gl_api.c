@@ -236,6 +236,7 @@ typedef void *ft_gl_voidp;
     V(BeginTransformFeedback, (GLenum primitiveMode), (primitiveMode))                             \
     V(EndTransformFeedback, (void), ())                                                            \
     V(BindBufferBase, (GLenum target, GLuint index, GLuint buffer), (target, index, buffer))       \
+    V(DrawBuffers, (GLsizei n, const GLenum *bufs), (n, bufs))                                     \
     R(ft_gl_voidp, MapBufferRange,                                                                 \
       (GLenum target, GLintptr offset, GLsizeiptr length, GLbitfield access),                      \
       (target, offset, length, access))                                                            \

@@ -94,6 +94,7 @@
     X(PFNGLBEGINTRANSFORMFEEDBACKPROC, BeginTransformFeedback) \
     X(PFNGLENDTRANSFORMFEEDBACKPROC, EndTransformFeedback)   \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)               \
+    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                     \
     X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange)               \
     X(PFNGLUNMAPBUFFERPROC, UnmapBuffer)
 

@@ -26,7 +26,9 @@ struct ft_terrain_program;
 typedef struct ft_method_draw_stats {
     uint64_t triangles;
     uint32_t draw_calls;
-    uint32_t tiles;          /* bintree: tiles drawn; pgrid: pixels ray cast */
+    uint32_t tiles;          /* bintree: tiles drawn */
+    uint64_t raycast_px;     /* pgrid: pixels ray cast */
+    uint64_t terrain_px;     /* pgrid: pixels the mesh or an envelope covers */
     double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet;
                                 pgrid: the bound met (gamma, or raised by the
                                 budget, or the mesh's own without ray casting) */
@@ -98,7 +100,7 @@ typedef struct ft_pgrid_method {
      * atlas (levels >= FT_PGRID_RES_L0), the vertex pass's and quad-bound
      * pass's targets (grid-sized RGBA32F) and programs */
     int tight;
-    GLuint res_tex, vtx_tex, vtx_fbo, quad_tex, quad_fbo, quad_prog;
+    GLuint res_tex, vtx_tex, slope_tex, vtx_fbo, quad_tex, quad_fbo, quad_prog;
     uint32_t res_levels;
     float res_level_px[FT_PYRAMID_LEVELS_MAX][4];
     struct ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */

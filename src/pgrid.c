@@ -274,10 +274,151 @@ void ft_pgrid_residual_fill(const ft_terrain *t, float *atlas, uint32_t width_px
     }
 }
 
+/* The quad with its corners clamped into the grid (the shader's rule: the
+ * grid's vertices are clamped into it, a rounding must not leave it). */
+static ft_pgrid_quad clamped(const ft_terrain *t, const ft_pgrid_quad *q)
+{
+    ft_pgrid_quad c = *q;
+    for (int k = 0; k < 4; ++k) {
+        c.g[k][0] = clampd(c.g[k][0], 0.0, (double)(t->width - 1u));
+        c.g[k][1] = clampd(c.g[k][1], 0.0, (double)(t->height - 1u));
+    }
+    return c;
+}
+
+/* |f| at the ends of a quadratic piece f(t) on [ta, tb] with end values fa,
+ * fb and curvature gamma (f'' = 2 gamma), and at its stationary point */
+static double piece_max(double ta, double tb, double fa, double fb, double gamma)
+{
+    double m = fmax(fabs(fa), fabs(fb));
+    const double w = tb - ta;
+    if (w > 0.0 && gamma != 0.0) {
+        const double sl = (fb - fa) / w;
+        const double ts = 0.5 * (ta + tb) - sl / (2.0 * gamma);
+        if (ts > ta && ts < tb) {
+            m = fmax(m, fabs(fa + (ts - ta) * sl + gamma * (ts - ta) * (ts - tb)));
+        }
+    }
+    return m;
+}
+
+/* Barycentric weights of (x, y) in triangle a b c; 0 if degenerate. */
+static int barycentric(const double a[2], const double b[2], const double c[2], double x,
+                       double y, double w[3])
+{
+    const double det = (b[1] - c[1]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[1] - c[1]);
+    if (fabs(det) < 1e-12) {
+        return 0;
+    }
+    w[0] = ((b[1] - c[1]) * (x - c[0]) + (c[0] - b[0]) * (y - c[1])) / det;
+    w[1] = ((c[1] - a[1]) * (x - c[0]) + (a[0] - c[0]) * (y - c[1])) / det;
+    w[2] = 1.0 - w[0] - w[1];
+    return 1;
+}
+
+static double sample_at(const ft_terrain *t, uint32_t x, uint32_t y)
+{
+    return (double)t->heights_m[(size_t)y * t->width + x];
+}
+
+double ft_pgrid_quad_exact(const ft_terrain *t, const ft_pgrid_quad *q_in, int *fits)
+{
+    const ft_pgrid_quad qc = clamped(t, q_in);
+    const double(*g)[2] = qc.g;
+    const double *h = qc.h_m;
+    double lo_x = g[0][0], hi_x = g[0][0], lo_y = g[0][1], hi_y = g[0][1];
+    for (int k = 1; k < 4; ++k) {
+        lo_x = fmin(lo_x, g[k][0]);
+        hi_x = fmax(hi_x, g[k][0]);
+        lo_y = fmin(lo_y, g[k][1]);
+        hi_y = fmax(hi_y, g[k][1]);
+    }
+    /* the window: FT_PGRID_EXACT_CELLS cells from floor(lo), moved inside */
+    const double n = (double)FT_PGRID_EXACT_CELLS;
+    const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
+    const double ox = fmax(0.0, fmin(floor(lo_x), wx - n)), oy = fmax(0.0, fmin(floor(lo_y), wy - n));
+    *fits = (lo_x >= ox && lo_y >= oy && hi_x <= ox + n && hi_y <= oy + n);
+    if (!*fits) {
+        return 0.0;
+    }
+    /* the quad's 5 edges (triangles 0-1-3 and 0-3-2: the grid's index order) */
+    static const int edge[5][2] = {{0, 1}, {1, 3}, {3, 2}, {2, 0}, {0, 3}};
+    double e = 0.0;
+    for (uint32_t cy = 0; cy < FT_PGRID_EXACT_CELLS; ++cy) {
+        for (uint32_t cx = 0; cx < FT_PGRID_EXACT_CELLS; ++cx) {
+            const double x0 = ox + cx, y0 = oy + cy;
+            if (x0 + 1.0 > wx + 1e-9 || y0 + 1.0 > wy + 1e-9) continue; /* grid smaller than the window */
+            if (x0 > hi_x || x0 + 1.0 < lo_x || y0 > hi_y || y0 + 1.0 < lo_y) continue;
+            const uint32_t ix = (uint32_t)x0, iy = (uint32_t)y0;
+            const double h00 = sample_at(t, ix, iy), h10 = sample_at(t, ix + 1u, iy);
+            const double h01 = sample_at(t, ix, iy + 1u), h11 = sample_at(t, ix + 1u, iy + 1u);
+            const double d = h00 - h10 - h01 + h11;
+            for (int k = 0; k < 5; ++k) {
+                const double *p = g[edge[k][0]], *r = g[edge[k][1]];
+                const double hp = h[edge[k][0]], hr = h[edge[k][1]];
+                const double dx = r[0] - p[0], dy = r[1] - p[1];
+                /* the edge's parameter range inside the cell (slabs) */
+                double ta = 0.0, tb = 1.0;
+                if (dx != 0.0) {
+                    const double t0 = (x0 - p[0]) / dx, t1 = (x0 + 1.0 - p[0]) / dx;
+                    ta = fmax(ta, fmin(t0, t1));
+                    tb = fmin(tb, fmax(t0, t1));
+                } else if (p[0] < x0 || p[0] > x0 + 1.0) {
+                    continue;
+                }
+                if (dy != 0.0) {
+                    const double t0 = (y0 - p[1]) / dy, t1 = (y0 + 1.0 - p[1]) / dy;
+                    ta = fmax(ta, fmin(t0, t1));
+                    tb = fmin(tb, fmax(t0, t1));
+                } else if (p[1] < y0 || p[1] > y0 + 1.0) {
+                    continue;
+                }
+                if (ta > tb) continue;
+                double f[2];
+                for (int end = 0; end < 2; ++end) {
+                    const double tt = end ? tb : ta;
+                    const double u = p[0] + tt * dx - x0, v = p[1] + tt * dy - y0;
+                    const double hb = h00 + (h10 - h00) * u + (h01 - h00) * v + d * u * v;
+                    f[end] = hb - (hp + tt * (hr - hp));
+                }
+                e = fmax(e, piece_max(ta, tb, f[0], f[1], d * dx * dy));
+            }
+        }
+    }
+    /* samples inside a triangle: H has a kink there */
+    static const int tri[2][3] = {{0, 1, 3}, {0, 3, 2}};
+    for (uint32_t sy = 0; sy <= FT_PGRID_EXACT_CELLS; ++sy) {
+        for (uint32_t sx = 0; sx <= FT_PGRID_EXACT_CELLS; ++sx) {
+            const double x = ox + sx, y = oy + sy;
+            if (x > wx || y > wy || x < lo_x || x > hi_x || y < lo_y || y > hi_y) continue;
+            for (int k = 0; k < 2; ++k) {
+                double w[3];
+                const int *v = tri[k];
+                if (!barycentric(g[v[0]], g[v[1]], g[v[2]], x, y, w)) continue;
+                if (w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0) continue;
+                const double l = w[0] * h[v[0]] + w[1] * h[v[1]] + w[2] * h[v[2]];
+                e = fmax(e, fabs(sample_at(t, (uint32_t)x, (uint32_t)y) - l));
+            }
+        }
+    }
+    return e;
+}
+
 double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q)
 {
-    const double(*g)[2] = q->g;
-    const double *h = q->h_m;
+    int fits = 0;
+    const double exact = ft_pgrid_quad_exact(t, q, &fits);
+    if (fits) {
+        return exact;
+    }
+    return ft_pgrid_quad_residual(t, q);
+}
+
+double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q_in)
+{
+    const ft_pgrid_quad qc = clamped(t, q_in);
+    const double(*g)[2] = qc.g;
+    const double *h = qc.h_m;
     double lo_x = g[0][0], hi_x = g[0][0], lo_y = g[0][1], hi_y = g[0][1];
     for (int k = 1; k < 4; ++k) {
         lo_x = fmin(lo_x, g[k][0]);

@@ -175,8 +175,25 @@ typedef struct ft_pgrid_quad {
     double g[4][2];
     double h_m[4];
 } ft_pgrid_quad;
-/* The quad bound e_Q (metres, without the chord): the shader's rule in
- * double. */
+/* Exact quads: a quad whose box lies in a window of FT_PGRID_EXACT_CELLS^2
+ * cells gets the exact max of |L - H|. On a piece (a triangle inside one
+ * cell) H - L = linear + D u v (D the cell's twist): a saddle, so its
+ * extremes over the piece are on the piece's boundary; along a cell line H
+ * is linear, so on the cell-line parts of the boundary they are at the
+ * ends, which are samples inside the triangle or points on its edges; along
+ * a triangle edge inside a cell H - L is a quadratic in the edge parameter
+ * (curvature D dx dy): its ends and its one stationary point. So the max is
+ * over (a) the 5 edges of the quad's two triangles, cut at the cell lines,
+ * each piece's ends and stationary point, and (b) the samples inside a
+ * triangle. Bigger quads take the residual rule. */
+#define FT_PGRID_EXACT_CELLS 4u
+/* The exact max for a quad that fits the window (*fits = 1), else 0 with
+ * *fits = 0. */
+double ft_pgrid_quad_exact(const ft_terrain *t, const ft_pgrid_quad *q, int *fits);
+/* The residual rule's bound (any quad). */
+double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q);
+/* The quad bound e_Q (metres, without the chord): exact when the quad fits
+ * the window, else the residual rule; the shader's rule in double. */
 double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q);
 
 #endif

@@ -146,6 +146,8 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_pgrid_mm_levels);
     FT_UNIFORM(u_pgrid_quad);
     FT_UNIFORM(u_pgrid_tight);
+    FT_UNIFORM(u_pgrid_vtx);
+    FT_UNIFORM(u_pgrid_slope);
 #undef FT_UNIFORM
     /* the pgm level table element by element (the GL subset has no Uniform4fv) */
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
@@ -575,6 +577,8 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     st->triangles = ms.triangles;
     st->draw_calls = ms.draw_calls;
     st->tiles = ms.tiles;
+    st->raycast_px = ms.raycast_px;
+    st->terrain_px = ms.terrain_px;
     st->tau_achieved_px = ms.tau_achieved_px;
     st->budget_hit = ms.budget_hit;
     st->depth_bits = r->depth_bits;

@@ -36,6 +36,7 @@ typedef struct ft_terrain_program {
     /* pgrid: min/max atlas and row distribution (shaders/pgrid.vert.glsl) */
     GLint u_pgrid_dist, u_pgrid_mm, u_pgrid_mm_info, u_pgrid_mm_levels;
     GLint u_pgrid_quad, u_pgrid_tight; /* the tight bound (src/pgrid.h 6) */
+    GLint u_pgrid_vtx, u_pgrid_slope;  /* ... and the vertex pass it reads */
     GLint u_pgrid_mm_level[FT_PYRAMID_LEVELS_MAX];
 } ft_terrain_program;
 
@@ -59,6 +60,9 @@ typedef struct ft_frame_stats {
     uint64_t triangles;
     uint32_t draw_calls;
     uint32_t tiles;         /* bintree: tiles drawn (0 for other methods) */
+    uint64_t raycast_px;    /* pgrid: pixels ray cast this frame */
+    uint64_t terrain_px;    /* pgrid: terrain pixels of the error buffer (its mesh
+                               and envelopes): raycast_px's denominator */
     double tau_achieved_px; /* bintree: screen-space bound the selection meets */
     int budget_hit;         /* bintree: the tile budget forced a coarser tau */
     double select_ms; /* LOD selection on the CPU (0 when the view did not change) */

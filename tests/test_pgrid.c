@@ -123,6 +123,10 @@ static float g_rough[65 * 65];
 static float g_rough_pyr[32768];
 static float g_res_atlas[64 * 64];
 
+/* How far above the dense samples' max the exact rule may lie, relative to
+ * (1 m + that max): what a 1/400 step along the quad misses. */
+#define EXACT_SLACK 0.01
+
 static double bilinear(const ft_terrain *t, double x, double y)
 {
     const uint32_t ix = (uint32_t)fmin(floor(x), (double)t->width - 2.0);
@@ -133,13 +137,12 @@ static double bilinear(const ft_terrain *t, double x, double y)
            fy * ((1.0 - fx) * h[t->width] + fx * h[t->width + 1u]);
 }
 
-static double quad_true_max(const ft_terrain *t, const ft_pgrid_quad *q)
+static double quad_true_max(const ft_terrain *t, const ft_pgrid_quad *q, int n)
 {
     const double(*g)[2] = q->g;
     const double *h = q->h_m;
     /* corners 0 (u0 v0), 1 (u1 v0), 2 (u0 v1), 3 (u1 v1); triangles 0-1-3, 0-3-2 */
     double mx = 0.0;
-    const int n = 48;
     for (int i = 0; i <= n; ++i) {
         for (int j = 0; j <= n; ++j) {
             const double u = (double)i / n, v = (double)j / n;
@@ -187,7 +190,8 @@ static void test_residual_bound(void)
             }
         }
     }
-    double worst_ratio = 0.0, sum_bound = 0.0, sum_true = 0.0;
+    double worst_ratio = 0.0, sum_bound = 0.0, sum_true = 0.0, exact_worst = 0.0;
+    uint32_t exact_n = 0u;
     uint32_t under = 0u;
     for (int k = 0; k < 300; ++k) {
         seed = seed * 1664525u + 1013904223u;
@@ -204,7 +208,15 @@ static void test_residual_bound(void)
             q.h_m[c] = bilinear(&t, q.g[c][0], q.g[c][1]) + ((k % 2) ? 0.0 : 4.0 * (c - 1.5));
         }
         const double b = ft_pgrid_quad_bound(&t, &q);
-        const double e = quad_true_max(&t, &q);
+        const double e = quad_true_max(&t, &q, 48);
+        int fits = 0;
+        (void)ft_pgrid_quad_exact(&t, &q, &fits);
+        if (fits) {
+            /* exact: dense samples 1/400 of an edge apart reach it to within
+             * what the surface changes over one step */
+            ++exact_n;
+            exact_worst = fmax(exact_worst, (b - quad_true_max(&t, &q, 400)) / (1.0 + e));
+        }
         under += (b < e - 1e-9);
         sum_bound += b;
         sum_true += e;
@@ -212,7 +224,11 @@ static void test_residual_bound(void)
     }
     printf("residual bound: 300 quads, %u under the true max; mean bound / mean true %.2f, "
            "worst ratio %.2f\n", under, sum_bound / sum_true, worst_ratio);
+    printf("exact quads (fit %u x %u cells): %u, largest (bound - dense max) / (1 m + dense max) "
+           "%.4f\n", FT_PGRID_EXACT_CELLS, FT_PGRID_EXACT_CELLS, exact_n, exact_worst);
     CHECK(under == 0u);
+    CHECK(exact_n >= 100u);
+    CHECK(exact_worst < EXACT_SLACK);
     /* a plane: nothing between the drawn surface and the truth */
     for (uint32_t i = 0; i < 65u * 65u; ++i) {
         g_rough[i] = (float)(100.0 + 2.0 * (double)(i % 65u) - 1.5 * (double)(i / 65u));

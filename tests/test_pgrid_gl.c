@@ -158,14 +158,14 @@ static ft_pose path_pose(int f)
  * steepest, nearest rays at the bottom of the view, ~2.7 km away; elsewhere
  * 0.000 px), so 0.05 + 0.05. The mesh pixels (under gamma, not ray cast) are
  * bounded by rho (a convex bound, src/pgrid.h 2) and measured well under it:
- * max - gamma <= -0.3 px on every frame. COVER_MAX_PX: silhouette pixels the
+ * max - gamma <= -0.3 px on every frame. COVER_PX_PER_GAMMA: silhouette pixels the
  * bound allows to differ (a mesh silhouette under gamma may be off by up to
- * gamma px along the skyline, so the allowance grows with gamma: 16 gamma
+ * gamma px along the skyline, so the allowance grows with gamma: 24 gamma
  * px; measured 0 / 2 / 10 at gamma 0.5 / 1 / 2 with the relief envelopes, 40
- * at gamma 2 without them, 0 / 4 / 28 with the residual bound's thinner
+ * at gamma 2 without them, 0 / 4 / 28-30 with the residual bound's thinner
  * envelopes). */
 #define TOL_PX 0.10
-#define COVER_PX_PER_GAMMA 16.0
+#define COVER_PX_PER_GAMMA 24.0
 
 static void test_error_bound(const char *dem, int residual)
 {
@@ -207,7 +207,8 @@ static void test_error_bound(const char *dem, int residual)
             const uint32_t cover = es.only_method_px + es.only_ref_px;
             printf("  gamma %.1f f%d: max %.3f mean %.4f cover %u+%u rc %u achieved %.3f%s "
                    "[%.3f/%.4f]\n",
-                   gamma, f, es.max_px, es.mean_px, es.only_method_px, es.only_ref_px, fs.tiles,
+                   gamma, f, es.max_px, es.mean_px, es.only_method_px, es.only_ref_px,
+                   (uint32_t)fs.raycast_px,
                    fs.tau_achieved_px, fs.budget_hit ? " BUDGET" : "", brute_max[f],
                    brute_mean[f]);
             CHECK(es.nonfinite_px == 0u);
@@ -251,7 +252,7 @@ static void test_distribution(const char *dem)
                 ft_test_frame(&g_app, &p, &cam, &fs);
                 ft_test_measure(&g_app, &cam, &es);
                 CHECK(es.nonfinite_px == 0u);
-                CHECK(fs.tiles == 0u);
+                CHECK(fs.raycast_px == 0u);
                 mean[d][f] = es.mean_px;
                 maxe[d][f] = es.max_px;
                 sum[d] += es.mean_px;
@@ -407,10 +408,10 @@ static void test_cracks(const char *backend, const char *dem)
                     CHECK(isfinite(fs.tau_achieved_px) && fs.tau_achieved_px > 0.0);
                     if (fs.tau_achieved_px < bound_min) bound_min = fs.tau_achieved_px;
                     if (fs.tau_achieved_px > bound_max) bound_max = fs.tau_achieved_px;
-                    rc_px += fs.tiles;
+                    rc_px += (uint32_t)fs.raycast_px;
                     if (es2 || !rc) {
                         /* no ray casting: nothing ray cast, the mesh's bound reported */
-                        CHECK(fs.tiles == 0u);
+                        CHECK(fs.raycast_px == 0u);
                         CHECK(!fs.budget_hit);
                     } else {
                         CHECK(!fs.budget_hit);
@@ -492,8 +493,10 @@ static void test_residual_mirror(const char *dem)
         double hmax = 0.0;
         for (int c4 = 0; c4 < 4; ++c4) {
             const float *v = g_vtx + 4u * ((j + (uint32_t)(c4 / 2)) * cols + i + (uint32_t)(c4 % 2));
-            q.g[c4][0] = ((double)v[0] - lo_x) / t->cell_x_m;
-            q.g[c4][1] = ((double)v[1] - lo_y) / t->cell_y_m;
+            /* in float, as the shader computes it (the window's choice
+             * must see the same corners) */
+            q.g[c4][0] = (double)((v[0] - (float)lo_x) * (1.0f / (float)t->cell_x_m));
+            q.g[c4][1] = (double)((v[1] - (float)lo_y) * (1.0f / (float)t->cell_y_m));
             q.h_m[c4] = (double)v[2];
             hmax = fmax(hmax, fabs((double)v[2]));
             xmin = fmin(xmin, v[0]);
@@ -507,7 +510,14 @@ static void test_residual_mirror(const char *dem)
         const double gpu = (double)g_quad[4u * (j * (cols - 1u) + i)];
         const double d = fabs(gpu - cpu);
         if (d > QUAD_TOL_M(hmax)) {
-            if (bad < 5u) printf("  quad (%u, %u): shader %.4f m, CPU %.4f m\n", i, j, gpu, cpu);
+            if (bad < 5u) {
+                int fits = 0;
+                const double ex = ft_pgrid_quad_exact(t, &q, &fits);
+                printf("  quad (%u, %u): shader %.4f m, CPU %.4f m (exact %.4f, fits %d; "
+                       "corners %.4f,%.4f %.4f,%.4f %.4f,%.4f %.4f,%.4f)\n", i, j, gpu, cpu, ex,
+                       fits, q.g[0][0], q.g[0][1], q.g[1][0], q.g[1][1], q.g[2][0], q.g[2][1],
+                       q.g[3][0], q.g[3][1]);
+            }
             ++bad;
         }
         worst = fmax(worst, d);

@@ -456,7 +456,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "ratio_to_brute", "select_median_ms", "err_max_px", "err_p999_px", "err_mean_px",
         "coverage_mismatch_px", "coverage_mismatch_mean_px", "nonfinite_px", "measured_frames",
         "triangles_mean", "budget_hits", "init_ms", "occlusion_mismatch_px",
-        "occlusion_mismatch_mean_px", "occlusion_err_max_px"};
+        "occlusion_mismatch_mean_px", "occlusion_err_max_px", "raycast_fraction_mean",
+        "raycast_fraction_max"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);
@@ -469,7 +470,9 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
               c_cov = col(H, nh, "coverage_mismatch_px"), c_nf = col(H, nh, "nonfinite_px"),
               c_meas = col(H, nh, "measured_frames"), c_tri = col(H, nh, "triangles_mean"),
               c_occ = col(H, nh, "occlusion_mismatch_px"),
-              c_occ_e = col(H, nh, "occlusion_err_max_px");
+              c_occ_e = col(H, nh, "occlusion_err_max_px"),
+              c_rc_mean = col(H, nh, "raycast_fraction_mean"),
+              c_rc_max = col(H, nh, "raycast_fraction_max");
     CHECK(nl - 1 == nrows);
     for (int r = 0; r < nrows; ++r) {
         char want_method[64];
@@ -504,6 +507,10 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         /* occlusion errors are inside the max */
         CHECK(num(c[c_occ]) >= 0.0 && num(c[c_occ_e]) >= 0.0 && num(c[c_occ_e]) <= emax);
         CHECK(num(c[c_tri]) >= 1.0);
+        /* ray-cast pixels over terrain pixels (above 1 when the silhouette's
+         * one-pixel widening adds sky pixels); only pgrid ray casts */
+        CHECK(num(c[c_rc_mean]) >= 0.0 && num(c[c_rc_mean]) <= num(c[c_rc_max]));
+        if (strcmp(want_method, "pgrid") != 0) CHECK(num(c[c_rc_max]) == 0.0);
         if (strcmp(want_method, "brute") == 0) CHECK_NEAR(num(c[c_ratio]), 1.0, 1e-9);
         else CHECK(num(c[c_ratio]) > 0.0);
     }

@@ -114,6 +114,11 @@ typedef struct bench_row {
     uint64_t nonfinite_px;
     double tri_mean;
     int budget_hits;
+    /* pgrid: ray-cast pixels over the error buffer's terrain pixels, mean and
+     * largest over the frames with terrain (0 for the other methods; above 1
+     * when the silhouette's one-pixel widening adds more sky than is left out) */
+    double rc_frac_mean, rc_frac_max;
+    int rc_frames;
     double path_t_med_ms[BENCH_PATHS_MAX], path_err_max_px[BENCH_PATHS_MAX];
     double path_err_p999_px[BENCH_PATHS_MAX];
 } bench_row;
@@ -692,6 +697,12 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
             ++timed;
             tri += (double)st.triangles;
             row->budget_hits += st.budget_hit != 0;
+            if (st.terrain_px > 0u) {
+                const double frac = (double)st.raycast_px / (double)st.terrain_px;
+                row->rc_frac_mean += frac; /* a sum until the run ends */
+                row->rc_frac_max = fmax(row->rc_frac_max, frac);
+                row->rc_frames += 1;
+            }
             if (i % o->every != 0) continue;
             ft_error_stats es;
             if (measure(p, i / o->every, &cam, &es, &err) != FT_OK) {
@@ -728,6 +739,9 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     row->ok = 1;
     row->frames = timed;
     row->tri_mean = tri / timed;
+    if (row->rc_frames > 0) {
+        row->rc_frac_mean /= (double)row->rc_frames;
+    }
     row->t_max_ms = quantile(g_frame_ms, timed, 1.0);
     row->t_p99_ms = quantile(g_frame_ms, timed, 0.99);
     row->t_med_ms = quantile(g_frame_ms, timed, 0.5);
@@ -785,7 +799,8 @@ static int write_csv(const char *path)
     fputs("method,setting,paths,frames,time_median_ms,time_p99_ms,time_max_ms,ratio_to_brute,"
           "select_median_ms,err_max_px,err_p999_px,err_mean_px,coverage_mismatch_px,"
           "coverage_mismatch_mean_px,nonfinite_px,measured_frames,triangles_mean,budget_hits,"
-          "init_ms,occlusion_mismatch_px,occlusion_mismatch_mean_px,occlusion_err_max_px\n",
+          "init_ms,occlusion_mismatch_px,occlusion_mismatch_mean_px,occlusion_err_max_px,"
+          "raycast_fraction_mean,raycast_fraction_max\n",
           f);
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
@@ -811,6 +826,8 @@ static int write_csv(const char *path)
         fprintf(f, ",%u", w->occl_max_px);
         csv_num(f, w->occl_mean_px, 1);
         csv_num(f, w->occl_err_max_px, 2);
+        csv_num(f, w->rc_frac_mean, 4);
+        csv_num(f, w->rc_frac_max, 4);
         fputc('\n', f);
     }
     int ok = fclose(f) == 0;
@@ -942,17 +959,19 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
                 g_paths[p].desc, g_paths[p].raised, o->frames);
     }
     fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | max px | "
-               "p99.9 px | mean px | coverage px | occlusion px | triangles | worst frame |\n"
-               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+               "p99.9 px | mean px | coverage px | occlusion px | triangles | ray cast %% mean / max "
+               "| worst frame |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
         if (!w->ok) continue;
         fprintf(f,
                 "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.4f | %u | %u | %.0f | "
-                "%s |\n",
+                "%.1f / %.1f | %s |\n",
                 w->method, w->setting.label, w->t_med_ms, w->t_p99_ms, w->t_max_ms,
                 bm > 0.0 ? w->t_med_ms / bm : NAN, w->err_max_px, w->err_p999_px, w->err_mean_px,
-                w->cov_max_px, w->occl_max_px, w->tri_mean, w->err_max_where);
+                w->cov_max_px, w->occl_max_px, w->tri_mean, 100.0 * w->rc_frac_mean,
+                100.0 * w->rc_frac_max, w->err_max_where);
     }
     if (g_path_count > 1) {
         fprintf(f, "\nPer path: median frame time ms / max error px / p99.9 px\n\n"

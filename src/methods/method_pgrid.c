@@ -148,15 +148,10 @@ static ft_status upload_residuals(ft_pgrid_method *m, const ft_gl *gl, const ft_
     return st;
 }
 
-/* A grid-sized RGBA32F target (NEAREST) on texture unit `unit`. */
-static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit, uint32_t w,
-                                   uint32_t h, GLuint *tex, GLuint *fbo, const char *what,
-                                   ft_error *err)
+/* A grid-sized RGBA32F texture (NEAREST) on texture unit `unit`. */
+static void make_float_texture(ft_pgrid_method *m, const ft_gl *gl, GLenum unit, uint32_t w,
+                               uint32_t h, GLuint *tex)
 {
-    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
-        return ft_fail(err, FT_ERR_UNSUPPORTED, "pgrid: the %s target %ux%u exceeds "
-                       "GL_MAX_TEXTURE_SIZE %d", what, w, h, gl->caps.max_texture_size);
-    }
     gl->ActiveTexture(unit);
     gl->GenTextures(1, tex);
     gl->BindTexture(GL_TEXTURE_2D, *tex);
@@ -167,16 +162,36 @@ static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum u
     gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
                    NULL);
     gl->ActiveTexture(GL_TEXTURE0);
+    m->gpu_bytes += (uint64_t)w * h * 16u;
+}
+
+/* A framebuffer of one or two grid-sized RGBA32F textures (tex1 = NULL: one). */
+static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit0,
+                                   GLenum unit1, uint32_t w, uint32_t h, GLuint *tex0,
+                                   GLuint *tex1, GLuint *fbo, const char *what, ft_error *err)
+{
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED, "pgrid: the %s target %ux%u exceeds "
+                       "GL_MAX_TEXTURE_SIZE %d", what, w, h, gl->caps.max_texture_size);
+    }
+    make_float_texture(m, gl, unit0, w, h, tex0);
+    if (tex1 != NULL) {
+        make_float_texture(m, gl, unit1, w, h, tex1);
+    }
     gl->GenFramebuffers(1, fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, *fbo);
-    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex0, 0);
+    if (tex1 != NULL) {
+        static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, *tex1, 0);
+        gl->DrawBuffers(2, both);
+    }
     const GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         return ft_fail(err, FT_ERR_GPU, "pgrid: the %s target %ux%u (RGBA32F) is incomplete: "
                        "0x%04x", what, w, h, (unsigned)st);
     }
-    m->gpu_bytes += (uint64_t)w * h * 16u;
     return FT_OK;
 }
 
@@ -185,12 +200,13 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
 {
     ft_status st = upload_residuals(m, gl, t, a, err);
     if (st == FT_OK) {
-        st = make_float_target(m, gl, GL_TEXTURE4, m->pgm.cols, m->pgm.rows, &m->vtx_tex,
-                               &m->vtx_fbo, "vertex pass", err);
+        st = make_float_target(m, gl, GL_TEXTURE4, GL_TEXTURE7, m->pgm.cols, m->pgm.rows,
+                               &m->vtx_tex, &m->slope_tex, &m->vtx_fbo, "vertex pass", err);
     }
     if (st == FT_OK) {
-        st = make_float_target(m, gl, GL_TEXTURE5, m->pgm.cols - 1u, m->pgm.rows - 1u,
-                               &m->quad_tex, &m->quad_fbo, "quad bound", err);
+        st = make_float_target(m, gl, GL_TEXTURE5, GL_TEXTURE5, m->pgm.cols - 1u,
+                               m->pgm.rows - 1u, &m->quad_tex, NULL, &m->quad_fbo, "quad bound",
+                               err);
     }
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program),
@@ -419,15 +435,17 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
         gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
         m->gpu_bytes += sizeof corners;
+        /* the grid's vertex shader then reads 6 textures */
         if (s->pgrid_residual_bound && gl->caps.has_float_color_buffer &&
-            gl->caps.has_float_textures) {
+            gl->caps.has_float_textures && gl->caps.max_vertex_texture_units >= 6) {
             st = init_tight(m, gl, t, &gt, a, err);
             if (st != FT_OK) {
                 return st;
             }
         } else if (s->pgrid_residual_bound) {
-            (void)fprintf(stderr, "pgrid: error_bound = residual needs float render targets, "
-                                  "which this context lacks: using the relief bound\n");
+            (void)fprintf(stderr, "pgrid: error_bound = residual needs float render targets "
+                                  "and 6 vertex texture units, which this context lacks: "
+                                  "using the relief bound\n");
         }
     }
     m->thr = FT_PGRID_CODES;
@@ -469,6 +487,8 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
                       m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
     gl->Uniform1i(p->u_pgrid_quad, 5);
+    gl->Uniform1i(p->u_pgrid_vtx, 4);
+    gl->Uniform1i(p->u_pgrid_slope, 7);
     gl->Uniform1f(p->u_pgrid_tight, m->tight ? 1.0f : 0.0f);
 }
 
@@ -511,6 +531,8 @@ static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *
     gl->Viewport(vp[0], vp[1], vp[2], vp[3]);
     gl->ActiveTexture(GL_TEXTURE5);
     gl->BindTexture(GL_TEXTURE_2D, m->quad_tex);
+    gl->ActiveTexture(GL_TEXTURE7);
+    gl->BindTexture(GL_TEXTURE_2D, m->slope_tex);
     gl->ActiveTexture(GL_TEXTURE0);
 }
 
@@ -685,7 +707,8 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
         st->draw_calls += 1u;
     }
     gl->UseProgram(p->program);
-    st->tiles = (uint32_t)m->rc_px;
+    st->raycast_px = m->rc_px;
+    st->terrain_px = m->terrain_px;
     st->tau_achieved_px = m->achieved_px;
     st->budget_hit = m->budget_hit;
 }
@@ -704,10 +727,12 @@ void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     if (m->quad_prog) gl->DeleteProgram(m->quad_prog);
     if (m->res_tex) gl->DeleteTextures(1, &m->res_tex);
     if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
+    if (m->slope_tex) gl->DeleteTextures(1, &m->slope_tex);
     if (m->quad_tex) gl->DeleteTextures(1, &m->quad_tex);
     if (m->vtx_fbo) gl->DeleteFramebuffers(1, &m->vtx_fbo);
     if (m->quad_fbo) gl->DeleteFramebuffers(1, &m->quad_fbo);
-    m->quad_prog = m->res_tex = m->vtx_tex = m->quad_tex = m->vtx_fbo = m->quad_fbo = 0u;
+    m->quad_prog = m->res_tex = m->vtx_tex = m->slope_tex = m->quad_tex = 0u;
+    m->vtx_fbo = m->quad_fbo = 0u;
     m->vtx_prog_built = 0;
     m->tight = 0;
     m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;

@@ -21,3 +21,15 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PGRID
                        SKIP_RETURN_CODE 77 TIMEOUT 900)
   set_tests_properties(pgrid_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
 endif()
+
+# The bound over the bench's valley, climb and orbit paths on N42E001 and
+# Rainier (imported here), gamma 0.5/1/2, residual bound, ray-casting budget
+# of every pixel: max error <= gamma + 0.1 px on every row, no budget hit
+# (tests/test_pgrid_paths.sh). About 100 s on 2 cores.
+if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PGRID
+   AND FIXTERRAIN_WITH_GDAL_TOOLS)
+  add_test(NAME pgrid_paths
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_pgrid_paths.sh $<TARGET_FILE:fixterrain>
+                      ${CMAKE_SOURCE_DIR} ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out)
+  set_tests_properties(pgrid_paths PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endif()

@@ -1,0 +1,44 @@
+#!/bin/sh
+# pgrid's bound over the bench's flight paths on two real DEMs: with ray
+# casting, error_bound = residual and a ray-casting budget of every pixel,
+# `fixterrain bench` flies valley, climb and orbit over N42E001 (Pyrenees,
+# .hgt) and Rainier (GeoTIFF, imported to .ftt here) at gamma 0.5, 1 and 2;
+# on every row the worst measured frame's error (the metric against the
+# bilinear truth) must be <= gamma + 0.1 px (the metric's 0.05 px and the
+# GPU ray caster's float32 hit, as in tests/test_pgrid_gl.c) and no frame
+# may hit the budget. The ray-cast fraction is printed (a benchmark figure,
+# not asserted here). Skipped (77) without ../shared/data.
+#
+#   test_pgrid_paths.sh FIXTERRAIN SOURCE_DIR DATA_DIR OUT_DIR
+set -eu
+bin=$1 src=$2 data=$3 out=$4/pgrid-paths
+[ -f "$data/N42E001.hgt" ] && [ -f "$data/rainier_N46W122_srtm3.tif" ] || {
+  echo "no ../shared/data: skipped"; exit 77; }
+rm -rf "$out"
+mkdir -p "$out"
+"$bin" import "$data/rainier_N46W122_srtm3.tif" "$out/rainier.ftt" > "$out/import.log"
+
+status=0
+run() { # NAME SCENE DEM
+  "$bin" bench --scene "$2" --dem "$3" --methods pgrid --path valley,climb,orbit \
+    --size 320x240 --frames 8 --metric-every 2 \
+    --settings 'pgrid.gamma_px=0.5,1,2;pgrid.error_bound=residual;pgrid.ray_casting=1;pgrid.raycast_max_px=76800' \
+    --csv "$out/$1.csv" --plot "$out/$1.png" --quiet > "$out/$1.log" 2>&1 || {
+      cat "$out/$1.log"; echo "FAIL: $1: bench failed"; status=1; return; }
+  # columns: 2 setting, 10 err_max_px, 18 budget_hits, 23/24 ray-cast fraction
+  awk -F, -v name="$1" '
+    NR == 1 { next }
+    $1 == "pgrid" {
+      rows += 1
+      if (match($2, /gamma_px=[0-9.]+/) == 0) { print "FAIL: " name ": no gamma in " $2; bad = 1; next }
+      g = substr($2, RSTART + 9, RLENGTH - 9) + 0
+      printf "%s gamma %.1f: max error %.4f px (allowed %.2f), budget hits %d, ray cast %.1f%% mean, %.1f%% worst frame\n", name, g, $10, g + 0.1, $18, 100 * $23, 100 * $24
+      if ($10 + 0 > g + 0.1) { print "FAIL: " name ": error over the bound"; bad = 1 }
+      if ($18 + 0 != 0) { print "FAIL: " name ": the budget was hit"; bad = 1 }
+    }
+    END { if (rows != 3) { print "FAIL: " name ": " rows " pgrid rows, expected 3"; bad = 1 } exit bad }
+  ' "$out/$1.csv" || status=1
+}
+run n42e001 "$src/config/pyrenees.ini" "$data/N42E001.hgt"
+run rainier "$src/config/rainier.ini" "$out/rainier.ftt"
+exit $status

@@ -54,14 +54,7 @@ FT_OUT_VS vec3 v_normal;
 FT_OUT_VS float v_height_m;
 FT_OUT_VS float v_morph; /* 1 = at its own height (captured by the crack tests) */
 
-float ft_decode(vec4 t, vec2 pack)
-{
-    if (pack.y > 0.0) {
-        float q = dot(floor(t.rgb * 255.0 + 0.5), vec3(65536.0, 256.0, 1.0));
-        return pack.x + pack.y * (q / 16777215.0);
-    }
-    return t.r;
-}
+#include "decode.glsl"
 
 float ft_height(vec2 g)
 {

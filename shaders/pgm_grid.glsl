@@ -56,14 +56,7 @@ FT_OUT_VS float v_height_m;
 FT_OUT_VS float v_morph; /* the continuous level L + w (captured by the tests) */
 #endif
 
-float ft_decode(vec4 t, vec2 pack)
-{
-    if (pack.y > 0.0) {
-        float q = dot(floor(t.rgb * 255.0 + 0.5), vec3(65536.0, 256.0, 1.0));
-        return pack.x + pack.y * (q / 16777215.0);
-    }
-    return t.r;
-}
+#include "decode.glsl"
 
 /* Texel ij (integer valued, inside the level) of avg level `level`. */
 float ft_texel(float level, vec2 ij)

@@ -27,14 +27,7 @@ uniform float u_earth_drop_per_m2;
 uniform vec4 u_pgrid_res_level[FT_RES_LEVELS]; /* atlas origin xy, size zw */
 uniform float u_pgrid_res_levels;
 
-float ft_decode(vec4 t, vec2 pack)
-{
-    if (pack.y > 0.0) {
-        float q = dot(floor(t.rgb * 255.0 + 0.5), vec3(65536.0, 256.0, 1.0));
-        return pack.x + pack.y * (q / 16777215.0);
-    }
-    return t.r;
-}
+#include "decode.glsl"
 
 #if FT_ES3
 float ft_h(vec2 ij) { return ft_decode(texelFetch(u_heights, ivec2(ij), 0), u_pack); }

@@ -53,14 +53,7 @@ uniform vec3 u_sun_dir;
 uniform vec2 u_light;
 uniform float u_earth_drop_per_m2; /* k: 1 / (2 R) or 0 */
 
-float ft_decode(vec4 t, vec2 pack)
-{
-    if (pack.y > 0.0) {
-        float q = dot(floor(t.rgb * 255.0 + 0.5), vec3(65536.0, 256.0, 1.0));
-        return pack.x + pack.y * (q / 16777215.0);
-    }
-    return t.r;
-}
+#include "decode.glsl"
 
 float hs(vec2 ij)
 {

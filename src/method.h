@@ -108,6 +108,13 @@ typedef struct ft_pgrid_method {
     GLint uq_vtx, uq_res, uq_heights, uq_grid_size, uq_cell_m, uq_origin, uq_pack, uq_drop;
     GLint uq_res_levels, uq_res_level[FT_PYRAMID_LEVELS_MAX];
     uint64_t terrain_px;            /* the last decision's terrain pixels (undilated code > 0) */
+    /* the late decision (GLES 3 with ray casting): the error buffer goes into
+     * pixel-pack buffer pack_pbo[pbo_next] without waiting; the next frame
+     * maps it (complete by then) and decides from it */
+    GLuint pack_pbo[2];
+    int pbo_full[2];
+    uint32_t pbo_next;
+    int late;
     uint32_t w_px, h_px;
     int distribution, ray_casting, es3;
     double gamma_px;

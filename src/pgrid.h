@@ -61,12 +61,20 @@
  *    under gamma is within gamma (<= 1 px for gamma <= 1). code_thr =
  *    code(gamma_px) unless the budget says otherwise (5).
  *
- * 5. Budget: the frame's error buffer is read back; the histogram of dilated
- *    codes gives the count for every threshold. The smallest threshold
- *    >= code(gamma) whose count fits raycast_max_px is used; if it is above
- *    code(gamma) the budget was hit, and the error reported is rho_hi(thr -
- *    1) (the largest rho a code below the threshold stands for). Without ray
- *    casting, the reported error is rho_hi(largest code present). */
+ * 5. Budget: the histogram of dilated codes of an error buffer gives the
+ *    count for every threshold. The smallest threshold >= code(gamma) whose
+ *    count fits raycast_max_px is used; if it is above code(gamma) the
+ *    budget was hit, and the error reported is rho_hi(thr - 1) (the largest
+ *    rho a code below the threshold stands for). With ray casting (GLES 3)
+ *    the decision is one frame late and never stalls: the frame's error
+ *    buffer is read into a pixel-pack buffer without waiting, and the next
+ *    frame maps it (complete by then) to choose its own threshold. The
+ *    threshold is applied per pixel on the GPU to the frame's own buffer,
+ *    so the bound holds on every frame; what is late is the count: after an
+ *    abrupt change of view one frame can ray cast more than raycast_max_px
+ *    (a time overrun, not an error one), and the counts reported are the
+ *    previous frame's. Without ray casting (GLES 2) the buffer is read at
+ *    once and the reported error is rho_hi(largest code present). */
 #ifndef FT_PGRID_H
 #define FT_PGRID_H
 

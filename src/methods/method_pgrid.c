@@ -448,6 +448,18 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
                                   "using the relief bound\n");
         }
     }
+    if (m->ray_casting) {
+        /* the late decision's two pixel-pack buffers (src/pgrid.h 5) */
+        const GLsizeiptr bytes = (GLsizeiptr)m->w_px * (GLsizeiptr)m->h_px * 4;
+        gl->GenBuffers(2, m->pack_pbo);
+        for (int k = 0; k < 2; ++k) {
+            gl->BindBuffer(GL_PIXEL_PACK_BUFFER, m->pack_pbo[k]);
+            gl->BufferData(GL_PIXEL_PACK_BUFFER, bytes, NULL, GL_STREAM_READ);
+            m->gpu_bytes += (uint64_t)bytes;
+        }
+        gl->BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        m->late = 1;
+    }
     m->thr = FT_PGRID_CODES;
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
@@ -543,17 +555,89 @@ static int same_decision_view(const ft_pgrid_method *m, const ft_camera *cam)
            memcmp(m->dec_up, cam->up, sizeof m->dec_up) == 0;
 }
 
-static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+/* The dilated-code histogram and terrain pixels of m->readback. */
+static void count_codes(ft_pgrid_method *m)
 {
-    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
-                   m->readback);
     ft_pgrid_histogram(m->readback, m->w_px, m->h_px, m->work, m->hist);
     uint64_t terrain = 0u; /* pixels the mesh (or an envelope) covers: code > 0 */
     for (size_t k = 0; k < (size_t)m->w_px * m->h_px; ++k) {
         terrain += (m->readback[4u * k + 1u] != 0u);
     }
     m->terrain_px = terrain;
+}
+
+static void remember_view(ft_pgrid_method *m, const ft_camera *cam)
+{
+    memcpy(m->dec_eye_m, cam->eye_m, sizeof m->dec_eye_m);
+    memcpy(m->dec_fwd, cam->forward, sizeof m->dec_fwd);
+    memcpy(m->dec_up, cam->up, sizeof m->dec_up);
+    m->have_decision = 1;
+}
+
+/* The late decision (src/pgrid.h 5; GLES 3 with ray casting). This frame's
+ * error buffer goes into a pixel-pack buffer without waiting for it; the
+ * previous frame's, complete by now, is mapped and gives the histogram that
+ * sets this frame's threshold. The threshold is applied per pixel on the GPU
+ * to this frame's own buffer, so the bound reported below holds for this
+ * frame whatever its count; what comes one frame late is the count: a view
+ * that changes abruptly can ray cast more than raycast_max_px for one frame
+ * (time, not error), and the pixels reported (raycast_px, terrain_px) are the
+ * previous frame's, at the threshold it used. The first frame has no
+ * histogram: it ray casts everything over gamma. */
+static void decide_late(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+{
+    const uint32_t cur = m->pbo_next, prev = cur ^ 1u;
+    const size_t bytes = (size_t)m->w_px * m->h_px * 4u;
+    const double gamma = m->gamma_px * m->lod_scale; /* degradation raises gamma */
+    int have = 0;
+    if (m->pbo_full[prev]) {
+        gl->BindBuffer(GL_PIXEL_PACK_BUFFER, m->pack_pbo[prev]);
+        const void *p = gl->MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, (GLsizeiptr)bytes,
+                                           GL_MAP_READ_BIT);
+        if (p != NULL) {
+            memcpy(m->readback, p, bytes);
+            have = 1;
+        }
+        (void)gl->UnmapBuffer(GL_PIXEL_PACK_BUFFER);
+        m->pbo_full[prev] = 0;
+    }
+    gl->BindBuffer(GL_PIXEL_PACK_BUFFER, m->pack_pbo[cur]);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
+                   (void *)0);
+    gl->BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    m->pbo_full[cur] = 1;
+    m->pbo_next = prev;
+    if (have) {
+        count_codes(m);
+        /* the previous frame's pixels at the threshold it used */
+        uint64_t last = 0u;
+        for (uint32_t c = m->thr; c < FT_PGRID_CODES; ++c) last += m->hist[c];
+        m->rc_px = last;
+        uint64_t unused;
+        m->thr = ft_pgrid_budget_threshold(m->hist, gamma, m->raycast_max_px, &unused,
+                                           &m->budget_hit);
+    } else {
+        m->rc_px = 0u;
+        m->terrain_px = 0u;
+        m->thr = ft_pgrid_code(gamma);
+        m->budget_hit = 0;
+    }
+    /* pixels under the threshold have codes <= thr - 1 */
+    m->achieved_px = m->budget_hit ? ft_pgrid_code_rho_hi(m->thr - 1u) : gamma;
+    remember_view(m, cam);
+}
+
+static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+{
+    if (m->late) {
+        decide_late(m, gl, cam);
+        return;
+    }
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
+                   m->readback);
+    count_codes(m);
     uint32_t top = 0u; /* largest dilated code present */
     for (uint32_t c = 1; c < FT_PGRID_CODES; ++c) {
         if (m->hist[c] != 0u) top = c;
@@ -573,10 +657,7 @@ static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
         m->budget_hit = 0;
         m->achieved_px = (top >= 1u) ? ft_pgrid_code_rho_hi(top) : 0.0;
     }
-    memcpy(m->dec_eye_m, cam->eye_m, sizeof m->dec_eye_m);
-    memcpy(m->dec_fwd, cam->forward, sizeof m->dec_fwd);
-    memcpy(m->dec_up, cam->up, sizeof m->dec_up);
-    m->have_decision = 1;
+    remember_view(m, cam);
 }
 
 static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p,
@@ -702,7 +783,9 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
         gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
     }
     /* 4. ray casting */
-    if (m->ray_casting && m->thr < FT_PGRID_CODES && m->rc_px > 0u) {
+    /* (not on the count: with the late decision it is the previous frame's;
+     * the pass leaves every pixel under the threshold alone) */
+    if (m->ray_casting && m->thr < FT_PGRID_CODES) {
         ray_cast(m, gl, p, t, cam);
         st->draw_calls += 1u;
     }
@@ -722,6 +805,10 @@ void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     if (m->err_fbo) gl->DeleteFramebuffers(1, &m->err_fbo);
     if (m->rc_prog) gl->DeleteProgram(m->rc_prog);
     if (m->quad_vbo) gl->DeleteBuffers(1, &m->quad_vbo);
+    if (m->pack_pbo[0]) gl->DeleteBuffers(2, m->pack_pbo);
+    m->pack_pbo[0] = m->pack_pbo[1] = 0u;
+    m->pbo_full[0] = m->pbo_full[1] = 0;
+    m->late = 0;
     if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
     if (m->vtx_prog_built && m->vtx_prog->program) gl->DeleteProgram(m->vtx_prog->program);
     if (m->quad_prog) gl->DeleteProgram(m->quad_prog);

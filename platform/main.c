@@ -170,7 +170,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"eye_m\": [%.3f, %.3f, %.3f],\n"
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
-        " \"raycast_px\": %llu, \"terrain_px\": %llu,"
+        " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu,"
         " \"tau_achieved_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
@@ -499,8 +499,14 @@ static int cmd_render(int argc, char **argv)
             printf("bintree: %u tiles, error bound %.3f px%s, selection %.3f ms\n", st.tiles,
                    st.tau_achieved_px, st.budget_hit ? " (tile budget hit: tau raised)" : "",
                    st.select_ms);
+        } else if (scene.method == FT_METHOD_PGRID && st.terrain_px == 0u) {
+            /* with ray casting the counts are the previous frame's (src/pgrid.h 5) */
+            printf("pgrid: error bound %.3f px (ray-cast pixels are counted a frame late: "
+                   "render 2 or more frames to see them)\n",
+                   st.tau_achieved_px);
         } else if (scene.method == FT_METHOD_PGRID) {
-            printf("pgrid: %llu pixels ray cast (of %llu terrain pixels), error bound %.3f px%s\n",
+            printf("pgrid: %llu pixels ray cast (of %llu terrain pixels; with ray casting, the "
+                   "previous frame's), error bound %.3f px%s\n",
                    (unsigned long long)st.raycast_px, (unsigned long long)st.terrain_px,
                    st.tau_achieved_px, st.budget_hit ? " (ray-casting budget hit)" : "");
         }

@@ -152,42 +152,16 @@ void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *wo
     }
 }
 
-void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
-                            uint32_t *height_px)
+/* Atlas of the min/max-shaped levels l0..: level l0 at (0, 0), levels
+ * l0 + 1.. stacked in a column right of it; 1 x 1 when there are none. */
+static void atlas_layout(const ft_terrain *t, uint32_t l0, uint32_t origin_px[][2],
+                         uint32_t *width_px, uint32_t *height_px)
 {
     const ft_pyramid *p = &t->pyr;
-    const uint32_t l0 = FT_PGRID_ATLAS_L0;
-    *half_w = *height_px = 1u;
-    if (p->minmax_levels <= l0) {
-        return; /* levels 0 and 1 come from the heights: nothing to lay out */
-    }
-    /* level l0 at (0, 0); levels l0 + 1.. stacked in a column right of it */
-    const uint32_t w0 = p->minmax[l0].width, h0 = p->minmax[l0].height;
-    uint32_t col_w = 0u, y = 0u;
-    origin_px[l0][0] = 0u;
-    origin_px[l0][1] = 0u;
-    for (uint32_t l = l0 + 1u; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        origin_px[l][0] = w0;
-        origin_px[l][1] = y;
-        y += p->minmax[l].height;
-        col_w = (p->minmax[l].width > col_w) ? p->minmax[l].width : col_w;
-    }
-    *half_w = w0 + col_w;
-    *height_px = (y > h0) ? y : h0;
-}
-
-/* ---- 6. the tight bound ---------------------------------------------------- */
-
-void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
-                              uint32_t *height_px)
-{
-    const ft_pyramid *p = &t->pyr;
-    const uint32_t l0 = FT_PGRID_RES_L0;
     *width_px = *height_px = 1u;
     if (p->minmax_levels <= l0) {
-        return; /* level 0 comes from the heights */
+        return; /* the lower levels come from the heights: nothing to lay out */
     }
-    /* level l0 at (0, 0); levels l0 + 1.. stacked in a column right of it */
     const uint32_t w0 = p->minmax[l0].width, h0 = p->minmax[l0].height;
     uint32_t col_w = 0u, y = 0u;
     origin_px[l0][0] = 0u;
@@ -200,6 +174,20 @@ void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint
     }
     *width_px = w0 + col_w;
     *height_px = (y > h0) ? y : h0;
+}
+
+void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
+                            uint32_t *height_px)
+{
+    atlas_layout(t, FT_PGRID_ATLAS_L0, origin_px, half_w, height_px);
+}
+
+/* ---- 6. the tight bound ---------------------------------------------------- */
+
+void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
+                              uint32_t *height_px)
+{
+    atlas_layout(t, FT_PGRID_RES_L0, origin_px, width_px, height_px);
 }
 
 typedef struct node_box {
@@ -286,6 +274,20 @@ static ft_pgrid_quad clamped(const ft_terrain *t, const ft_pgrid_quad *q)
     return c;
 }
 
+/* The grid-coordinate box of a quad's corners. */
+static void quad_box(const ft_pgrid_quad *q, double *lo_x, double *hi_x, double *lo_y,
+                     double *hi_y)
+{
+    *lo_x = *hi_x = q->g[0][0];
+    *lo_y = *hi_y = q->g[0][1];
+    for (int k = 1; k < 4; ++k) {
+        *lo_x = fmin(*lo_x, q->g[k][0]);
+        *hi_x = fmax(*hi_x, q->g[k][0]);
+        *lo_y = fmin(*lo_y, q->g[k][1]);
+        *hi_y = fmax(*hi_y, q->g[k][1]);
+    }
+}
+
 /* |f| at the ends of a quadratic piece f(t) on [ta, tb] with end values fa,
  * fb and curvature gamma (f'' = 2 gamma), and at its stationary point */
 static double piece_max(double ta, double tb, double fa, double fb, double gamma)
@@ -326,13 +328,8 @@ double ft_pgrid_quad_exact(const ft_terrain *t, const ft_pgrid_quad *q_in, int *
     const ft_pgrid_quad qc = clamped(t, q_in);
     const double(*g)[2] = qc.g;
     const double *h = qc.h_m;
-    double lo_x = g[0][0], hi_x = g[0][0], lo_y = g[0][1], hi_y = g[0][1];
-    for (int k = 1; k < 4; ++k) {
-        lo_x = fmin(lo_x, g[k][0]);
-        hi_x = fmax(hi_x, g[k][0]);
-        lo_y = fmin(lo_y, g[k][1]);
-        hi_y = fmax(hi_y, g[k][1]);
-    }
+    double lo_x, hi_x, lo_y, hi_y;
+    quad_box(&qc, &lo_x, &hi_x, &lo_y, &hi_y);
     /* the window: FT_PGRID_EXACT_CELLS cells from floor(lo), moved inside */
     const double n = (double)FT_PGRID_EXACT_CELLS;
     const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
@@ -419,13 +416,8 @@ double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q_in)
     const ft_pgrid_quad qc = clamped(t, q_in);
     const double(*g)[2] = qc.g;
     const double *h = qc.h_m;
-    double lo_x = g[0][0], hi_x = g[0][0], lo_y = g[0][1], hi_y = g[0][1];
-    for (int k = 1; k < 4; ++k) {
-        lo_x = fmin(lo_x, g[k][0]);
-        hi_x = fmax(hi_x, g[k][0]);
-        lo_y = fmin(lo_y, g[k][1]);
-        hi_y = fmax(hi_y, g[k][1]);
-    }
+    double lo_x, hi_x, lo_y, hi_y;
+    quad_box(&qc, &lo_x, &hi_x, &lo_y, &hi_y);
     const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
     lo_x = clampd(lo_x, 0.0, wx);
     hi_x = clampd(hi_x, 0.0, wx);

@@ -171,7 +171,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
         " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu,"
-        " \"tau_achieved_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
+        " \"tau_achieved_px\": %.4f, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
         "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
@@ -182,7 +182,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
-        (unsigned long long)last->terrain_px, last->tau_achieved_px, last->budget_hit, last->select_ms,
+        (unsigned long long)last->terrain_px, last->tau_achieved_px, last->tau_target_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
@@ -496,8 +496,12 @@ static int cmd_render(int argc, char **argv)
                st.depth_float ? "32" : depth_format_name(&st),
                st.depth_float ? "float" : "fixed-point", st.near_m, st.far_m, st.depth_res_far_m);
         if (st.tiles > 0u && scene.method == FT_METHOD_BINTREE) {
-            printf("bintree: %u tiles, error bound %.3f px%s, selection %.3f ms\n", st.tiles,
+            printf("bintree: %u tiles, error bound %.3f px%s%s, selection %.3f ms\n", st.tiles,
                    st.tau_achieved_px, st.budget_hit ? " (tile budget hit: tau raised)" : "",
+                   st.tau_achieved_px > st.tau_target_px
+                       ? " (a leaf tile near the eye is over the target: the samples are "
+                         "too coarse there)"
+                       : "",
                    st.select_ms);
         } else if (scene.method == FT_METHOD_PGRID && st.terrain_px == 0u) {
             /* with ray casting the counts are the previous frame's (src/pgrid.h 5) */

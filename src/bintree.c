@@ -31,6 +31,9 @@ void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t t
     size_t m = lattice_side(n, k);
     ft_arena_plan(a, FT_POOL_METHOD, m * m * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, m * m * FT_BT_BOX_FLOATS * sizeof(float));
+    const size_t leaves = (k <= n) ? ((size_t)1 << (n - k)) * ((size_t)1 << (n - k)) : 1u;
+    ft_arena_plan(a, FT_POOL_METHOD, leaves * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, leaves * 2u * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile));
     if (k >= FT_BT_TEMPLATE_K_MIN && k <= FT_BT_TEMPLATE_K_MAX) {
         ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
@@ -68,7 +71,85 @@ static int64_t edge_fn(const int32_t a[2], const int32_t b[2], int32_t px, int32
            (int64_t)(b[1] - a[1]) * (int64_t)(px - a[0]);
 }
 
-/* Max |sample - plane| over the samples inside one clamped template triangle;
+/* The bilinear surface over the cell whose corner is (cx, cy), at grid
+ * point (x, y) (the truth every error here is measured against). */
+static double bilinear_in_cell(const ft_bintree *bt, int32_t cx, int32_t cy, double x, double y)
+{
+    const double h00 = height_at(bt, cx, cy), h10 = height_at(bt, cx + 1, cy);
+    const double h01 = height_at(bt, cx, cy + 1), h11 = height_at(bt, cx + 1, cy + 1);
+    const double u = x - (double)cx, v = y - (double)cy;
+    return h00 + (h10 - h00) * u + (h01 - h00) * v + (h00 + h11 - h10 - h01) * u * v;
+}
+
+/* Max |H - L| along the edge a -> b of a template triangle, H the bilinear
+ * surface and L linear from ha (at a) to hb (at b). The edge is cut where it
+ * crosses cell lines; on each piece H - L is a quadratic in the edge
+ * parameter (the bilinear twist D u v along a line), so its extremes are
+ * the piece's ends and its one stationary point. Together with the samples
+ * inside the triangle this is the exact max over the triangle: inside a
+ * cell H - L is linear plus a saddle, with no extremum in the interior, and
+ * along cell lines H is linear. Bounded: |dx| + |dy| + 1 pieces. */
+static double edge_max(const ft_bintree *bt, const int32_t a[2], const int32_t b[2], double ha,
+                       double hb)
+{
+    const int32_t dx = b[0] - a[0], dy = b[1] - a[1];
+    const int32_t cx_max = (int32_t)bt->width - 2, cy_max = (int32_t)bt->height - 2;
+    const int32_t nx = (dx < 0) ? -dx : dx, ny = (dy < 0) ? -dy : dy;
+    int32_t ix = 1, iy = 1; /* next x / y crossing (1..n-1) */
+    double t0 = 0.0, worst = 0.0;
+    for (int32_t piece = 0; piece <= nx + ny; ++piece) {
+        const double tx = (ix < nx) ? (double)ix / (double)nx : 2.0;
+        const double ty = (iy < ny) ? (double)iy / (double)ny : 2.0;
+        double t1 = (tx < ty) ? tx : ty;
+        if (t1 > 1.0) {
+            t1 = 1.0;
+        }
+        if (t1 > t0) {
+            const double tm = 0.5 * (t0 + t1);
+            const double xm = (double)a[0] + (double)dx * tm, ym = (double)a[1] + (double)dy * tm;
+            int32_t cx = (int32_t)floor(xm), cy = (int32_t)floor(ym);
+            cx = (cx < 0) ? 0 : ((cx > cx_max) ? cx_max : cx);
+            cy = (cy < 0) ? 0 : ((cy > cy_max) ? cy_max : cy);
+            double ts[3] = {t0, t1, -1.0};
+            const double d = height_at(bt, cx, cy) + height_at(bt, cx + 1, cy + 1) -
+                             height_at(bt, cx + 1, cy) - height_at(bt, cx, cy + 1);
+            const double c2 = d * (double)dx * (double)dy; /* e(t) = c2 t^2 + ... */
+            if (c2 != 0.0) {
+                const double u0 = (double)(a[0] - cx), v0 = (double)(a[1] - cy);
+                const double bx = height_at(bt, cx + 1, cy) - height_at(bt, cx, cy);
+                const double by = height_at(bt, cx, cy + 1) - height_at(bt, cx, cy);
+                const double c1 = bx * dx + by * dy + d * (dx * v0 + dy * u0) - (hb - ha);
+                const double ts_star = -c1 / (2.0 * c2);
+                if (ts_star > t0 && ts_star < t1) {
+                    ts[2] = ts_star;
+                }
+            }
+            for (int i = 0; i < 3; ++i) {
+                if (ts[i] < 0.0) {
+                    continue;
+                }
+                const double x = (double)a[0] + (double)dx * ts[i];
+                const double y = (double)a[1] + (double)dy * ts[i];
+                const double e = fabs(bilinear_in_cell(bt, cx, cy, x, y) - (ha + (hb - ha) * ts[i]));
+                worst = (e > worst) ? e : worst;
+            }
+        }
+        if (t1 >= 1.0) {
+            break;
+        }
+        if (tx <= ty) {
+            ++ix;
+        }
+        if (ty <= tx) {
+            ++iy;
+        }
+        t0 = t1;
+    }
+    return worst;
+}
+
+/* Exact max |bilinear surface - plane| over one clamped template triangle
+ * (the samples inside it and the quadratic along its edges, see edge_max);
  * also the sample height range and bbox. */
 static void scan_triangle(ft_bintree *bt, int32_t v[3][2], tri_acc *acc)
 {
@@ -116,6 +197,13 @@ static void scan_triangle(ft_bintree *bt, int32_t v[3][2], tri_acc *acc)
             acc->z0 = (hs < acc->z0) ? hs : acc->z0;
             acc->z1 = (hs > acc->z1) ? hs : acc->z1;
         }
+    }
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        const double hi = (i == 0) ? h0 : ((i == 1) ? h1 : h2);
+        const double hj = (j == 0) ? h0 : ((j == 1) ? h1 : h2);
+        const double d = edge_max(bt, v[i], v[j], hi, hj);
+        acc->err_m = (d > acc->err_m) ? d : acc->err_m;
     }
     if (acc->any) {
         acc->x0 = (x0 < acc->x0) ? x0 : acc->x0;
@@ -234,7 +322,16 @@ static void for_each_diamond(build_ctx *bc, uint32_t level, diamond_fn fn)
     }
 }
 
-static void own_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
+/* The leaf table's index of a level-L diamond (a square of side 2^k,
+ * centred on an odd multiple of 2^(k-1)). */
+static size_t leaf_index(const ft_bintree *bt, int32_t x, int32_t y)
+{
+    return (size_t)((uint32_t)y >> bt->k) * bt->leaf_side + ((uint32_t)x >> bt->k);
+}
+
+/* Error and box of diamond c into (err, box). */
+static void measure_diamond(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy, float *err,
+                            float *b)
 {
     ft_bintree *bt = bc->bt;
     int32_t tris[2][3][2];
@@ -244,12 +341,10 @@ static void own_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
     for (uint32_t i = 0; i < count; ++i) {
         measure_tile(bc, tris[i][0], tris[i][1], tris[i][2], &acc);
     }
-    size_t li = lat_index(bt, cx, cy);
-    float *b = bt->box + li * FT_BT_BOX_FLOATS;
-    bt->err_m[li] = (float)acc.err_m;
-    if (acc.err_m > (double)bt->err_m[li]) {
+    *err = (float)acc.err_m;
+    if (acc.err_m > (double)*err) {
         /* round up: the stored bound must not be below the exact error */
-        bt->err_m[li] = nextafterf(bt->err_m[li], FLT_MAX);
+        *err = nextafterf(*err, FLT_MAX);
     }
     if (acc.any) {
         b[0] = (float)acc.x0; b[1] = (float)acc.x1;
@@ -260,19 +355,66 @@ static void own_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
     }
 }
 
+static void own_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
+{
+    ft_bintree *bt = bc->bt;
+    size_t li = lat_index(bt, cx, cy);
+    measure_diamond(bc, level, cx, cy, &bt->err_m[li], bt->box + li * FT_BT_BOX_FLOATS);
+}
+
+static void leaf_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
+{
+    ft_bintree *bt = bc->bt;
+    size_t li = leaf_index(bt, cx, cy);
+    float b[FT_BT_BOX_FLOATS];
+    measure_diamond(bc, level, cx, cy, &bt->leaf_err_m[li], b);
+    bt->leaf_z[2u * li] = b[4];
+    bt->leaf_z[2u * li + 1u] = b[5];
+}
+
+/* The box of the leaf diamond c: its square (side 2^k) clamped to the grid,
+ * and its stored height range (empty when all of it lies in the padding). */
+static void leaf_box(const ft_bintree *bt, int32_t cx, int32_t cy, float b[FT_BT_BOX_FLOATS])
+{
+    const int32_t h = (int32_t)bt->step / 2;
+    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    const size_t li = leaf_index(bt, cx, cy);
+    b[0] = (float)clamp_i(cx - h, wx);
+    b[1] = (float)clamp_i(cx + h, wx);
+    b[2] = (float)clamp_i(cy - h, hy);
+    b[3] = (float)clamp_i(cy + h, hy);
+    b[4] = bt->leaf_z[2u * li];
+    b[5] = bt->leaf_z[2u * li + 1u];
+    if (b[4] > b[5]) {
+        box_set_empty(b);
+    }
+}
+
+/* A diamond's error and box take in its children's (the midpoints of its
+ * triangles' legs), so a child is active only if both its parents are. */
 static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
 {
     ft_bintree *bt = bc->bt;
     int32_t tris[2][3][2];
     uint32_t count = diamond_triangles(bt, level, cx, cy, tris);
     size_t li = lat_index(bt, cx, cy);
+    const int leaf_children = (level + 1u == bt->leaf_level);
     for (uint32_t i = 0; i < count; ++i) {
-        for (int leg = 1; leg <= 2; ++leg) { /* children split at the legs' midpoints */
+        for (int leg = 1; leg <= 2; ++leg) {
             int32_t mx = (tris[i][0][0] + tris[i][leg][0]) / 2;
             int32_t my = (tris[i][0][1] + tris[i][leg][1]) / 2;
-            size_t ci = lat_index(bt, mx, my);
-            bt->err_m[li] = (bt->err_m[ci] > bt->err_m[li]) ? bt->err_m[ci] : bt->err_m[li];
-            box_add(bt->box + li * FT_BT_BOX_FLOATS, bt->box + ci * FT_BT_BOX_FLOATS);
+            float cb[FT_BT_BOX_FLOATS];
+            float ce;
+            if (leaf_children) {
+                ce = bt->leaf_err_m[leaf_index(bt, mx, my)];
+                leaf_box(bt, mx, my, cb);
+            } else {
+                const size_t ci = lat_index(bt, mx, my);
+                ce = bt->err_m[ci];
+                memcpy(cb, bt->box + ci * FT_BT_BOX_FLOATS, sizeof cb);
+            }
+            bt->err_m[li] = (ce > bt->err_m[li]) ? ce : bt->err_m[li];
+            box_add(bt->box + li * FT_BT_BOX_FLOATS, cb);
         }
     }
 }
@@ -315,12 +457,22 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     bt->domain_z[1] = t->max_height_m;
     bt->tiles_max = tiles_max;
 
+    bt->leaf_side = bt->side_cells >> k;
     const size_t m2 = (size_t)bt->lattice_side * bt->lattice_side;
+    const size_t leaves = (size_t)bt->leaf_side * bt->leaf_side;
     int16_t *tmpl = NULL;
     ft_status st = ft_arena_take(a, FT_POOL_METHOD, m2 * sizeof(float), (void **)&bt->err_m, err);
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, m2 * FT_BT_BOX_FLOATS * sizeof(float),
                            (void **)&bt->box, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, leaves * sizeof(float), (void **)&bt->leaf_err_m,
+                           err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, leaves * 2u * sizeof(float), (void **)&bt->leaf_z,
+                           err);
     }
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile),
@@ -341,20 +493,18 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     for (uint32_t level = 0; level < bt->leaf_level; ++level) {
         for_each_diamond(&bc, level, own_error);
     }
+    for_each_diamond(&bc, bt->leaf_level, leaf_error);
     for (uint32_t level = bt->leaf_level; level-- > 0u;) {
-        if (level + 1u < bt->leaf_level) {
-            for_each_diamond(&bc, level, saturate);
-        }
+        for_each_diamond(&bc, level, saturate);
     }
     if (bt->flipped_triangles != 0u) {
         return ft_fail(err, FT_ERR_ARG,
                        "bintree: %u template triangles flip under the padding clamp (grid %ux%u)",
                        bt->flipped_triangles, t->width, t->height);
     }
-    if (bt->leaf_level > 0u) {
-        bt->max_err_m = bt->err_m[lat_index(bt, (int32_t)bt->side_cells / 2,
-                                            (int32_t)bt->side_cells / 2)];
-    }
+    const int32_t mid = (int32_t)bt->side_cells / 2;
+    bt->max_err_m = (bt->leaf_level > 0u) ? bt->err_m[lat_index(bt, mid, mid)]
+                                          : bt->leaf_err_m[leaf_index(bt, mid, mid)];
     return FT_OK;
 }
 
@@ -486,6 +636,7 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
     const int32_t n = (int32_t)bt->side_cells;
     const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
     st->tiles = 0;
+    st->leaf_px_max = 0.0;
     st->nodes_visited = 0;
     st->culled = 0;
     st->level_min = UINT32_MAX;
@@ -505,11 +656,15 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
             continue; /* wholly in the padding: zero area after the clamp */
         }
         int32_t c[2] = {(t.left[0] + t.right[0]) / 2, (t.left[1] + t.right[1]) / 2};
-        const float *dbox = NULL;
-        if (t.level < bt->leaf_level) {
-            dbox = bt->box + lat_index(bt, c[0], c[1]) * FT_BT_BOX_FLOATS;
-        } else if (bt->leaf_level > 0u) {
-            dbox = bt->box + lat_index(bt, t.apex[0], t.apex[1]) * FT_BT_BOX_FLOATS;
+        const int leaf = (t.level >= bt->leaf_level);
+        const size_t di = leaf ? leaf_index(bt, c[0], c[1]) : lat_index(bt, c[0], c[1]);
+        float lbox[FT_BT_BOX_FLOATS];
+        if (leaf) {
+            leaf_box(bt, c[0], c[1], lbox);
+        }
+        const float *dbox = leaf ? lbox : bt->box + di * FT_BT_BOX_FLOATS;
+        if (dbox[0] > dbox[1]) {
+            continue; /* no sample under it or its descendants: zero area after the clamp */
         }
         if (v->cull) {
             float tb[6];
@@ -517,8 +672,8 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
             tb[1] = (float)clamp_i(max3(t.apex[0], t.left[0], t.right[0]), wx);
             tb[2] = (float)gy0;
             tb[3] = (float)clamp_i(max3(t.apex[1], t.left[1], t.right[1]), hy);
-            tb[4] = (dbox != NULL) ? dbox[4] : bt->domain_z[0];
-            tb[5] = (dbox != NULL) ? dbox[5] : bt->domain_z[1];
+            tb[4] = dbox[4];
+            tb[5] = dbox[5];
             double lo[3], hi[3];
             box_to_m(v, tb, lo, hi);
             if (box_outside(v, lo, hi)) {
@@ -526,9 +681,8 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
                 continue;
             }
         }
-        if (t.level < bt->leaf_level) {
-            float e = bt->err_m[lat_index(bt, c[0], c[1])];
-            if (box_error_px(v, (double)e, dbox) > thr_px) {
+        if (!leaf) {
+            if (box_error_px(v, (double)bt->err_m[di], dbox) > thr_px) {
                 stack[sp++] = (bt_node){{c[0], c[1]},
                                         {t.right[0], t.right[1]},
                                         {t.apex[0], t.apex[1]},
@@ -539,6 +693,11 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
                                         t.level + 1u};
                 continue;
             }
+        }
+        if (leaf) {
+            /* nothing refines a leaf: its own error is what the frame achieves there */
+            const double px = box_error_px(v, (double)bt->leaf_err_m[di], dbox);
+            st->leaf_px_max = (px > st->leaf_px_max) ? px : st->leaf_px_max;
         }
         if (st->tiles >= bt->tiles_max) {
             return 0;
@@ -565,7 +724,8 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
         st->attempts = i + 1u;
         if (select_once(bt, v, f * tau, st)) {
             st->budget_hit = (i > 0u);
-            st->tau_achieved_px = tau;
+            st->tau_used_px = tau;
+            st->tau_achieved_px = (st->leaf_px_max > tau) ? st->leaf_px_max : tau;
             return;
         }
         tau = (tau > 0.0) ? tau * FT_BT_COARSEN_FACTOR : 1e-3;
@@ -574,13 +734,16 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
     st->attempts += 1u;
     (void)select_once(bt, v, INFINITY, st);
     st->budget_hit = 1;
+    const int32_t h = (int32_t)bt->side_cells / 2;
     if (bt->leaf_level > 0u) {
-        const int32_t h = (int32_t)bt->side_cells / 2;
         size_t li = lat_index(bt, h, h);
-        st->tau_achieved_px = box_error_px(v, bt->err_m[li], bt->box + li * FT_BT_BOX_FLOATS);
+        st->tau_used_px = box_error_px(v, bt->err_m[li], bt->box + li * FT_BT_BOX_FLOATS);
     } else {
-        st->tau_achieved_px = 0.0; /* roots are the full-resolution grid */
+        float b[FT_BT_BOX_FLOATS]; /* the roots are the leaves */
+        leaf_box(bt, h, h, b);
+        st->tau_used_px = box_error_px(v, bt->leaf_err_m[leaf_index(bt, h, h)], b);
     }
+    st->tau_achieved_px = st->tau_used_px;
 }
 
 /* ---- geomorph rule (mirrors shaders/bintree.vert.glsl) --------------------------------- */

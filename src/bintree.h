@@ -26,10 +26,18 @@
  *             (the midpoints of its triangles' legs).
  *   box[c]    nested bounds: bbox (grid x, y; heights z) of the diamond's
  *             samples, united with its child diamonds' boxes.
- * Exact template error of a triangle: max over the grid samples inside it of
- * |sample height - template surface| (the template surface is linear on each
- * template triangle).
- *
+ * Level-L (leaf) diamonds have their own table (leaf_err_m, leaf_z,
+ * (N/2^k)^2 entries): nothing refines them, so their error is not a split
+ * criterion but what the frame achieves where one is drawn.
+ * Exact template error of a triangle: max over the triangle of
+ * |bilinear surface - template surface|, the bilinear surface of the
+ * samples being the truth. The template surface is linear on each template
+ * triangle; on the part of a template triangle inside one cell the
+ * difference is linear plus the cell's twist D u v (a saddle), so its
+ * extremes lie on the part's boundary: at the samples inside the triangle,
+ * or along the triangle's edges, where between two cell lines the
+ * difference is a quadratic (ends and one stationary point). Along a cell
+ * diagonal this is the classic |D| / 4 of a cell split into two triangles.
  * Selection: diamond c is active iff err_m[c] > 0 and
  *   K * err_m[c] > f * tau * dist(eye, box[c])
  * (K = px_per_rad_k, f = FT_BT_SPLIT_FRACTION with geomorphing, 1 without).
@@ -40,8 +48,11 @@
  *
  * Budget: at most tiles_max tiles. If tau needs more, tau is multiplied by
  * FT_BT_COARSEN_FACTOR and the selection redone (at most
- * FT_BT_COARSEN_STEPS_MAX times, then the two roots); the tau used is
- * reported as the achieved bound. */
+ * FT_BT_COARSEN_STEPS_MAX times, then the two roots).
+ *
+ * Achieved bound: the tau used, or the largest projected error of a leaf
+ * tile drawn if that is larger (near the eye the sample spacing itself can
+ * be coarser than tau). */
 #ifndef FT_BINTREE_H
 #define FT_BINTREE_H
 
@@ -76,7 +87,9 @@ typedef struct ft_bt_select_stats {
     uint32_t attempts;       /* selections run (1 unless the budget was hit) */
     int budget_hit;          /* tau was raised to fit tiles_max */
     double tau_target_px;
-    double tau_achieved_px;  /* the bound the drawn tiles meet */
+    double tau_used_px;      /* the selection's target after any budget coarsening */
+    double leaf_px_max;      /* largest projected error of a leaf tile drawn (0: none) */
+    double tau_achieved_px;  /* the bound the drawn tiles meet: max(tau_used, leaf_px_max) */
     uint32_t level_min, level_max;
 } ft_bt_select_stats;
 
@@ -91,6 +104,9 @@ typedef struct ft_bintree {
     const float *heights_m;
     float *err_m; /* lattice_side^2 */
     float *box;   /* lattice_side^2 * FT_BT_BOX_FLOATS */
+    uint32_t leaf_side;  /* N / 2^k: level-L diamonds a side */
+    float *leaf_err_m;   /* leaf_side^2: error of the level-L diamonds (not refinable) */
+    float *leaf_z;       /* leaf_side^2 * 2: their height range (the box's xy is their square) */
     uint32_t tiles_max;
     ft_bt_tile *tiles; /* tiles_max */
     uint32_t flipped_triangles; /* template triangles the padding clamp flipped (must be 0) */

@@ -32,6 +32,9 @@ typedef struct ft_method_draw_stats {
     double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet;
                                 pgrid: the bound met (gamma, or raised by the
                                 budget, or the mesh's own without ray casting) */
+    double tau_target_px;    /* bintree: the selection's target (tau, or raised by the
+                                budget); tau_achieved_px is larger where a leaf
+                                tile is itself over it. 0 for other methods */
     int budget_hit;          /* bintree: tau was raised to fit the tile budget;
                                 pgrid: the ray-casting budget raised gamma */
 } ft_method_draw_stats;

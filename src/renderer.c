@@ -580,6 +580,7 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     st->raycast_px = ms.raycast_px;
     st->terrain_px = ms.terrain_px;
     st->tau_achieved_px = ms.tau_achieved_px;
+    st->tau_target_px = ms.tau_target_px;
     st->budget_hit = ms.budget_hit;
     st->depth_bits = r->depth_bits;
     st->depth_float = r->depth_float;

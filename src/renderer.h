@@ -64,6 +64,7 @@ typedef struct ft_frame_stats {
     uint64_t terrain_px;    /* pgrid: terrain pixels of the error buffer (its mesh
                                and envelopes): raycast_px's denominator */
     double tau_achieved_px; /* bintree: screen-space bound the selection meets */
+    double tau_target_px;   /* bintree: the selection's target (method.h) */
     int budget_hit;         /* bintree: the tile budget forced a coarser tau */
     double select_ms; /* LOD selection on the CPU (0 when the view did not change) */
     double cpu_ms;   /* frame submission on the CPU */

@@ -94,6 +94,43 @@ static double template_height(const ft_terrain *t, uint32_t k, const ft_bt_tile 
     return (w0 * hgt(t, a[0], a[1]) + w1 * hgt(t, l[0], l[1]) + w2 * hgt(t, r[0], r[1])) / area2;
 }
 
+#define FINE 8 /* sub-sample points per cell side for the dense truth */
+
+/* The bilinear surface (the truth) at fine point p (units 1/FINE cell). */
+static double bilinear_fine(const ft_terrain *t, const int32_t p[2])
+{
+    int32_t cx = p[0] / FINE, cy = p[1] / FINE;
+    cx = cx > (int32_t)t->width - 2 ? (int32_t)t->width - 2 : cx;
+    cy = cy > (int32_t)t->height - 2 ? (int32_t)t->height - 2 : cy;
+    const double u = (double)(p[0] - cx * FINE) / FINE, v = (double)(p[1] - cy * FINE) / FINE;
+    const double h00 = hgt(t, cx, cy), h10 = hgt(t, cx + 1, cy), h01 = hgt(t, cx, cy + 1),
+                 h11 = hgt(t, cx + 1, cy + 1);
+    return h00 + (h10 - h00) * u + (h01 - h00) * v + (h00 + h11 - h10 - h01) * u * v;
+}
+
+/* Template surface of tile at fine point p: the tile scaled by FINE (the
+ * template's vertices stay on samples). */
+static double template_height_fine(const ft_terrain *t, uint32_t k, const ft_bt_tile *tile,
+                                   const int32_t p[2])
+{
+    int32_t a[2] = {tile->apex[0] * FINE, tile->apex[1] * FINE},
+            l[2] = {tile->left[0] * FINE, tile->left[1] * FINE},
+            r[2] = {tile->right[0] * FINE, tile->right[1] * FINE};
+    for (uint32_t i = 0; i < 2u * k; ++i) {
+        int32_t m[2] = {(l[0] + r[0]) / 2, (l[1] + r[1]) / 2};
+        if (inside(m, a, l, p)) {
+            memcpy(r, l, sizeof r); memcpy(l, a, sizeof l); memcpy(a, m, sizeof a);
+        } else {
+            memcpy(l, r, sizeof l); memcpy(r, a, sizeof r); memcpy(a, m, sizeof a);
+        }
+    }
+    double area2 = (double)edge_fn(a, l, r);
+    double w0 = (double)edge_fn(l, r, p), w1 = (double)edge_fn(r, a, p),
+           w2 = (double)edge_fn(a, l, p);
+    return (w0 * hgt(t, a[0] / FINE, a[1] / FINE) + w1 * hgt(t, l[0] / FINE, l[1] / FINE) +
+            w2 * hgt(t, r[0] / FINE, r[1] / FINE)) / area2;
+}
+
 typedef struct edge_rec {
     int32_t x0, y0, x1, y1;
     uint32_t level;
@@ -254,6 +291,8 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t views, int exa
     static const double taus[] = {0.0, 0.5, 1.0, 2.0, 4.0, 16.0};
     uint32_t total_tiles = 0, morph_vertices = 0, checked_vertices = 0;
     int bad_conf = 0, bad_subset = 0, bad_err = 0, bad_bound = 0, bad_morph = 0;
+    int leaf_tiles = 0, leaf_short = 0;
+    double dense_max_ratio = 0.0; /* largest dense error / stored error: <= 1 */
     for (uint32_t vi = 0; vi < views; ++vi) {
         ft_camera cam;
         random_view(&t, bt.side_cells, &cam);
@@ -265,7 +304,9 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t views, int exa
         ft_bintree_select(&bt, &v, tau, &ss);
         CHECK(ss.tiles <= tiles_max);
         CHECK(!ss.budget_hit);
-        CHECK(ss.tau_achieved_px == tau);
+        CHECK(ss.tau_used_px == tau);
+        CHECK(ss.tau_achieved_px == fmax(tau, ss.leaf_px_max));
+        leaf_short += ss.leaf_px_max > tau;
         bad_conf += check_conforming(&bt, ss.tiles, edges);
         total_tiles += ss.tiles;
         uint32_t n_nocull = ss.tiles;
@@ -292,19 +333,35 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t views, int exa
                     z1 = hs > z1 ? hs : z1;
                 }
             }
-            if (tile->level == bt.leaf_level) {
-                if (dev > 1e-3) ++bad_err;
-                continue;
+            /* the truth is the bilinear surface: FINE^2 points a cell */
+            const int32_t fa[2] = {tile->apex[0] * FINE, tile->apex[1] * FINE},
+                          fl[2] = {tile->left[0] * FINE, tile->left[1] * FINE},
+                          fr[2] = {tile->right[0] * FINE, tile->right[1] * FINE};
+            for (int32_t y = y0 * FINE; y <= y1 * FINE; ++y) {
+                for (int32_t x = x0 * FINE; x <= x1 * FINE; ++x) {
+                    int32_t p[2] = {x, y};
+                    if (!inside(fa, fl, fr, p)) continue;
+                    double d = fabs(bilinear_fine(&t, p) - template_height_fine(&t, k, tile, p));
+                    dev = d > dev ? d : dev;
+                }
             }
             int32_t c[2] = {(tile->left[0] + tile->right[0]) / 2,
                             (tile->left[1] + tile->right[1]) / 2};
-            size_t li = (size_t)(c[1] >> k) * bt.lattice_side + (size_t)(c[0] >> k);
-            const float *b = bt.box + li * FT_BT_BOX_FLOATS;
-            if (dev > (double)bt.err_m[li] + 1e-3 || z0 < b[4] || z1 > b[5] || x0 < b[0] ||
+            const int is_leaf = tile->level == bt.leaf_level;
+            size_t li = is_leaf ? (size_t)(c[1] >> k) * bt.leaf_side + (size_t)(c[0] >> k)
+                                : (size_t)(c[1] >> k) * bt.lattice_side + (size_t)(c[0] >> k);
+            const float *b = bt.box + (is_leaf ? 0u : li) * FT_BT_BOX_FLOATS;
+            const double stored = is_leaf ? bt.leaf_err_m[li] : bt.err_m[li];
+            dense_max_ratio = fmax(dense_max_ratio, stored > 0.0 ? dev / stored : 1.0);
+            if (is_leaf) {
+                ++leaf_tiles;
+                continue;
+            }
+            if (dev > stored + 1e-3 || z0 < b[4] || z1 > b[5] || x0 < b[0] ||
                 x1 > b[1] || y0 < b[2] || y1 > b[3]) {
                 if (bad_err < 3) {
                     fprintf(stderr, "tile level %u dev %.4f stored %.4f\n", tile->level, dev,
-                            bt.err_m[li]);
+                            stored);
                 }
                 ++bad_err;
             }
@@ -362,6 +419,12 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t views, int exa
            "error %d, bound %d, morph %d failures\n",
            views, total_tiles, morph_vertices, checked_vertices, bad_conf, bad_subset, bad_err,
            bad_bound, bad_morph);
+    printf("  dense bilinear error / stored error: at most %.4f (%d leaf tiles; %d views with a "
+           "leaf over tau)\n", dense_max_ratio, leaf_tiles, leaf_short);
+    if (exact_checks) {
+        CHECK(dense_max_ratio <= 1.0 + 1e-6);
+        CHECK(dense_max_ratio > 0.9); /* the stored error is the exact max, not a loose bound */
+    }
     CHECK(bad_conf == 0);
     CHECK(bad_subset == 0);
     CHECK(bad_err == 0);

@@ -20,14 +20,13 @@
  *    {0.5, 1, 2, 4}, per pixel the exact projected screen-space error
  *    against the bilinear reference (metric.h, with earth curvature) must
  *    satisfy
- *        e <= tau + gap + 0.05 px
- *    where gap = K * |twist| / 4 / (|P - eye| cos^2 theta) (theta: P off the
- *    view axis, view_scale.h) is the distance between the
- *    full-resolution triangulation and the bilinear surface in the cell of
- *    P (|twist| = |h00 + h11 - h01 - h10|; no triangulation of the samples
- *    can be closer to the bilinear surface than that), and 0.05 px is the
- *    metric's own accuracy. Frames whose tile budget was hit are not held
- *    to tau (there are none with the budget used here). The brute-force
+ *        e <= tau_achieved + 0.05 px
+ *    with no allowance for the triangulation: the bintree's errors are
+ *    measured against the bilinear surface itself, and the bound it reports
+ *    (tau_achieved) is tau unless a leaf tile (nothing finer to split into)
+ *    is itself over tau, when it is that leaf's projected error. 0.05 px is
+ *    the metric's own accuracy. Frames whose tile budget was hit are not
+ *    held (there are none with the budget used here). The brute-force
  *    mesh's error on the same frames is printed beside it.
  *
  * Usage: test_bintree_gl es3|es2 DEM   (es2: the crack test on the GLES 2
@@ -55,7 +54,7 @@ static const char k_scene_fmt[] =
     "[bintree]\ntemplate_k = %u\ntiles_max = %u\ntau_px = %.3f\nmorph = %d\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
-    "gpu_staging_bytes = 8M\nmethod_bytes = 16M\npng_bytes = 512K\n";
+    "gpu_staging_bytes = 8M\nmethod_bytes = 24M\npng_bytes = 512K\n";
 
 typedef struct setup {
     const char *method, *backend, *dem;
@@ -437,16 +436,14 @@ static ft_pose path_pose(int f)
                    -8.0 - 4.0 * f, (f % 3) * 8.0 - 8.0);
 }
 
-/* Largest per-pixel excess e - (tau + gap) over the frame (see the top). */
-static double frame_excess(const ft_camera *cam, double tau, double *gap_max)
+/* Largest per-pixel excess e - tau over the frame (see the top). */
+static double frame_excess(const ft_camera *cam, double tau)
 {
     const ft_terrain *t = &g_app.terrain;
     const float *pos = g_app.renderer.pos;
     const size_t n = (size_t)cam->width_px * cam->height_px;
     double worst = -INFINITY;
-    *gap_max = 0.0;
     const double k = t->curv_drop_per_m2;
-    const double corner_cos = ft_view_corner_cos(cam);
     for (size_t i = 0; i < n; ++i) {
         const float *q = pos + 4u * i;
         if (!(q[3] > 0.5f)) continue;
@@ -456,23 +453,7 @@ static double frame_excess(const ft_camera *cam, double tau, double *gap_max)
         const double truth[3] = {q[0], q[1],
                                  ft_terrain_height_at(t, wx, wy) - cam->eye_m[2] -
                                      k * (p[0] * p[0] + p[1] * p[1])};
-        const double e = ft_metric_projected_px(cam, p, truth);
-        double dist = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        if (dist < cam->near_m) dist = cam->near_m;
-        const double c = fmax((p[0] * cam->forward[0] + p[1] * cam->forward[1] +
-                               p[2] * cam->forward[2]) / dist,
-                              corner_cos);
-        double gx = (wx - t->origin_world_x_m) / t->cell_x_m;
-        double gy = (wy - t->origin_world_y_m) / t->cell_y_m;
-        gx = fmin(fmax(gx, 0.0), (double)t->width - 2.0);
-        gy = fmin(fmax(gy, 0.0), (double)t->height - 2.0);
-        const size_t x = (size_t)gx, y = (size_t)gy, w = t->width;
-        const double twist = (double)t->heights_m[y * w + x] + t->heights_m[(y + 1) * w + x + 1] -
-                             t->heights_m[y * w + x + 1] - t->heights_m[(y + 1) * w + x];
-        /* the chord-vs-bilinear gap, in pixels at this point's off-axis gain */
-        const double gap = fabs(twist) * 0.25 * cam->px_per_rad_k / (dist * c * c);
-        if (gap > *gap_max) *gap_max = gap;
-        const double excess = e - (tau + gap);
+        const double excess = ft_metric_projected_px(cam, p, truth) - tau;
         if (excess > worst) worst = excess;
     }
     return worst;
@@ -503,7 +484,7 @@ static void test_error_bound(const char *dem)
         setup c = {"bintree", "egl-gles3", dem, 256, 192, 3, 65536, tau, 1, 1};
         app_init(&c);
         double worst_excess = -INFINITY, worst_max = 0.0;
-        int held = 0;
+        int held = 0, leaf_short = 0;
         printf("  tau %.1f:", tau);
         for (int f = 0; f < PATH_FRAMES; ++f) {
             ft_camera cam;
@@ -517,20 +498,20 @@ static void test_error_bound(const char *dem)
             printf(" %.2f[%.2f]", es.max_px, brute_max[f]);
             if (fs.budget_hit) continue;
             ++held;
-            double gap_max;
-            const double ex = frame_excess(&cam, fs.tau_achieved_px, &gap_max);
+            const double ex = frame_excess(&cam, fs.tau_achieved_px);
             if (ex > worst_excess) worst_excess = ex;
             if (es.max_px > worst_max) worst_max = es.max_px;
-            CHECK_NEAR(fs.tau_achieved_px, tau, 1e-12);
+            if (fs.tau_achieved_px > tau) ++leaf_short;
+            CHECK(fs.tau_achieved_px >= tau);
             if (ex > 0.05) {
-                fprintf(stderr, "tau %.1f frame %d: a pixel exceeds tau + gap by %.3f px\n", tau,
-                        f, ex);
+                fprintf(stderr, "tau %.1f frame %d: a pixel exceeds the reported %.3f px by %.3f px\n",
+                        tau, f, fs.tau_achieved_px, ex);
             }
             CHECK(ex <= 0.05);
         }
-        printf("\n    frames held to tau: %d of %d; worst max %.3f px; worst per-pixel excess "
-               "over tau + gap: %.3f px (allowed 0.05)\n",
-               held, PATH_FRAMES, worst_max, worst_excess);
+        printf("\n    frames held: %d of %d (%d reported a leaf over tau); worst max %.3f px; "
+               "worst per-pixel excess over the reported bound: %.3f px (allowed 0.05)\n",
+               held, PATH_FRAMES, leaf_short, worst_max, worst_excess);
         CHECK(held == PATH_FRAMES);
         ft_app_shutdown(&g_app);
     }

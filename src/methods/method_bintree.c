@@ -155,7 +155,7 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
                             const ft_camera *cam, ft_method_draw_stats *st)
 {
     ft_bintree_method_select(m, t, cam);
-    const double tau = m->sel.tau_achieved_px;
+    const double tau = m->sel.tau_used_px; /* the morph band is the selection's */
     const double split = m->morph ? FT_BT_SPLIT_FRACTION * tau : tau;
     const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
     gl->ActiveTexture(GL_TEXTURE1);
@@ -211,7 +211,8 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
     }
     st->triangles = (uint64_t)tiles * m->triangles_per_tile;
     st->tiles = tiles;
-    st->tau_achieved_px = tau;
+    st->tau_achieved_px = m->sel.tau_achieved_px;
+    st->tau_target_px = m->sel.tau_used_px;
     st->budget_hit = m->sel.budget_hit;
 }
 

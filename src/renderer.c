@@ -66,9 +66,11 @@ static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, G
     return FT_OK;
 }
 
-/* Compiles and links vert + frag with attribute 0 bound to attr0. */
-static ft_status link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                              const char *attr0, GLuint *out, ft_error *err)
+/* Compiles and links vert + frag with attribute slots 0, 1, 2 bound to
+ * attribs[0..2]. */
+static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
+                                      const char *frag_name, const char *const attribs[3],
+                                      GLuint *out, ft_error *err)
 {
     GLuint vs = 0, fs = 0;
     ft_status s = compile(gl, GL_VERTEX_SHADER, vert_name, &vs, err);
@@ -85,9 +87,9 @@ static ft_status link_program(const ft_gl *gl, const char *vert_name, const char
     gl->AttachShader(prog, fs);
     /* Fixed attribute slots for every program: 0 the template vertex, 1-2
      * per-tile instance data (bintree on GLES 3). Unused names are ignored. */
-    gl->BindAttribLocation(prog, 0, attr0);
-    gl->BindAttribLocation(prog, FT_ATTRIB_TILE0, "i_tile0");
-    gl->BindAttribLocation(prog, FT_ATTRIB_TILE1, "i_tile1");
+    gl->BindAttribLocation(prog, 0, attribs[0]);
+    gl->BindAttribLocation(prog, FT_ATTRIB_TILE0, attribs[1]);
+    gl->BindAttribLocation(prog, FT_ATTRIB_TILE1, attribs[2]);
     gl->LinkProgram(prog);
     gl->DeleteShader(vs); /* flagged; freed with the program */
     gl->DeleteShader(fs);
@@ -104,6 +106,14 @@ static ft_status link_program(const ft_gl *gl, const char *vert_name, const char
     }
     *out = prog;
     return FT_OK;
+}
+
+/* Compiles and links vert + frag with attribute 0 bound to attr0. */
+static ft_status link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                              const char *attr0, GLuint *out, ft_error *err)
+{
+    const char *const attribs[3] = {attr0, "i_tile0", "i_tile1"};
+    return link_program_attribs(gl, vert_name, frag_name, attribs, out, err);
 }
 
 static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
@@ -159,11 +169,14 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     }
 }
 
+static const char *const k_terrain_attribs[3] = {"a_uv", "i_tile0", "i_tile1"};
+
 static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                               ft_terrain_program *p, ft_error *err)
+                               const char *const attribs[3], ft_terrain_program *p,
+                               ft_error *err)
 {
     GLuint prog = 0;
-    ft_status s = link_program(gl, vert_name, frag_name, "a_uv", &prog, err);
+    ft_status s = link_program_attribs(gl, vert_name, frag_name, attribs, &prog, err);
     if (s != FT_OK) {
         return s;
     }
@@ -403,7 +416,7 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     }
     r->gpu_bytes += r->gt.bytes;
     const char *vert = ft_method_vertex_shader(s->method);
-    st = build_program(gl, vert, "terrain.frag.glsl", &r->prog_color, err);
+    st = build_program(gl, vert, "terrain.frag.glsl", k_terrain_attribs, &r->prog_color, err);
     if (st != FT_OK) {
         return st;
     }
@@ -413,7 +426,8 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return st;
     }
     if (r->has_pos_target) {
-        st = build_program(gl, vert, "terrain_pos.frag.glsl", &r->prog_pos, err);
+        st = build_program(gl, vert, "terrain_pos.frag.glsl", k_terrain_attribs, &r->prog_pos,
+                           err);
         if (st != FT_OK) {
             return st;
         }
@@ -508,14 +522,24 @@ ft_status ft_renderer_camera(const ft_renderer *r, const ft_pose *pose, ft_camer
 
 ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err)
 {
+    static const char *const varyings[FT_CAPTURE_FLOATS_PER_VERTEX - 3] = {"gl_Position",
+                                                                           "v_morph"};
+    return ft_renderer_enable_capture_of(r, varyings, 2u, err);
+}
+
+ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyings,
+                                        uint32_t count, ft_error *err)
+{
     const ft_gl *gl = r->gl;
     if (gl->api != FT_GL_API_ES3 || gl->TransformFeedbackVaryings == NULL) {
         return ft_fail(err, FT_ERR_UNSUPPORTED, "vertex capture needs transform feedback (GLES 3)");
     }
-    static const char *const varyings[FT_CAPTURE_FLOATS_PER_VERTEX - 3] = {"gl_Position",
-                                                                           "v_morph"};
+    if (count == 0u || count > FT_CAPTURE_VARYINGS_MAX) {
+        return ft_fail(err, FT_ERR_ARG, "vertex capture: %u varyings (1..%u)", count,
+                       FT_CAPTURE_VARYINGS_MAX);
+    }
     ft_terrain_program *p = &r->prog_color;
-    gl->TransformFeedbackVaryings(p->program, 2, varyings, GL_INTERLEAVED_ATTRIBS);
+    gl->TransformFeedbackVaryings(p->program, (GLsizei)count, varyings, GL_INTERLEAVED_ATTRIBS);
     gl->LinkProgram(p->program); /* the shaders are still attached */
     GLint ok = 0;
     gl->GetProgramiv(p->program, GL_LINK_STATUS, &ok);
@@ -730,7 +754,17 @@ ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t
                                             const char *frag_name, ft_terrain_program *p,
                                             ft_error *err)
 {
-    ft_status st = build_program(gl, vert_name, frag_name, p, err);
+    return ft_renderer_build_terrain_program_attribs(gl, t, gt, vert_name, frag_name,
+                                                     k_terrain_attribs, p, err);
+}
+
+ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
+                                                    const ft_gpu_terrain *gt,
+                                                    const char *vert_name, const char *frag_name,
+                                                    const char *const attribs[3],
+                                                    ft_terrain_program *p, ft_error *err)
+{
+    ft_status st = build_program(gl, vert_name, frag_name, attribs, p, err);
     if (st == FT_OK) {
         set_static_uniforms(gl, p, t, gt);
     }

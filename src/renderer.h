@@ -141,6 +141,11 @@ void ft_renderer_select(ft_renderer *r, const ft_camera *cam);
  * float) per vertex (GLES 3 only). Rendering is unchanged. */
 #define FT_CAPTURE_FLOATS_PER_VERTEX 5u
 ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err);
+/* The same with the named vertex outputs (1..FT_CAPTURE_VARYINGS_MAX,
+ * interleaved in this order: a vec3 takes 3 floats, a float 1). */
+#define FT_CAPTURE_VARYINGS_MAX 8u
+ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyings,
+                                        uint32_t count, ft_error *err);
 
 /* Draws one colour frame into the RGBA8 target. */
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
@@ -175,5 +180,12 @@ ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t
                                             const ft_gpu_terrain *gt, const char *vert_name,
                                             const char *frag_name, ft_terrain_program *p,
                                             ft_error *err);
+/* The same with attribute slots 0, 1, 2 bound to attribs[0..2] (the terrain
+ * programs use a_uv, i_tile0, i_tile1; a name a shader lacks is ignored). */
+ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
+                                                    const ft_gpu_terrain *gt,
+                                                    const char *vert_name, const char *frag_name,
+                                                    const char *const attribs[3],
+                                                    ft_terrain_program *p, ft_error *err);
 
 #endif

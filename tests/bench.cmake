@@ -1,6 +1,7 @@
 # fixterrain bench (issue 6): the plot rasteriser and Pareto front (unit
 # test), and a smoke run of `fixterrain bench` on a real DEM whose CSV and
-# PNG are checked by test_plot --check-bench (skipped without ../shared/data).
+# PNG are checked by test_plot --check-bench (skipped without ../shared/data;
+# the bintree rows carry the oracle's columns, tools/bench_oracle.h).
 ft_add_test(test_plot SOURCES test_plot.c ${CMAKE_SOURCE_DIR}/tools/plot.c LIBS m)
 target_include_directories(test_plot PRIVATE ${CMAKE_SOURCE_DIR}/tools)
 
@@ -15,7 +16,7 @@ if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BR
     list(APPEND FT_BENCH_ROWS "pgm:grid=64x128")
   endif()
   add_test(NAME bench_smoke
-    COMMAND sh -c "test -f \"$1/N42E001.hgt\" || { echo 'no ../shared/data: skipped'; exit 77; }; out=\"$2/bench\"; rm -rf \"$out\"; mkdir -p \"$out\" && \"$0\" bench --scene \"$3/config/pyrenees.ini\" --dem \"$1/N42E001.hgt\" --methods $4 --path valley --size 160x120 --frames 6 --settings 'bintree.tau_px=1,4;bintree.template_k=3' --settings pgm.grid=64x128 --csv \"$out/bench.csv\" --plot \"$out/bench.png\" --report \"$out/bench.md\" && cat \"$out/bench.csv\" && grep -q '^| bintree | template_k=3 tau_px=1 |' \"$out/bench.md\" && grep -q 'max error <= 1 px' \"$out/bench.md\" && head -c 8 \"$out/bench.png\" | od -An -c | grep -q 'P   N   G' && tp=\"$5\" && shift 5 && exec \"$tp\" --check-bench \"$out/bench.csv\" \"$out/bench.png\" 6 2 \"$@\""
+    COMMAND sh -c "test -f \"$1/N42E001.hgt\" || { echo 'no ../shared/data: skipped'; exit 77; }; out=\"$2/bench\"; rm -rf \"$out\"; mkdir -p \"$out\" && \"$0\" bench --scene \"$3/config/pyrenees.ini\" --dem \"$1/N42E001.hgt\" --methods $4 --path valley --size 160x120 --frames 6 --settings 'bintree.tau_px=1,4;bintree.template_k=3' --settings pgm.grid=64x128 --csv \"$out/bench.csv\" --plot \"$out/bench.png\" --report \"$out/bench.md\" && cat \"$out/bench.csv\" && grep -q '^| bintree | template_k=3 tau_px=1 |' \"$out/bench.md\" && grep -q '| x brute | oracle ms (x) |' \"$out/bench.md\" && grep -q 'max error <= 1 px' \"$out/bench.md\" && head -c 8 \"$out/bench.png\" | od -An -c | grep -q 'P   N   G' && tp=\"$5\" && shift 5 && exec \"$tp\" --check-bench \"$out/bench.csv\" \"$out/bench.png\" 6 2 \"$@\""
             $<TARGET_FILE:fixterrain> ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out
             ${CMAKE_SOURCE_DIR} ${FT_BENCH_METHODS} $<TARGET_FILE:test_plot> ${FT_BENCH_ROWS})
   set_tests_properties(bench_smoke PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)

@@ -457,7 +457,7 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "coverage_mismatch_px", "coverage_mismatch_mean_px", "nonfinite_px", "measured_frames",
         "triangles_mean", "budget_hits", "init_ms", "occlusion_mismatch_px",
         "occlusion_mismatch_mean_px", "occlusion_err_max_px", "raycast_fraction_mean",
-        "raycast_fraction_max"};
+        "raycast_fraction_max", "oracle_median_ms", "x_oracle"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);
@@ -472,7 +472,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
               c_occ = col(H, nh, "occlusion_mismatch_px"),
               c_occ_e = col(H, nh, "occlusion_err_max_px"),
               c_rc_mean = col(H, nh, "raycast_fraction_mean"),
-              c_rc_max = col(H, nh, "raycast_fraction_max");
+              c_rc_max = col(H, nh, "raycast_fraction_max"),
+              c_or = col(H, nh, "oracle_median_ms"), c_xo = col(H, nh, "x_oracle");
     CHECK(nl - 1 == nrows);
     for (int r = 0; r < nrows; ++r) {
         char want_method[64];
@@ -513,6 +514,17 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         if (strcmp(want_method, "pgrid") != 0) CHECK(num(c[c_rc_max]) == 0.0);
         if (strcmp(want_method, "brute") == 0) CHECK_NEAR(num(c[c_ratio]), 1.0, 1e-9);
         else CHECK(num(c[c_ratio]) > 0.0);
+        /* the oracle (bintree rows only): its median frame time and the row's
+         * median over it; other methods leave both empty */
+        if (strcmp(want_method, "bintree") == 0) {
+            const double om = num(c[c_or]), xo = num(c[c_xo]);
+            printf("  oracle %.2f ms, x_oracle %.3f\n", om, xo);
+            CHECK(om > 0.0 && om < 60000.0);
+            CHECK(xo > 0.0);
+            CHECK_NEAR(xo, med / om, 0.01 * xo); /* both printed rounded */
+        } else {
+            CHECK(c[c_or][0] == '\0' && c[c_xo][0] == '\0');
+        }
     }
 
     uint8_t *rgba = NULL;

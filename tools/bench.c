@@ -10,7 +10,12 @@
  * The reference (CPU ray caster) depends only on the camera, so the first
  * run that measures a frame keeps its reference pixels and later runs only
  * draw their position pass and compute the metric against the copy (up to
- * --ref-cache-mb; a frame whose camera differs is recomputed). */
+ * --ref-cache-mb; a frame whose camera differs is recomputed).
+ *
+ * Bintree runs also time an oracle per frame (bench_oracle.h): the frame's
+ * triangles as a pre-transformed mesh with a trivial vertex shader, the
+ * floor for that triangle set; the row reports its median and the row's
+ * median over it. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench.h"
 
@@ -22,6 +27,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "bench_oracle.h"
 #include "default_view.h"
 #include "flight_path.h"
 #include "plot.h"
@@ -121,6 +127,10 @@ typedef struct bench_row {
     int rc_frames;
     double path_t_med_ms[BENCH_PATHS_MAX], path_err_max_px[BENCH_PATHS_MAX];
     double path_err_p999_px[BENCH_PATHS_MAX];
+    /* bintree: the oracle's frames (bench_oracle.h), their median time; NAN
+     * (empty in the CSV) for other methods or with --no-oracle */
+    int oracle_frames;
+    double oracle_med_ms;
 } bench_row;
 
 typedef struct bench_path {
@@ -140,7 +150,7 @@ typedef struct ref_cache_entry {
 typedef struct bench_opts {
     const char *scene_path, *dem, *methods, *paths, *csv, *plot, *report, *size, *backend;
     const char *centre, *plot_error;
-    int frames, every, quiet;
+    int frames, every, quiet, no_oracle;
     double ref_cache_mb, clearance_m;
     const char *settings[BENCH_USER_AXES_MAX];
     int settings_count;
@@ -162,6 +172,8 @@ static bench_row g_rows[BENCH_ROWS_MAX];
 static int g_row_count;
 static double g_frame_ms[BENCH_PATHS_MAX * BENCH_FRAMES_MAX];
 static double g_select_ms[BENCH_PATHS_MAX * BENCH_FRAMES_MAX];
+static double g_oracle_ms[BENCH_PATHS_MAX * BENCH_FRAMES_MAX];
+static bench_oracle g_oracle;
 static ref_cache_entry g_cache[BENCH_PATHS_MAX][BENCH_MEASURED_MAX];
 static size_t g_cache_bytes, g_cache_cap_bytes;
 static uint8_t g_plot_rgba[BENCH_PLOT_W * BENCH_PLOT_H * 4u];
@@ -659,6 +671,7 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     memset(row, 0, sizeof *row);
     set_str(row->method, sizeof row->method, bm->name);
     row->setting = *set;
+    row->oracle_med_ms = NAN;
     s.method = bm->kind;
     if (ft_scene_parse(&s, set->ini, "bench setting", &err) != FT_OK) {
         (void)snprintf(row->note, sizeof row->note, "setting: %.180s", err.text);
@@ -680,6 +693,22 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     ft_camera cam;
     ft_frame_stats st;
     int ok = ft_app_render(&g_app, &g_paths[0].pose[0], &cam, &st, &err) == FT_OK; /* warm-up */
+    const char *fail_what = "frame";
+    int oracle = 0;
+    if (ok && bm->kind == FT_METHOD_BINTREE && !o->no_oracle) {
+        ft_error oerr;
+        memset(&oerr, 0, sizeof oerr);
+        if (bench_oracle_init(&g_oracle, &g_app.renderer, &oerr) == FT_OK) {
+            oracle = 1;
+            double ms;
+            /* its own untimed warm-up (shader compilation) */
+            ok = bench_oracle_prepare(&g_oracle, &g_app.renderer, &cam, &err) == FT_OK &&
+                 bench_oracle_frame(&g_oracle, &g_app.renderer, &cam, &ms, &err) == FT_OK;
+            if (!ok) fail_what = "oracle";
+        } else {
+            fprintf(stderr, "bench: %s %s: no oracle: %s\n", bm->name, set->label, oerr.text);
+        }
+    }
     double tri = 0.0, err_sum = 0.0, cov_sum = 0.0, occl_sum = 0.0;
     int timed = 0;
     row->err_max_px = 0.0;
@@ -694,6 +723,18 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
             }
             g_frame_ms[timed] = st.select_ms + st.gpu_ms;
             g_select_ms[timed] = st.select_ms;
+            if (oracle) {
+                /* the same frame's triangles: mirrored and uploaded (not
+                 * timed), then drawn and read back (timed) */
+                if (bench_oracle_prepare(&g_oracle, &g_app.renderer, &cam, &err) != FT_OK ||
+                    bench_oracle_frame(&g_oracle, &g_app.renderer, &cam,
+                                       &g_oracle_ms[row->oracle_frames], &err) != FT_OK) {
+                    ok = 0;
+                    fail_what = "oracle";
+                    break;
+                }
+                ++row->oracle_frames;
+            }
             ++timed;
             tri += (double)st.triangles;
             row->budget_hits += st.budget_hit != 0;
@@ -731,8 +772,9 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
         row->path_t_med_ms[p] = quantile(g_frame_ms + path_first, timed - path_first, 0.5);
     }
     if (!ok) {
-        (void)snprintf(row->note, sizeof row->note, "frame: %.180s", err.text);
+        (void)snprintf(row->note, sizeof row->note, "%s: %.180s", fail_what, err.text);
     }
+    if (oracle) bench_oracle_shutdown(&g_oracle);
     ft_app_shutdown(&g_app);
     if (o->quiet == 0 && g_tty) fputc('\n', stderr);
     if (!ok || timed == 0) return;
@@ -746,6 +788,9 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
     row->t_p99_ms = quantile(g_frame_ms, timed, 0.99);
     row->t_med_ms = quantile(g_frame_ms, timed, 0.5);
     row->sel_med_ms = quantile(g_select_ms, timed, 0.5);
+    if (row->oracle_frames > 0) {
+        row->oracle_med_ms = quantile(g_oracle_ms, row->oracle_frames, 0.5);
+    }
     row->err_mean_px = row->measured ? err_sum / row->measured : NAN;
     row->cov_mean_px = row->measured ? cov_sum / row->measured : NAN;
     row->occl_mean_px = row->measured ? occl_sum / row->measured : NAN;
@@ -800,7 +845,7 @@ static int write_csv(const char *path)
           "select_median_ms,err_max_px,err_p999_px,err_mean_px,coverage_mismatch_px,"
           "coverage_mismatch_mean_px,nonfinite_px,measured_frames,triangles_mean,budget_hits,"
           "init_ms,occlusion_mismatch_px,occlusion_mismatch_mean_px,occlusion_err_max_px,"
-          "raycast_fraction_mean,raycast_fraction_max\n",
+          "raycast_fraction_mean,raycast_fraction_max,oracle_median_ms,x_oracle\n",
           f);
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
@@ -828,6 +873,8 @@ static int write_csv(const char *path)
         csv_num(f, w->occl_err_max_px, 2);
         csv_num(f, w->rc_frac_mean, 4);
         csv_num(f, w->rc_frac_max, 4);
+        csv_num(f, w->oracle_med_ms, 3);
+        csv_num(f, w->oracle_med_ms > 0.0 ? w->t_med_ms / w->oracle_med_ms : NAN, 4);
         fputc('\n', f);
     }
     int ok = fclose(f) == 0;
@@ -946,6 +993,12 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
                "(frames 0, %d, ...), one untimed warm-up frame per run\n",
             o->frames, o->every, o->every == 1 ? "st" : o->every == 2 ? "nd" : o->every == 3 ? "rd" : "th",
             o->every);
+    fprintf(f, "- oracle (bintree rows, --no-oracle: none): per frame, the same frame's "
+               "triangles as a static pre-transformed mesh (positions, normals and heights "
+               "computed on the CPU and uploaded outside the timing) drawn with a trivial vertex "
+               "shader and the same fragment shader, target and readback: the floor for that "
+               "triangle set; `oracle ms (x)` = its median frame time (draw + readback) and the "
+               "row's median over it\n");
     fprintf(f, "- frame time = LOD selection + draw + readback (until the GPU is done); "
                "error = worst measured frame (max, p99.9), mean of the frames' means; coverage "
                "= pixels terrain in one image and sky in the other (worst frame); occlusion = pixels "
@@ -958,20 +1011,25 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
         fprintf(f, "- `%s`: %s; %d of %d poses raised to the floor\n", g_paths[p].name,
                 g_paths[p].desc, g_paths[p].raised, o->frames);
     }
-    fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | max px | "
-               "p99.9 px | mean px | coverage px | occlusion px | triangles | ray cast %% mean / max "
-               "| worst frame |\n"
-               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | oracle ms (x) | "
+               "max px | p99.9 px | mean px | coverage px | occlusion px | triangles | ray cast "
+               "%% mean / max | worst frame |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
         if (!w->ok) continue;
+        char oracle[48] = "";
+        if (w->oracle_med_ms > 0.0) {
+            (void)snprintf(oracle, sizeof oracle, "%.2f (%.2fx)", w->oracle_med_ms,
+                           w->t_med_ms / w->oracle_med_ms);
+        }
         fprintf(f,
-                "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.4f | %u | %u | %.0f | "
-                "%.1f / %.1f | %s |\n",
+                "| %s | %s | %.2f | %.2f | %.2f | %.2f | %s | %.3f | %.3f | %.4f | %u | %u | %.0f "
+                "| %.1f / %.1f | %s |\n",
                 w->method, w->setting.label, w->t_med_ms, w->t_p99_ms, w->t_max_ms,
-                bm > 0.0 ? w->t_med_ms / bm : NAN, w->err_max_px, w->err_p999_px, w->err_mean_px,
-                w->cov_max_px, w->occl_max_px, w->tri_mean, 100.0 * w->rc_frac_mean,
-                100.0 * w->rc_frac_max, w->err_max_where);
+                bm > 0.0 ? w->t_med_ms / bm : NAN, oracle, w->err_max_px, w->err_p999_px,
+                w->err_mean_px, w->cov_max_px, w->occl_max_px, w->tri_mean,
+                100.0 * w->rc_frac_mean, 100.0 * w->rc_frac_max, w->err_max_where);
     }
     if (g_path_count > 1) {
         fprintf(f, "\nPer path: median frame time ms / max error px / p99.9 px\n\n"
@@ -1056,7 +1114,7 @@ static void print_help(void)
         "                        [--size WxH] [--frames N] [--metric-every N]\n"
         "                        [--settings SPEC]... [--centre LAT,LON] [--backend NAME]\n"
         "                        [--clearance M] [--plot-error max|p999] [--ref-cache-mb N]\n"
-        "                        [--quiet]\n"
+        "                        [--no-oracle] [--quiet]\n"
         "Error against run time: flies the same camera paths over the scene's DEM with\n"
         "every method and setting; per frame the time (LOD selection + draw + readback),\n"
         "on every Nth frame the error against the CPU reference (max, p99.9, mean px,\n"
@@ -1090,6 +1148,12 @@ static void print_help(void)
         "  --csv, --plot, --report   outputs (default bench.csv, bench.png; no report)\n"
         "  --plot-error KIND  max (default) or p999 on the plot's y axis (log scale)\n"
         "  --ref-cache-mb N   keep reference images for reuse across runs (default 2048)\n"
+        "  --no-oracle        no oracle for bintree rows. By default each bintree frame is\n"
+        "                     drawn once more as a static pre-transformed mesh (the same\n"
+        "                     triangles; positions, normals, heights from the CPU, uploaded\n"
+        "                     untimed) with a trivial vertex shader and the same fragment\n"
+        "                     shader and readback: the floor for that triangle set. CSV\n"
+        "                     oracle_median_ms and x_oracle (median / oracle median).\n"
         "  --quiet            no progress on stderr\n"
         "Exit status: 0 when every run succeeded, 1 when a run failed (its row is left\n"
         "out; the outputs are still written) or on an error, 2 for a usage error.\n",
@@ -1259,6 +1323,10 @@ static int parse_args(int argc, char **argv, bench_opts *o)
         }
         if (strcmp(a, "--quiet") == 0) {
             o->quiet = 1;
+            continue;
+        }
+        if (strcmp(a, "--no-oracle") == 0) {
+            o->no_oracle = 1;
             continue;
         }
         if (v == NULL) {
@@ -1479,10 +1547,15 @@ int ft_cmd_bench(int argc, char **argv)
                 fprintf(stderr, "bench [%d/%d] %s %s FAILED: %s\n", g_row_count, total,
                         row->method, row->setting.label, row->note);
             } else if (!o.quiet) {
+                char oracle[64] = "";
+                if (row->oracle_med_ms > 0.0) {
+                    (void)snprintf(oracle, sizeof oracle, ", oracle %.2f ms (x%.2f)",
+                                   row->oracle_med_ms, row->t_med_ms / row->oracle_med_ms);
+                }
                 fprintf(stderr, "bench [%d/%d] %s %s: median %.2f ms, p99 %.2f ms, max error "
-                                "%.3f px, p99.9 %.3f px\n",
+                                "%.3f px, p99.9 %.3f px%s\n",
                         g_row_count, total, row->method, row->setting.label, row->t_med_ms,
-                        row->t_p99_ms, row->err_max_px, row->err_p999_px);
+                        row->t_p99_ms, row->err_max_px, row->err_p999_px, oracle);
             }
         }
     }

@@ -1,0 +1,416 @@
+/* test_bintree_mesh.c - the CPU mirror of the bintree vertex shader
+ * (src/bintree_mesh.h) against the real shader, and the bench's oracle
+ * (tools/bench_oracle.h) against the real frame, on a real DEM (argv[1],
+ * N42E001.hgt: 1201 x 1201, so the padding clamp is exercised too).
+ *
+ * 1. Per view (GLES 3): after the real frame, the colour program relinked
+ *    with transform feedback of v_pos_rel_eye_m, v_normal, v_height_m and
+ *    v_morph draws the frame's tiles once more (the template expanded to
+ *    triangle lists); every captured vertex is compared with the mirror's
+ *    vertex for the same (tile, template vertex):
+ *      position  |gpu - cpu| <= 1e-3 * max(|cpu|, 1 m) (relative to the
+ *                distance from the eye), and, much tighter,
+ *                |gpu - cpu| <= POS_TOL * (|origin - eye| + |(g * cell, h)|):
+ *                float rounding of the shader's sum, whose terms are up to
+ *                about 1e5 m on this grid (about 0.01 m), not of the result
+ *                (which may be a few hundred metres from the eye)
+ *      normal    each component within NORMAL_TOL
+ *      height    within HEIGHT_REL_TOL * max(|h|, 1 m)
+ *      morph     weight within MORPH_TOL
+ *    The GPU computes in float, the mirror in double; the tolerances are a
+ *    few times the float rounding measured here (printed), far below what a
+ *    wrong rule moves a vertex. Triangle counts: the mirror's (tiles x
+ *    template, from its own index list), the frame's reported count and the
+ *    primitives the GPU wrote (query) must be equal, and the capture must
+ *    have written exactly that many vertices.
+ * 2. The test can fail: the same captures against a mirror with the wrong
+ *    morph rule (geomorph off where the method morphs, on where it does
+ *    not) must show position mismatches, and the views must catch vertices
+ *    mid-morph (0 < w < 1), or they would not exercise the geomorph.
+ * 3. The oracle frame (the mirror's mesh, trivial vertex shader, the same
+ *    fragment shader and target) against the real frame: almost every
+ *    pixel equal (differences only where float rounding moves a triangle
+ *    edge across a pixel centre).
+ *
+ * Usage: test_bintree_mesh DEM */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "bench_oracle.h"
+#include "bintree_mesh.h"
+#include "bintree_template.h"
+#include "test_app_util.h"
+
+#define POS_REL_TOL 1e-3 /* of the distance from the eye */
+#define POS_TOL 1e-6     /* of the magnitude of the shader's float operands */
+#define NORMAL_TOL 1e-5
+#define HEIGHT_REL_TOL 1e-6
+#define MORPH_TOL 1e-4
+#define CAP_FLOATS 8u /* v_pos_rel_eye_m (3), v_normal (3), v_height_m, v_morph */
+/* oracle image: pixels whose colour differs from the real frame's by more
+ * than PIXEL_DIFF in a channel, at most this fraction of the image */
+#define PIXEL_DIFF 2
+#define PIXEL_FRACTION_MAX 0.002
+
+static ft_app g_app;
+static char g_text[4096];
+
+static const char k_scene_fmt[] =
+    "[scene]\nmethod = bintree\nbackend = egl-gles3\n"
+    "[view]\nwidth_px = %u\nheight_px = %u\nfovy_deg = 60\n"
+    "[terrain]\ndem = %s\n"
+    "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = 0\n"
+    "[bintree]\ntemplate_k = %u\ntiles_max = 65536\ntau_px = %.3f\nmorph = %d\n"
+    "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
+    "frame_rgba_bytes = 1M\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n"
+    "gpu_staging_bytes = 8M\nmethod_bytes = 16M\npng_bytes = 512K\n";
+
+typedef struct totals {
+    uint64_t vertices, midmorph, triangles;
+    double pos_abs_max, pos_rel_max, pos_op_max, normal_max, height_rel_max, morph_max;
+    uint64_t pos_rel_bad, pos_bad, normal_bad, height_bad, morph_bad, unwritten, overrun;
+    uint64_t wrong_rule_bad; /* position mismatches against the wrong morph rule */
+    uint64_t oracle_px, oracle_diff_px, oracle_terrain_px;
+} totals;
+
+static double len3(const double *v)
+{
+    return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+static double dist3(const float *gpu, const double *cpu)
+{
+    const double d[3] = {gpu[0] - cpu[0], gpu[1] - cpu[1], gpu[2] - cpu[2]};
+    return len3(d);
+}
+
+/* |u_origin_rel_eye_m| + |(g * cell, h)|: the size of the terms the shader
+ * adds in float for template vertex (a, b) of tile, g as the shader clamps it */
+static double operand_scale(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
+                            const ft_bt_tile *tile, double a, double b, double h)
+{
+    const double size[2] = {(double)bt->width, (double)bt->height};
+    double q[3] = {0.0, 0.0, h};
+    for (int i = 0; i < 2; ++i) {
+        double g = tile->apex[i] + a * (tile->left[i] - tile->apex[i]) +
+                   b * (tile->right[i] - tile->apex[i]);
+        g = fmin(g, size[i] - 1.0);
+        q[i] = g * u->cell_m[i];
+    }
+    return len3(u->origin_rel_eye_m) + len3(q);
+}
+
+/* Captures the frame's vertices: tiles x expanded template, CAP_FLOATS each,
+ * into cap (verts + slack vertices, NaN-filled first). Returns the
+ * primitives the GPU reports written (or the expected count when the
+ * context has no queries). */
+static uint64_t capture(const ft_bintree_method *bm, GLuint tmpl_vbo, uint32_t tmpl_verts,
+                        size_t verts, size_t slack, float *cap)
+{
+    const ft_gl *gl = g_app.renderer.gl;
+    const size_t bytes = (verts + slack) * CAP_FLOATS * sizeof(float);
+    memset(cap, 0xff, bytes); /* NaN: a vertex the capture did not write stays NaN */
+    GLuint tfb = 0, query = 0;
+    gl->GenBuffers(1, &tfb);
+    gl->BindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb);
+    gl->BufferData(GL_TRANSFORM_FEEDBACK_BUFFER, (GLsizeiptr)bytes, cap, GL_STREAM_READ);
+    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, tfb);
+    /* the colour program is still in use, with this frame's uniforms */
+    gl->BindBuffer(GL_ARRAY_BUFFER, tmpl_vbo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    const GLsizei stride = (GLsizei)(6u * sizeof(float));
+    gl->BindBuffer(GL_ARRAY_BUFFER, bm->inst_vbo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
+    gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
+    gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
+    gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
+                            (const void *)(4u * sizeof(float)));
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
+    if (gl->GenQueries != NULL) {
+        gl->GenQueries(1, &query);
+        gl->BeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
+    }
+    gl->Enable(GL_RASTERIZER_DISCARD);
+    gl->BeginTransformFeedback(GL_TRIANGLES);
+    gl->DrawArraysInstanced(GL_TRIANGLES, 0, (GLsizei)tmpl_verts, (GLsizei)bm->sel.tiles);
+    gl->EndTransformFeedback();
+    gl->Disable(GL_RASTERIZER_DISCARD);
+    uint64_t prims = verts / 3u;
+    if (query != 0u) {
+        gl->EndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+        GLuint n = 0;
+        gl->GetQueryObjectuiv(query, GL_QUERY_RESULT, &n);
+        prims = n;
+        gl->DeleteQueries(1, &query);
+    }
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
+    gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
+    gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
+    const void *mapped =
+        gl->MapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, (GLsizeiptr)bytes, GL_MAP_READ_BIT);
+    REQUIRE(mapped != NULL);
+    memcpy(cap, mapped, bytes);
+    REQUIRE(gl->UnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER) == GL_TRUE);
+    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    gl->DeleteBuffers(1, &tfb);
+    ft_error err;
+    REQUIRE(ft_gl_check(gl, "transform feedback capture", &err) == FT_OK);
+    return prims;
+}
+
+typedef struct tmpl {
+    uint32_t nv, nt;
+    float *uv;     /* nv x (a, b) */
+    uint16_t *idx; /* 3 nt */
+    GLuint flat_vbo; /* the template expanded to triangle lists */
+} tmpl;
+
+static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, totals *tot)
+{
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, pose, &cam, &fs); /* the real draw: tiles uploaded, uniforms set */
+    const ft_renderer *r = &g_app.renderer;
+    const ft_bintree_method *bm = &r->method.u.bintree;
+    const uint32_t tiles = bm->sel.tiles;
+    REQUIRE(tiles > 0u);
+    const size_t verts = (size_t)tiles * tp->nt * 3u, slack = 3u * tp->nt;
+    float *cap = malloc((verts + slack) * CAP_FLOATS * sizeof(float));
+    REQUIRE(cap != NULL);
+    const uint64_t prims = capture(bm, tp->flat_vbo, tp->nt * 3u, verts, slack, cap);
+
+    /* the mirror: the bench's path (floats + indices) and, per vertex, in double */
+    ft_bt_mesh_uniforms u, wrong;
+    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_achieved_px, bm->morph, &u);
+    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_achieved_px, !bm->morph, &wrong);
+    REQUIRE(u.morph == bm->morph && wrong.morph == !bm->morph);
+    const size_t mverts = (size_t)tiles * tp->nv;
+    float *mesh = malloc(mverts * FT_BT_MESH_FLOATS * sizeof(float));
+    uint32_t *idx = malloc((size_t)tiles * tp->nt * 3u * sizeof(uint32_t));
+    REQUIRE(mesh != NULL && idx != NULL);
+    CHECK(ft_bt_mesh_build(&bm->bt, tiles, &u, tp->uv, tp->nv, mesh,
+                           mverts * FT_BT_MESH_FLOATS) == mverts);
+    CHECK(ft_bt_mesh_build(&bm->bt, tiles, &u, tp->uv, tp->nv, mesh,
+                           mverts * FT_BT_MESH_FLOATS - 1u) == 0u); /* too small: nothing */
+    const size_t nidx = ft_bt_mesh_indices(tiles, tp->idx, tp->nt * 3u, tp->nv, idx,
+                                           (size_t)tiles * tp->nt * 3u);
+    CHECK(nidx == verts);
+    /* the same triangle count: mirror, the frame's report, the GPU's primitives */
+    CHECK(nidx / 3u == fs.triangles);
+    CHECK(prims == fs.triangles);
+    tot->triangles += fs.triangles;
+
+    uint64_t bad_before = tot->pos_bad + tot->normal_bad + tot->height_bad + tot->morph_bad;
+    uint64_t wrong_before = tot->wrong_rule_bad;
+    for (uint32_t t = 0; t < tiles; ++t) {
+        const ft_bt_tile *tile = &bm->bt.tiles[t];
+        for (uint32_t j = 0; j < tp->nt * 3u; ++j) {
+            const size_t ci = (size_t)t * tp->nt * 3u + j;   /* captured vertex */
+            const uint32_t mi = idx[ci];                     /* mirror vertex */
+            const uint32_t v = tp->idx[j];
+            REQUIRE(mi == (uint32_t)t * tp->nv + v);
+            const float *c = cap + ci * CAP_FLOATS;
+            ++tot->vertices;
+            if (c[7] != c[7] || c[0] != c[0]) {
+                ++tot->unwritten;
+                continue;
+            }
+            ft_bt_mesh_vertex m, mw;
+            ft_bt_mesh_vertex_of(&bm->bt, &u, tile, tp->uv[2u * v], tp->uv[2u * v + 1u], &m);
+            ft_bt_mesh_vertex_of(&bm->bt, &wrong, tile, tp->uv[2u * v], tp->uv[2u * v + 1u],
+                                 &mw);
+            /* the bench's float mesh is the same vertex */
+            const float *mf = mesh + (size_t)mi * FT_BT_MESH_FLOATS;
+            CHECK(mf[0] == (float)m.pos_rel_eye_m[0] && mf[2] == (float)m.pos_rel_eye_m[2] &&
+                  mf[5] == (float)m.normal[2] && mf[6] == (float)m.height_m);
+            const double a = dist3(c, m.pos_rel_eye_m);
+            const double rel = a / fmax(len3(m.pos_rel_eye_m), 1.0);
+            const double scale = operand_scale(&bm->bt, &u, tile, tp->uv[2u * v],
+                                               tp->uv[2u * v + 1u], m.height_m);
+            if (rel > tot->pos_rel_max) tot->pos_rel_max = rel;
+            if (a > tot->pos_abs_max) tot->pos_abs_max = a;
+            if (a / scale > tot->pos_op_max) tot->pos_op_max = a / scale;
+            tot->pos_rel_bad += !(rel <= POS_REL_TOL);
+            if (!(a <= POS_TOL * scale)) {
+                if (tot->pos_bad < 5u) {
+                    fprintf(stderr, "tile %u vertex %u: gpu (%.6f %.6f %.6f) cpu (%.6f %.6f %.6f),"
+                                    " w gpu %.6f cpu %.6f\n",
+                            t, v, c[0], c[1], c[2], m.pos_rel_eye_m[0], m.pos_rel_eye_m[1],
+                            m.pos_rel_eye_m[2], c[7], m.morph_w);
+                }
+                ++tot->pos_bad;
+            }
+            double dn = 0.0;
+            for (int i = 0; i < 3; ++i) dn = fmax(dn, fabs(c[3 + i] - m.normal[i]));
+            if (dn > tot->normal_max) tot->normal_max = dn;
+            tot->normal_bad += !(dn <= NORMAL_TOL);
+            const double dh = fabs(c[6] - m.height_m) / fmax(fabs(m.height_m), 1.0);
+            if (dh > tot->height_rel_max) tot->height_rel_max = dh;
+            tot->height_bad += !(dh <= HEIGHT_REL_TOL);
+            const double dw = fabs(c[7] - m.morph_w);
+            if (dw > tot->morph_max) tot->morph_max = dw;
+            tot->morph_bad += !(dw <= MORPH_TOL);
+            tot->midmorph += (m.morph_w > 0.0 && m.morph_w < 1.0);
+            /* the wrong rule must be caught by the same position test */
+            tot->wrong_rule_bad += !(dist3(c, mw.pos_rel_eye_m) <= POS_TOL * scale);
+        }
+    }
+    /* nothing past the frame's vertices */
+    for (size_t i = verts * CAP_FLOATS; i < (verts + slack) * CAP_FLOATS; ++i) {
+        if (cap[i] == cap[i]) {
+            ++tot->overrun;
+            break;
+        }
+    }
+
+    /* 3. the oracle frame against the real one */
+    const size_t px = (size_t)r->width_px * r->height_px;
+    uint8_t *real = malloc(px * 4u);
+    REQUIRE(real != NULL);
+    memcpy(real, r->rgba, px * 4u);
+    ft_error err;
+    double ms = 0.0;
+    REQUIRE(bench_oracle_prepare(oracle, &g_app.renderer, &cam, &err) == FT_OK);
+    CHECK(oracle->tiles == tiles && oracle->index_count == verts);
+    REQUIRE(bench_oracle_frame(oracle, &g_app.renderer, &cam, &ms, &err) == FT_OK);
+    CHECK(ms > 0.0);
+    uint64_t diff = 0, terrain = 0;
+    for (size_t i = 0; i < px; ++i) {
+        const uint8_t *a = real + 4u * i, *b = r->rgba + 4u * i;
+        int d = 0;
+        for (int ch = 0; ch < 3; ++ch) d = (abs(a[ch] - b[ch]) > d) ? abs(a[ch] - b[ch]) : d;
+        diff += (d > PIXEL_DIFF);
+        terrain += !(a[0] == (uint8_t)lround(r->clear_rgb[0] * 255.0f) &&
+                     a[1] == (uint8_t)lround(r->clear_rgb[1] * 255.0f) &&
+                     a[2] == (uint8_t)lround(r->clear_rgb[2] * 255.0f));
+    }
+    tot->oracle_px += px;
+    tot->oracle_diff_px += diff;
+    tot->oracle_terrain_px += terrain;
+    printf("  view (%.3f, %.3f, %.0f m, hdg %.0f, pitch %.0f): %u tiles, %llu triangles, "
+           "%llu mismatches, %llu with the wrong morph rule; oracle %.2f ms (frame %.2f ms), "
+           "%llu of %zu pixels differ\n",
+           pose->lat_deg, pose->lon_deg, pose->alt_m, pose->heading_deg, pose->pitch_deg, tiles,
+           (unsigned long long)fs.triangles,
+           (unsigned long long)(tot->pos_bad + tot->normal_bad + tot->height_bad +
+                                tot->morph_bad - bad_before),
+           (unsigned long long)(tot->wrong_rule_bad - wrong_before), ms, fs.gpu_ms,
+           (unsigned long long)diff, px);
+    free(real);
+    free(idx);
+    free(mesh);
+    free(cap);
+}
+
+typedef struct config {
+    uint32_t k;
+    double tau;
+    int morph;
+} config;
+
+static void run_config(const char *dem, const config *cf)
+{
+    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, 256u, 192u, dem, cf->k, cf->tau,
+                   cf->morph);
+    ft_test_app_init(&g_app, g_text, "bintree mesh");
+    ft_error err;
+    static const char *const varyings[4] = {"v_pos_rel_eye_m", "v_normal", "v_height_m",
+                                            "v_morph"};
+    REQUIRE(ft_renderer_enable_capture_of(&g_app.renderer, varyings, 4u, &err) == FT_OK);
+    tmpl tp;
+    memset(&tp, 0, sizeof tp);
+    tp.nv = ft_bt_template_vertices(cf->k);
+    tp.nt = ft_bt_template_triangles(cf->k);
+    tp.uv = malloc((size_t)tp.nv * 2u * sizeof(float));
+    tp.idx = malloc((size_t)tp.nt * 3u * sizeof(uint16_t));
+    int16_t *scratch = malloc((size_t)ft_bt_template_scratch(cf->k) * sizeof(int16_t));
+    float *flat = malloc((size_t)tp.nt * 6u * sizeof(float));
+    REQUIRE(tp.uv && tp.idx && scratch && flat);
+    REQUIRE(ft_bt_template_build(cf->k, tp.uv, tp.idx, scratch, &err) == FT_OK);
+    for (uint32_t i = 0; i < tp.nt * 3u; ++i) {
+        flat[2u * i] = tp.uv[2u * tp.idx[i]];
+        flat[2u * i + 1u] = tp.uv[2u * tp.idx[i] + 1u];
+    }
+    const ft_gl *gl = g_app.renderer.gl;
+    gl->GenBuffers(1, &tp.flat_vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, tp.flat_vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)tp.nt * 6u * sizeof(float)), flat,
+                   GL_STATIC_DRAW);
+    bench_oracle oracle;
+    REQUIRE(bench_oracle_init(&oracle, &g_app.renderer, &err) == FT_OK);
+
+    const ft_pose views[] = {
+        ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
+        ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
+        ft_test_pose(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
+        ft_test_pose(42.20, 1.10, 2400.0, 60.0, -12.0, -20.0),
+        ft_test_pose(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),
+        ft_test_pose(42.02, 1.97, 3000.0, 225.0, -15.0, 0.0), /* near the grid corner */
+    };
+    totals tot;
+    memset(&tot, 0, sizeof tot);
+    printf("k = %u, tau = %.1f, morph = %d:\n", cf->k, cf->tau, cf->morph);
+    for (size_t v = 0; v < sizeof views / sizeof views[0]; ++v) {
+        view(&views[v], &tp, &oracle, &tot);
+    }
+    printf("k = %u tau = %.1f morph = %d: %llu vertices (%llu mid-morph), %llu triangles; max "
+           "position error %.3g m (relative to the distance %.3g, allowed %.1g; to the operands "
+           "%.3g, allowed %.1g), normal %.3g (%.1g), height "
+           "relative %.3g (%.1g), morph weight %.3g (%.1g); mismatches: position %llu, normal "
+           "%llu, height %llu, morph %llu; unwritten %llu, overrun %llu; the wrong morph rule: "
+           "%llu position mismatches; oracle image: %llu of %llu pixels differ by more than %d "
+           "(%llu terrain pixels)\n",
+           cf->k, cf->tau, cf->morph, (unsigned long long)tot.vertices,
+           (unsigned long long)tot.midmorph, (unsigned long long)tot.triangles, tot.pos_abs_max,
+           tot.pos_rel_max, POS_REL_TOL, tot.pos_op_max, POS_TOL, tot.normal_max, NORMAL_TOL, tot.height_rel_max,
+           HEIGHT_REL_TOL, tot.morph_max, MORPH_TOL, (unsigned long long)tot.pos_bad,
+           (unsigned long long)tot.normal_bad, (unsigned long long)tot.height_bad,
+           (unsigned long long)tot.morph_bad, (unsigned long long)tot.unwritten,
+           (unsigned long long)tot.overrun, (unsigned long long)tot.wrong_rule_bad,
+           (unsigned long long)tot.oracle_diff_px, (unsigned long long)tot.oracle_px, PIXEL_DIFF,
+           (unsigned long long)tot.oracle_terrain_px);
+    CHECK(tot.vertices > 10000u);
+    CHECK(tot.unwritten == 0u);
+    CHECK(tot.overrun == 0u);
+    CHECK(tot.pos_rel_bad == 0u);
+    CHECK(tot.pos_bad == 0u);
+    CHECK(tot.normal_bad == 0u);
+    CHECK(tot.height_bad == 0u);
+    CHECK(tot.morph_bad == 0u);
+    /* the comparison has teeth: the views catch vertices mid-morph, and the
+     * wrong morph rule moves enough of them beyond the tolerance */
+    if (cf->morph) CHECK(tot.midmorph > 100u);
+    CHECK(tot.wrong_rule_bad > 100u);
+    CHECK(tot.oracle_terrain_px > tot.oracle_px / 2u);
+    CHECK((double)tot.oracle_diff_px <= PIXEL_FRACTION_MAX * (double)tot.oracle_px);
+    bench_oracle_shutdown(&oracle);
+    gl->DeleteBuffers(1, &tp.flat_vbo);
+    free(flat);
+    free(scratch);
+    free(tp.idx);
+    free(tp.uv);
+    ft_app_shutdown(&g_app);
+}
+
+int main(int argc, char **argv)
+{
+    REQUIRE(argc >= 2);
+    const char *dem = argv[1];
+    if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
+    static const config configs[] = {
+        {3, 1.0, 1},
+        {2, 2.0, 1},
+        {4, 0.5, 1},
+        {3, 1.0, 0}, /* no geomorph: the mirror without it; the wrong rule morphs */
+    };
+    for (size_t i = 0; i < sizeof configs / sizeof configs[0]; ++i) {
+        run_config(dem, &configs[i]);
+    }
+    return ft_test_result("test_bintree_mesh");
+}

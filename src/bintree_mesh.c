@@ -7,7 +7,7 @@
 
 #include "view_scale.h"
 
-void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_achieved_px,
+void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_target_px,
                              int morph, ft_bt_mesh_uniforms *u)
 {
     memset(u, 0, sizeof *u);
@@ -19,7 +19,7 @@ void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double t
     u->cell_m[1] = t->cell_y_m;
     u->drop_per_m2 = t->curv_drop_per_m2;
     /* method_bintree.c ft_bintree_method_draw */
-    const double tau = tau_achieved_px;
+    const double tau = tau_target_px;
     const double split = morph ? FT_BT_SPLIT_FRACTION * tau : tau;
     u->k_px = cam->px_per_rad_k;
     u->split_px = split;

@@ -187,8 +187,8 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
 
     /* the mirror: the bench's path (floats + indices) and, per vertex, in double */
     ft_bt_mesh_uniforms u, wrong;
-    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_achieved_px, bm->morph, &u);
-    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_achieved_px, !bm->morph, &wrong);
+    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, bm->morph, &u);
+    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, !bm->morph, &wrong);
     REQUIRE(u.morph == bm->morph && wrong.morph == !bm->morph);
     const size_t mverts = (size_t)tiles * tp->nv;
     float *mesh = malloc(mverts * FT_BT_MESH_FLOATS * sizeof(float));

@@ -25,15 +25,39 @@ static uint32_t lattice_side(uint32_t n, uint32_t k)
     return (k <= n) ? ((1u << (n - k)) + 1u) : 2u;
 }
 
-void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t tiles_max)
+uint32_t ft_bt_twist_levels(uint32_t w, uint32_t h, uint32_t k)
+{
+    const uint32_t cells = ((w > h) ? w : h) - 1u;
+    uint32_t levels = 1u;
+    while (levels < k + 3u && levels < FT_BT_TWIST_LEVELS_MAX && (1u << (levels - 1u)) < cells) {
+        ++levels;
+    }
+    return levels;
+}
+
+static uint32_t ceil_shift(uint32_t v, uint32_t m)
+{
+    return (v + (1u << m) - 1u) >> m;
+}
+
+void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
+                     uint32_t tiles_max)
 {
     uint32_t n = ft_bt_domain_n(w, h);
     size_t m = lattice_side(n, k);
     ft_arena_plan(a, FT_POOL_METHOD, m * m * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, m * m * FT_BT_BOX_FLOATS * sizeof(float));
-    const size_t leaves = (k <= n) ? ((size_t)1 << (n - k)) * ((size_t)1 << (n - k)) : 1u;
-    ft_arena_plan(a, FT_POOL_METHOD, leaves * sizeof(float));
-    ft_arena_plan(a, FT_POOL_METHOD, leaves * 2u * sizeof(float));
+    if (sub == 0u) {
+        const size_t leaves = (k <= n) ? ((size_t)1 << (n - k)) * ((size_t)1 << (n - k)) : 1u;
+        ft_arena_plan(a, FT_POOL_METHOD, leaves * sizeof(float));
+        ft_arena_plan(a, FT_POOL_METHOD, leaves * 2u * sizeof(float));
+    } else {
+        const uint32_t levels = ft_bt_twist_levels(w, h, k);
+        for (uint32_t l = 0; l < levels; ++l) {
+            ft_arena_plan(a, FT_POOL_METHOD,
+                          (size_t)ceil_shift(w - 1u, l) * ceil_shift(h - 1u, l) * sizeof(float));
+        }
+    }
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile));
     if (k >= FT_BT_TEMPLATE_K_MIN && k <= FT_BT_TEMPLATE_K_MAX) {
         ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
@@ -398,7 +422,8 @@ static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
     int32_t tris[2][3][2];
     uint32_t count = diamond_triangles(bt, level, cx, cy, tris);
     size_t li = lat_index(bt, cx, cy);
-    const int leaf_children = (level + 1u == bt->leaf_level);
+    const int leaf_children = (bt->sub == 0u && level + 1u == bt->leaf_level);
+    const int sub_children = (bt->sub > 0u && level + 1u == bt->sub_level);
     for (uint32_t i = 0; i < count; ++i) {
         for (int leg = 1; leg <= 2; ++leg) {
             int32_t mx = (tris[i][0][0] + tris[i][leg][0]) / 2;
@@ -408,6 +433,13 @@ static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
             if (leaf_children) {
                 ce = bt->leaf_err_m[leaf_index(bt, mx, my)];
                 leaf_box(bt, mx, my, cb);
+            } else if (sub_children) {
+                const int32_t cf[2] = {mx << bt->sub, my << bt->sub};
+                const double e = ft_bt_sub_error(bt, level + 1u, cf, cb);
+                ce = (float)e;
+                if (e > (double)ce) {
+                    ce = nextafterf(ce, FLT_MAX);
+                }
             } else {
                 const size_t ci = lat_index(bt, mx, my);
                 ce = bt->err_m[ci];
@@ -419,7 +451,135 @@ static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
     }
 }
 
-ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t tiles_max,
+/* ---- sub-sample levels (S > 0) ----------------------------------------------------
+ *
+ * Below sub_level a tile's template vertices lie between samples and take
+ * the bilinear height, so inside one cell its triangles' surface differs
+ * from the truth only by the cell's twist: a triangle of level >= 2n (inside
+ * one cell) with axis legs of a cells, or with diagonal legs and
+ * hypotenuse a, is off by at most |D| a^2 / 4, or |D| (a/2)^2 / 4 (sub_q;
+ * a = 1: the classic |D| / 4 of a cell split along a diagonal). A diamond's error is sub_q times the largest |D|
+ * over its closure: the square of half-side 1.5 s (even level, square side
+ * s) or s (odd level) around its split vertex, which holds the closures of
+ * all its descendants (a child lies s/2 or s/4 from its parent), so errors
+ * and boxes nest and the selection stays conforming. The largest |D| and
+ * the height range over the closure come from <= 4 aligned blocks of the
+ * twist and min/max pyramids. */
+
+static double sub_q(const ft_bintree *bt, uint32_t level)
+{
+    const uint32_t tl = level + 2u * bt->k; /* the template triangles' level */
+    const double a = (double)(bt->fine_side >> (tl / 2u)) / (double)(1u << bt->sub);
+    const double leg = ((tl & 1u) != 0u) ? 0.5 * a : a;
+    return 0.25 * leg * leg;
+}
+
+static int32_t clamp_range(int32_t v, int32_t lo, int32_t hi)
+{
+    return (v < lo) ? lo : ((v > hi) ? hi : v);
+}
+
+double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                       float box[FT_BT_BOX_FLOATS])
+{
+    const double f = (double)(1u << bt->sub);
+    const double s = (double)(bt->fine_side >> (level / 2u));
+    const double r = ((level & 1u) != 0u) ? s : 1.5 * s;
+    const double wx = (double)bt->width - 1.0, hy = (double)bt->height - 1.0;
+    const double gx0 = fmin(fmax(((double)c[0] - r) / f, 0.0), wx);
+    const double gx1 = fmin(fmax(((double)c[0] + r) / f, 0.0), wx);
+    const double gy0 = fmin(fmax(((double)c[1] - r) / f, 0.0), hy);
+    const double gy1 = fmin(fmax(((double)c[1] + r) / f, 0.0), hy);
+    const int32_t cmx = (int32_t)bt->width - 2, cmy = (int32_t)bt->height - 2;
+    const int32_t cx0 = clamp_range((int32_t)floor(gx0), 0, cmx);
+    const int32_t cy0 = clamp_range((int32_t)floor(gy0), 0, cmy);
+    const int32_t cx1 = clamp_range((int32_t)ceil(gx1) - 1, cx0, cmx);
+    const int32_t cy1 = clamp_range((int32_t)ceil(gy1) - 1, cy0, cmy);
+    const int32_t span = ((cx1 - cx0) > (cy1 - cy0) ? (cx1 - cx0) : (cy1 - cy0)) + 1;
+    uint32_t m = 0;
+    while (m + 1u < FT_PYRAMID_LEVELS_MAX && (1 << m) < span) {
+        ++m;
+    }
+    const uint32_t mt = (m < bt->twist_levels) ? m : bt->twist_levels - 1u;
+    const ft_pyramid *pyr = &bt->terrain->pyr;
+    const uint32_t mz = (m < pyr->minmax_levels) ? m : pyr->minmax_levels - 1u;
+    double dmax = 0.0;
+    float z0 = FLT_MAX, z1 = -FLT_MAX;
+    for (int32_t by = cy0 >> mt; by <= (cy1 >> mt); ++by) {
+        for (int32_t bx = cx0 >> mt; bx <= (cx1 >> mt); ++bx) {
+            const float d = bt->twist[mt][(size_t)by * bt->twist_w[mt] + (size_t)bx];
+            dmax = ((double)d > dmax) ? (double)d : dmax;
+        }
+    }
+    const ft_pyramid_level *pz = &pyr->minmax[mz];
+    for (int32_t by = cy0 >> mz; by <= (cy1 >> mz); ++by) {
+        for (int32_t bx = cx0 >> mz; bx <= (cx1 >> mz); ++bx) {
+            const size_t i = (size_t)by * pz->width + (size_t)bx;
+            z0 = (pz->min_m[i] < z0) ? pz->min_m[i] : z0;
+            z1 = (pz->max_m[i] > z1) ? pz->max_m[i] : z1;
+        }
+    }
+    box[0] = (float)gx0;
+    box[1] = (float)gx1;
+    box[2] = (float)gy0;
+    box[3] = (float)gy1;
+    box[4] = z0;
+    box[5] = z1;
+    return sub_q(bt, level) * dmax;
+}
+
+float ft_bt_height_fine(const ft_bintree *bt, int32_t x, int32_t y)
+{
+    const uint32_t sh = bt->sub;
+    const int32_t f = 1 << sh;
+    if (((x | y) & (f - 1)) == 0) {
+        return height_at(bt, clamp_i(x >> sh, (int32_t)bt->width - 1),
+                         clamp_i(y >> sh, (int32_t)bt->height - 1));
+    }
+    const int32_t cx = clamp_i(x >> sh, (int32_t)bt->width - 2);
+    const int32_t cy = clamp_i(y >> sh, (int32_t)bt->height - 2);
+    const float u = (float)(x - cx * f) / (float)f, v = (float)(y - cy * f) / (float)f;
+    const float h00 = height_at(bt, cx, cy), h10 = height_at(bt, cx + 1, cy);
+    const float h01 = height_at(bt, cx, cy + 1), h11 = height_at(bt, cx + 1, cy + 1);
+    return h00 + (h10 - h00) * u + (h01 - h00) * v + ((h00 + h11) - (h10 + h01)) * u * v;
+}
+
+/* Level 0: |D| per cell; level m + 1: max over 2 x 2 blocks (clamped). */
+static void build_twist(ft_bintree *bt)
+{
+    const uint32_t w0 = bt->twist_w[0], h0 = bt->twist_h[0];
+    for (uint32_t y = 0; y < h0; ++y) {
+        for (uint32_t x = 0; x < w0; ++x) {
+            const double d = (double)height_at(bt, (int32_t)x, (int32_t)y) +
+                             height_at(bt, (int32_t)x + 1, (int32_t)y + 1) -
+                             height_at(bt, (int32_t)x + 1, (int32_t)y) -
+                             height_at(bt, (int32_t)x, (int32_t)y + 1);
+            float fd = (float)fabs(d);
+            if ((double)fd < fabs(d)) {
+                fd = nextafterf(fd, FLT_MAX);
+            }
+            bt->twist[0][(size_t)y * w0 + x] = fd;
+        }
+    }
+    for (uint32_t l = 1; l < bt->twist_levels; ++l) {
+        const uint32_t pw = bt->twist_w[l - 1u], ph = bt->twist_h[l - 1u];
+        for (uint32_t y = 0; y < bt->twist_h[l]; ++y) {
+            for (uint32_t x = 0; x < bt->twist_w[l]; ++x) {
+                float m = 0.0f;
+                for (uint32_t j = 2u * y; j <= 2u * y + 1u && j < ph; ++j) {
+                    for (uint32_t i = 2u * x; i <= 2u * x + 1u && i < pw; ++i) {
+                        const float d = bt->twist[l - 1u][(size_t)j * pw + i];
+                        m = (d > m) ? d : m;
+                    }
+                }
+                bt->twist[l][(size_t)y * bt->twist_w[l] + x] = m;
+            }
+        }
+    }
+}
+
+ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t sub,
+                          uint32_t tiles_max,
                           ft_arena *a, ft_error *err)
 {
     memset(bt, 0, sizeof *bt);
@@ -439,6 +599,13 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
         return ft_fail(err, FT_ERR_ARG, "bintree: grid %ux%u larger than 2^%u + 1", t->width,
                        t->height, FT_BT_N_MAX);
     }
+    if (sub > FT_BT_SUB_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "bintree.subsample_levels = %u outside 0..%u", sub,
+                       FT_BT_SUB_MAX);
+    }
+    if (sub > 0u && t->pyr.minmax_levels == 0u) {
+        return ft_fail(err, FT_ERR_ARG, "bintree: sub-sample levels need the terrain's pyramids");
+    }
     if (k > bt->n) {
         return ft_fail(err, FT_ERR_CONFIG,
                        "bintree.template_k = %u is too large for a %ux%u grid (at most %u: "
@@ -449,7 +616,11 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     bt->side_cells = 1u << bt->n;
     bt->step = 1u << k;
     bt->lattice_side = lattice_side(bt->n, k);
-    bt->leaf_level = 2u * (bt->n - k);
+    bt->sub = sub;
+    bt->fine_side = bt->side_cells << sub;
+    bt->sub_level = 2u * (bt->n - k);
+    bt->leaf_level = 2u * (bt->n + sub - k);
+    bt->terrain = t;
     bt->width = t->width;
     bt->height = t->height;
     bt->heights_m = t->heights_m;
@@ -466,13 +637,23 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
         st = ft_arena_take(a, FT_POOL_METHOD, m2 * FT_BT_BOX_FLOATS * sizeof(float),
                            (void **)&bt->box, err);
     }
-    if (st == FT_OK) {
+    if (st == FT_OK && sub == 0u) {
         st = ft_arena_take(a, FT_POOL_METHOD, leaves * sizeof(float), (void **)&bt->leaf_err_m,
                            err);
+        if (st == FT_OK) {
+            st = ft_arena_take(a, FT_POOL_METHOD, leaves * 2u * sizeof(float),
+                               (void **)&bt->leaf_z, err);
+        }
     }
-    if (st == FT_OK) {
-        st = ft_arena_take(a, FT_POOL_METHOD, leaves * 2u * sizeof(float), (void **)&bt->leaf_z,
-                           err);
+    if (st == FT_OK && sub > 0u) {
+        bt->twist_levels = ft_bt_twist_levels(t->width, t->height, k);
+        for (uint32_t l = 0; l < bt->twist_levels && st == FT_OK; ++l) {
+            bt->twist_w[l] = ceil_shift(t->width - 1u, l);
+            bt->twist_h[l] = ceil_shift(t->height - 1u, l);
+            st = ft_arena_take(a, FT_POOL_METHOD,
+                               (size_t)bt->twist_w[l] * bt->twist_h[l] * sizeof(float),
+                               (void **)&bt->twist[l], err);
+        }
     }
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile),
@@ -490,11 +671,16 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
         box_set_empty(bt->box + i * FT_BT_BOX_FLOATS);
     }
     build_ctx bc = {bt, tmpl, ft_bt_template_triangles(k)};
-    for (uint32_t level = 0; level < bt->leaf_level; ++level) {
+    if (sub > 0u) {
+        build_twist(bt);
+    }
+    for (uint32_t level = 0; level < bt->sub_level; ++level) {
         for_each_diamond(&bc, level, own_error);
     }
-    for_each_diamond(&bc, bt->leaf_level, leaf_error);
-    for (uint32_t level = bt->leaf_level; level-- > 0u;) {
+    if (sub == 0u) {
+        for_each_diamond(&bc, bt->leaf_level, leaf_error);
+    }
+    for (uint32_t level = bt->sub_level; level-- > 0u;) {
         for_each_diamond(&bc, level, saturate);
     }
     if (bt->flipped_triangles != 0u) {
@@ -503,8 +689,15 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
                        bt->flipped_triangles, t->width, t->height);
     }
     const int32_t mid = (int32_t)bt->side_cells / 2;
-    bt->max_err_m = (bt->leaf_level > 0u) ? bt->err_m[lat_index(bt, mid, mid)]
-                                          : bt->leaf_err_m[leaf_index(bt, mid, mid)];
+    if (bt->sub_level > 0u) {
+        bt->max_err_m = bt->err_m[lat_index(bt, mid, mid)];
+    } else if (sub == 0u) {
+        bt->max_err_m = bt->leaf_err_m[leaf_index(bt, mid, mid)];
+    } else {
+        float b[FT_BT_BOX_FLOATS];
+        const int32_t cf[2] = {mid << sub, mid << sub};
+        bt->max_err_m = ft_bt_sub_error(bt, 0u, cf, b);
+    }
     return FT_OK;
 }
 
@@ -627,14 +820,32 @@ static int32_t max3(int32_t a, int32_t b, int32_t c)
     return (m > c) ? m : c;
 }
 
+double ft_bt_diamond_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                           float box[FT_BT_BOX_FLOATS])
+{
+    if (level < bt->sub_level) {
+        const size_t li = lat_index(bt, c[0] >> bt->sub, c[1] >> bt->sub);
+        memcpy(box, bt->box + li * FT_BT_BOX_FLOATS, FT_BT_BOX_FLOATS * sizeof(float));
+        return (double)bt->err_m[li];
+    }
+    if (bt->sub == 0u) {
+        leaf_box(bt, c[0], c[1], box);
+        return (double)bt->leaf_err_m[leaf_index(bt, c[0], c[1])];
+    }
+    return ft_bt_sub_error(bt, level, c, box);
+}
+
 /* One selection at threshold thr_px (= f * tau). Returns 0 when the tiles
- * would exceed tiles_max (bt->tiles then holds a partial list). */
+ * would exceed tiles_max (bt->tiles then holds a partial list). Tile
+ * coordinates are fine units (2^-S cells). */
 static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt_select_stats *st)
 {
     bt_node stack[FT_BT_STACK_MAX];
     uint32_t sp = 0;
-    const int32_t n = (int32_t)bt->side_cells;
-    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    const int32_t n = (int32_t)bt->fine_side;
+    const int32_t wx = ((int32_t)bt->width - 1) << bt->sub;
+    const int32_t hy = ((int32_t)bt->height - 1) << bt->sub;
+    const float inv_f = 1.0f / (float)(1u << bt->sub); /* exact: a power of two */
     st->tiles = 0;
     st->leaf_px_max = 0.0;
     st->nodes_visited = 0;
@@ -657,21 +868,17 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
         }
         int32_t c[2] = {(t.left[0] + t.right[0]) / 2, (t.left[1] + t.right[1]) / 2};
         const int leaf = (t.level >= bt->leaf_level);
-        const size_t di = leaf ? leaf_index(bt, c[0], c[1]) : lat_index(bt, c[0], c[1]);
-        float lbox[FT_BT_BOX_FLOATS];
-        if (leaf) {
-            leaf_box(bt, c[0], c[1], lbox);
-        }
-        const float *dbox = leaf ? lbox : bt->box + di * FT_BT_BOX_FLOATS;
+        float dbox[FT_BT_BOX_FLOATS];
+        const double e = ft_bt_diamond_error(bt, t.level, c, dbox);
         if (dbox[0] > dbox[1]) {
             continue; /* no sample under it or its descendants: zero area after the clamp */
         }
         if (v->cull) {
             float tb[6];
-            tb[0] = (float)gx0;
-            tb[1] = (float)clamp_i(max3(t.apex[0], t.left[0], t.right[0]), wx);
-            tb[2] = (float)gy0;
-            tb[3] = (float)clamp_i(max3(t.apex[1], t.left[1], t.right[1]), hy);
+            tb[0] = (float)gx0 * inv_f;
+            tb[1] = (float)clamp_i(max3(t.apex[0], t.left[0], t.right[0]), wx) * inv_f;
+            tb[2] = (float)gy0 * inv_f;
+            tb[3] = (float)clamp_i(max3(t.apex[1], t.left[1], t.right[1]), hy) * inv_f;
             tb[4] = dbox[4];
             tb[5] = dbox[5];
             double lo[3], hi[3];
@@ -682,7 +889,7 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
             }
         }
         if (!leaf) {
-            if (box_error_px(v, (double)bt->err_m[di], dbox) > thr_px) {
+            if (box_error_px(v, e, dbox) > thr_px) {
                 stack[sp++] = (bt_node){{c[0], c[1]},
                                         {t.right[0], t.right[1]},
                                         {t.apex[0], t.apex[1]},
@@ -693,10 +900,9 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
                                         t.level + 1u};
                 continue;
             }
-        }
-        if (leaf) {
+        } else {
             /* nothing refines a leaf: its own error is what the frame achieves there */
-            const double px = box_error_px(v, (double)bt->leaf_err_m[di], dbox);
+            const double px = box_error_px(v, e, dbox);
             st->leaf_px_max = (px > st->leaf_px_max) ? px : st->leaf_px_max;
         }
         if (st->tiles >= bt->tiles_max) {
@@ -734,15 +940,10 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
     st->attempts += 1u;
     (void)select_once(bt, v, INFINITY, st);
     st->budget_hit = 1;
-    const int32_t h = (int32_t)bt->side_cells / 2;
-    if (bt->leaf_level > 0u) {
-        size_t li = lat_index(bt, h, h);
-        st->tau_used_px = box_error_px(v, bt->err_m[li], bt->box + li * FT_BT_BOX_FLOATS);
-    } else {
-        float b[FT_BT_BOX_FLOATS]; /* the roots are the leaves */
-        leaf_box(bt, h, h, b);
-        st->tau_used_px = box_error_px(v, bt->leaf_err_m[leaf_index(bt, h, h)], b);
-    }
+    const int32_t root_c[2] = {(int32_t)bt->fine_side / 2, (int32_t)bt->fine_side / 2};
+    float b[FT_BT_BOX_FLOATS];
+    const double e = ft_bt_diamond_error(bt, 0u, root_c, b);
+    st->tau_used_px = box_error_px(v, e, b);
     st->tau_achieved_px = st->tau_used_px;
 }
 
@@ -751,7 +952,7 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
 int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
                        int32_t c[2])
 {
-    const int32_t n = (int32_t)bt->side_cells;
+    const int32_t n = (int32_t)bt->fine_side;
     if ((x | y) == 0) {
         return 0;
     }
@@ -787,7 +988,8 @@ int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2]
         }
     }
     /* Vertices the padding clamp moves do not morph (no coarse edge to slide on). */
-    const int32_t wx = (int32_t)bt->width - 1, hy = (int32_t)bt->height - 1;
+    const int32_t wx = ((int32_t)bt->width - 1) << bt->sub;
+    const int32_t hy = ((int32_t)bt->height - 1) << bt->sub;
     if (x > wx || y > hy || e0[0] > wx || e0[1] > hy || e1[0] > wx || e1[1] > hy) {
         return 0;
     }

@@ -64,7 +64,9 @@
 #include "terrain.h"
 
 #define FT_BT_N_MAX 14u /* N = 2^14: FT_GRID_SIDE_MAX = 16385 */
-#define FT_BT_LEVELS_MAX (2u * FT_BT_N_MAX)
+/* bintree.subsample_levels: tiles refine to 2^-S of a cell (S <= 4) */
+#define FT_BT_SUB_MAX 4u
+#define FT_BT_LEVELS_MAX (2u * (FT_BT_N_MAX + FT_BT_SUB_MAX))
 #define FT_BT_STACK_MAX (FT_BT_LEVELS_MAX + 4u)
 #define FT_BT_TILES_MIN 2u
 #define FT_BT_TILES_MAX_LIMIT 1048576u
@@ -74,6 +76,9 @@
 #define FT_BT_COARSEN_FACTOR 1.5
 #define FT_BT_COARSEN_STEPS_MAX 40u
 #define FT_BT_BOX_FLOATS 6u /* x0, x1, y0, y1 (grid), z0, z1 (m) */
+/* Twist pyramid levels: a sub-sample diamond's closure is at most 3 * 2^k
+ * cells wide, so blocks up to 2^(k+2) cells (k <= 6) are enough. */
+#define FT_BT_TWIST_LEVELS_MAX 9u
 
 typedef struct ft_bt_tile {
     int32_t apex[2], left[2], right[2]; /* grid coordinates */
@@ -98,7 +103,11 @@ typedef struct ft_bintree {
     uint32_t side_cells;   /* N = 2^n */
     uint32_t step;         /* 2^k: lattice step of split vertices */
     uint32_t lattice_side; /* N / 2^k + 1 */
-    uint32_t leaf_level;   /* L = 2(n - k) */
+    uint32_t sub;          /* S = bintree.subsample_levels */
+    uint32_t fine_side;    /* N 2^S: the domain in fine units (tile coordinates) */
+    uint32_t sub_level;    /* L_s = 2(n - k): tiles of this level and finer have
+                              templates finer than the samples (S > 0) */
+    uint32_t leaf_level;   /* L = 2(n + S - k) */
     uint32_t width, height;
     float domain_z[2];     /* min / max height of the grid */
     const float *heights_m;
@@ -107,6 +116,12 @@ typedef struct ft_bintree {
     uint32_t leaf_side;  /* N / 2^k: level-L diamonds a side */
     float *leaf_err_m;   /* leaf_side^2: error of the level-L diamonds (not refinable) */
     float *leaf_z;       /* leaf_side^2 * 2: their height range (the box's xy is their square) */
+    /* S > 0: twist pyramid, level m texel = max |D| over the cells of an
+     * aligned 2^m x 2^m block (D = h00 + h11 - h10 - h01 of a cell) */
+    uint32_t twist_levels;
+    uint32_t twist_w[FT_BT_TWIST_LEVELS_MAX], twist_h[FT_BT_TWIST_LEVELS_MAX];
+    float *twist[FT_BT_TWIST_LEVELS_MAX];
+    const ft_terrain *terrain; /* its min/max pyramid bounds sub-sample boxes */
     uint32_t tiles_max;
     ft_bt_tile *tiles; /* tiles_max */
     uint32_t flipped_triangles; /* template triangles the padding clamp flipped (must be 0) */
@@ -130,12 +145,33 @@ typedef struct ft_bt_view {
 uint32_t ft_bt_domain_n(uint32_t w, uint32_t h);
 
 /* Adds the tables and tile list to FT_POOL_METHOD. */
-void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t tiles_max);
+void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
+                     uint32_t tiles_max);
+
+/* Twist pyramid geometry for a w x h grid (levels, and each level's size). */
+uint32_t ft_bt_twist_levels(uint32_t w, uint32_t h, uint32_t k);
 
 /* Builds the error and bound tables (O(L * N^2)). Fails on k > n, tiles_max
  * outside FT_BT_TILES_MIN..FT_BT_TILES_MAX_LIMIT, or arena exhaustion. */
-ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t tiles_max,
-                          ft_arena *a, ft_error *err);
+ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t sub,
+                          uint32_t tiles_max, ft_arena *a, ft_error *err);
+
+/* The selection's error (m) and box (grid units) of the diamond with split
+ * vertex c (fine units) at `level`: the tables below sub_level, the leaf
+ * table at the leaf level without sub-sample levels, else the closed form. */
+double ft_bt_diamond_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                           float box[FT_BT_BOX_FLOATS]);
+
+/* Error (m) and box (grid units) of the diamond with split vertex c (fine
+ * units) at a level >= sub_level (S > 0): closed form from the twist
+ * pyramid (see the top). */
+double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                       float box[FT_BT_BOX_FLOATS]);
+
+/* The bilinear surface at fine point (x, y): the height every vertex of a
+ * tile takes (a sample when both are multiples of 2^S). Cell = floor of the
+ * point, clamped into the grid; float arithmetic in the shader's order. */
+float ft_bt_height_fine(const ft_bintree *bt, int32_t x, int32_t y);
 
 void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull, int morph,
                             ft_bt_view *v);

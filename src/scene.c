@@ -153,6 +153,7 @@ void ft_scene_defaults(ft_scene *s)
     s->bintree_tiles_max = 16384;
     s->bintree_tau_px = 1.0;
     s->bintree_morph = 1;
+    s->bintree_subsample_levels = 0;
     s->pgm_grid_cols = 430;
     s->pgm_grid_rows = 430;
     s->pgrid_grid_cols = 200;
@@ -491,6 +492,10 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "morph") == 0) {
             return RANGE(parse_flag(value, &s->bintree_morph), "expected 0 or 1");
         }
+        if (strcmp(key, "subsample_levels") == 0) {
+            return RANGE(parse_u32(value, 0, 4, &s->bintree_subsample_levels),
+                         "expected 0..4");
+        }
     } else if (strcmp(section, "pgm") == 0) {
         if (strcmp(key, "grid_cols") == 0) {
             return RANGE(parse_u32(value, 2, 8192, &s->pgm_grid_cols), "expected 2..8192");
@@ -746,11 +751,13 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
         }
     }
     if (s->bintree_template_k < 1 || s->bintree_template_k > 6 || s->bintree_tiles_max < 2 ||
-        s->bintree_tiles_max > 1048576 || !(s->bintree_tau_px >= 0.0 && s->bintree_tau_px <= 1000.0)) {
+        s->bintree_tiles_max > 1048576 || !(s->bintree_tau_px >= 0.0 && s->bintree_tau_px <= 1000.0) ||
+        s->bintree_subsample_levels > 4u) {
         return ft_fail(err, FT_ERR_CONFIG,
                        "bintree: template_k %u (1..6), tiles_max %u (2..1048576), tau_px %g "
-                       "(0..1000) out of range",
-                       s->bintree_template_k, s->bintree_tiles_max, s->bintree_tau_px);
+                       "(0..1000) or subsample_levels %u (0..4) out of range",
+                       s->bintree_template_k, s->bintree_tiles_max, s->bintree_tau_px,
+                       s->bintree_subsample_levels);
     }
     if (s->pgrid_grid_cols < 2 || s->pgrid_grid_cols > 8192 || s->pgrid_grid_rows < 2 ||
         s->pgrid_grid_rows > 8192 || !(s->pgrid_gamma_px >= 0.1 && s->pgrid_gamma_px <= 100.0)) {

@@ -39,6 +39,8 @@
  *   bintree.tiles_max     tile budget per frame [2, 1048576]
  *   bintree.tau_px        target screen-space error in pixels [0, 1000]
  *   bintree.morph         0 | 1: geomorph split vertices (split at tau/2)
+ *   bintree.subsample_levels  0..4: tiles refine to 2^-S of a cell, their vertices
+ *                         on the bilinear surface (the truth), so tau holds near the eye
  *   pgm.grid_cols         persistent grid columns (vertices across the view) [2, 8192]
  *   pgm.grid_rows         persistent grid rows (vertices from near to far) [2, 8192]
  *                         (pgm uploads its own avg-pyramid atlas: gpu.pyramid_textures
@@ -176,6 +178,7 @@ typedef struct ft_scene {
     uint32_t bintree_tiles_max;  /* bintree.tiles_max */
     double bintree_tau_px;       /* bintree.tau_px */
     int bintree_morph;           /* bintree.morph */
+    uint32_t bintree_subsample_levels; /* bintree.subsample_levels */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */

@@ -65,13 +65,13 @@ static double quantile(double *v, int n, double q)
 }
 
 /* Times the bintree's table build on the loaded terrain, in its own arena. */
-static double time_tables_ms(const ft_terrain *t, uint32_t k, uint32_t tiles_max)
+static double time_tables_ms(const ft_terrain *t, uint32_t k, uint32_t sub, uint32_t tiles_max)
 {
     ft_arena a;
     ft_bintree bt;
     ft_error err;
     memset(&a, 0, sizeof a);
-    ft_bintree_plan(&a, t->width, t->height, k, tiles_max);
+    ft_bintree_plan(&a, t->width, t->height, k, sub, tiles_max);
     a.pools[FT_POOL_METHOD].budget_bytes = a.pools[FT_POOL_METHOD].need_bytes;
     size_t total = ft_arena_total_budget(&a);
     total = (total + FT_ARENA_ALIGN - 1u) / FT_ARENA_ALIGN * FT_ARENA_ALIGN;
@@ -81,7 +81,7 @@ static double time_tables_ms(const ft_terrain *t, uint32_t k, uint32_t tiles_max
         return NAN;
     }
     uint64_t t0 = ft_plat_monotonic_ns();
-    ft_status st = ft_bintree_init(&bt, t, k, tiles_max, &a, &err);
+    ft_status st = ft_bintree_init(&bt, t, k, sub, tiles_max, &a, &err);
     uint64_t t1 = ft_plat_monotonic_ns();
     free(mem);
     return st == FT_OK ? (double)(t1 - t0) * 1e-6 : NAN;
@@ -167,7 +167,7 @@ static int run(const ft_scene *base, const char *method, uint32_t k, double tau,
         }
     }
     row->tables_ms = (s.method == FT_METHOD_BINTREE)
-                         ? time_tables_ms(&g_app.terrain, k, s.bintree_tiles_max)
+                         ? time_tables_ms(&g_app.terrain, k, s.bintree_subsample_levels, s.bintree_tiles_max)
                          : 0.0;
     ft_app_shutdown(&g_app);
     if (!ok || timed == 0) return 0;

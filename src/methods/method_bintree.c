@@ -32,7 +32,7 @@ void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
     ft_arena_plan(a, FT_POOL_METHOD,
                   (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
-    ft_bintree_plan(a, t->width, t->height, k, s->bintree_tiles_max);
+    ft_bintree_plan(a, t->width, t->height, k, s->bintree_subsample_levels, s->bintree_tiles_max);
 }
 
 ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
@@ -44,7 +44,8 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     m->lod_scale = 1.0;
     m->morph = s->bintree_morph;
     m->es3 = (gl->api == FT_GL_API_ES3);
-    ft_status st = ft_bintree_init(&m->bt, t, k, s->bintree_tiles_max, a, err);
+    ft_status st =
+        ft_bintree_init(&m->bt, t, k, s->bintree_subsample_levels, s->bintree_tiles_max, a, err);
     if (st != FT_OK) {
         return st;
     }

@@ -18,9 +18,20 @@
  * image gives an angle there, as the selection's box bound does. Every tile that draws the vertex therefore
  * computes the same position from the same inputs: no cracks, even mid-morph.
  *
+ * Sub-sample levels (bintree.subsample_levels S > 0): tile coordinates are
+ * in fine units (2^-S of a cell). A vertex on a sample reads it; a vertex
+ * between samples takes the bilinear height of its cell (the cell is the
+ * floor of its coordinate, clamped into the grid; the same arithmetic as
+ * ft_bt_height_fine on the CPU, exact for integer heights). Its morph
+ * endpoints lie in the same cell, its normal is the cell's gradient there,
+ * and the error of the diamond that inserts it is the closed form of
+ * src/bintree.c (sub_q x the largest twist over the diamond's closure, from
+ * <= 4 texels of the twist atlas).
+ *
  * Padding: coordinates are clamped into the real grid; clamped vertices do
  * not morph. All arithmetic on grid coordinates is on integers below 2^24
  * (exact in highp float; divisions are by powers of two). */
+
 precision highp float;
 
 #include "curvature.glsl"
@@ -34,13 +45,18 @@ uniform vec2 u_pack;
 
 uniform sampler2D u_bt_err;   /* saturated diamond error (m) on the split-vertex lattice */
 uniform vec2 u_bt_err_pack;   /* like u_pack, for u_bt_err */
-uniform vec3 u_bt_lattice;    /* (2^k, lattice side, N = 2^n) */
+uniform vec3 u_bt_lattice;    /* (2^k, lattice side, N 2^S: the domain in fine units) */
 uniform vec4 u_bt_morph;      /* (K px, split px, tau - split px, on) */
 uniform vec4 u_bt_axis;       /* (view axis (world, unit), cos of the frustum corner) */
+uniform vec4 u_bt_sub;        /* (2^S, 2^(k+S): table lattice step in fine units,
+                                 twist levels, 1 if S > 0) */
+uniform sampler2D u_bt_twist; /* twist atlas (S > 0) */
+uniform vec4 u_bt_twist_pack; /* (pack like u_pack, atlas width, height) */
+uniform vec2 u_bt_twist_off[9]; /* atlas origin of each twist level */
 
 FT_IN_VS vec2 a_uv;
 #if FT_ES3
-in vec4 i_tile0; /* apex.xy, left.xy */
+in vec4 i_tile0; /* apex.xy, left.xy (fine units) */
 in vec2 i_tile1; /* right.xy */
 #else
 uniform vec4 u_tile0;
@@ -56,6 +72,7 @@ FT_OUT_VS float v_morph; /* 1 = at its own height (captured by the crack tests) 
 
 #include "decode.glsl"
 
+/* A sample (grid coordinates, clamped into the grid). */
 float ft_height(vec2 g)
 {
     vec2 gc = clamp(g, vec2(0.0), u_grid_size - 1.0);
@@ -67,15 +84,66 @@ float ft_height(vec2 g)
     return ft_decode(t, u_pack);
 }
 
-/* Error of the diamond that inserts grid vertex g, and the coarse edge it
- * bisects. Negative when g never morphs. */
+/* The bilinear surface of a cell (corner heights h = (h00, h10, h01, h11))
+ * at fine point g; cf = the cell's corner in fine units, f = 2^S. */
+float ft_bilinear(vec4 h, vec2 cf, vec2 g)
+{
+    vec2 uv = (g - cf) / u_bt_sub.x;
+    return h.x + (h.y - h.x) * uv.x + (h.z - h.x) * uv.y + ((h.x + h.w) - (h.y + h.z)) * uv.x * uv.y;
+}
+
+float ft_twist_texel(vec2 p)
+{
+#if FT_ES3
+    vec4 t = texelFetch(u_bt_twist, ivec2(p), 0);
+#else
+    vec4 t = texture2DLod(u_bt_twist, (p + 0.5) / u_bt_twist_pack.zw, 0.0);
+#endif
+    return ft_decode(t, u_bt_twist_pack.xy);
+}
+
+/* Closed-form error of a diamond below the samples (src/bintree.c,
+ * ft_bt_sub_error): split vertex c, square side sd (fine units), even
+ * level when c is a square's centre. */
+float ft_sub_error(vec2 c, float sd, bool even_level)
+{
+    float f = u_bt_sub.x;
+    float a = sd / (u_bt_lattice.x * f); /* its template squares' side, cells */
+    float leg = even_level ? a : 0.5 * a;
+    float r = even_level ? 1.5 * sd : sd;
+    vec2 lo = clamp((c - r) / f, vec2(0.0), u_grid_size - 1.0);
+    vec2 hi = clamp((c + r) / f, vec2(0.0), u_grid_size - 1.0);
+    vec2 c0 = clamp(floor(lo), vec2(0.0), u_grid_size - 2.0);
+    vec2 c1 = clamp(ceil(hi) - 1.0, c0, u_grid_size - 2.0);
+    float span = max(c1.x - c0.x, c1.y - c0.y) + 1.0;
+    float m = 0.0;
+    float bs = 1.0;
+    for (int i = 0; i < 16; ++i) {
+        if (bs >= span || m >= u_bt_sub.z - 1.0) {
+            break;
+        }
+        bs *= 2.0;
+        m += 1.0;
+    }
+    /* the closure spans at most 2 blocks a side at this level */
+    vec2 b0 = floor(c0 / bs), b1 = floor(c1 / bs);
+    vec2 off = u_bt_twist_off[int(m)];
+    float d = ft_twist_texel(off + b0);
+    d = max(d, ft_twist_texel(off + vec2(b1.x, b0.y)));
+    d = max(d, ft_twist_texel(off + vec2(b0.x, b1.y)));
+    d = max(d, ft_twist_texel(off + b1));
+    return 0.25 * leg * leg * d;
+}
+
+/* Error of the diamond that inserts vertex g (fine units) and the coarse
+ * edge e0-e1 it bisects. Negative when g never morphs. */
 float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
 {
     e0 = g;
     e1 = g;
     float s = 0.0; /* lowest power of two that does not divide both coordinates */
     float p = 1.0;
-    for (int i = 0; i < 16; ++i) {
+    for (int i = 0; i < 20; ++i) {
         if (mod(g.x, 2.0 * p) != 0.0 || mod(g.y, 2.0 * p) != 0.0) {
             s = p;
             break;
@@ -112,12 +180,15 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
         }
     }
     vec2 top = max(g, max(e0, e1));
-    if (top.x > u_grid_size.x - 1.0 || top.y > u_grid_size.y - 1.0) {
+    if (top.x > (u_grid_size.x - 1.0) * u_bt_sub.x || top.y > (u_grid_size.y - 1.0) * u_bt_sub.x) {
         e0 = g;
         e1 = g;
         return -1.0;
     }
-    vec2 lc = c / u_bt_lattice.x;
+    vec2 lc = c / u_bt_sub.y;
+    if (lc != floor(lc)) {
+        return ft_sub_error(c, sd, odd_x && odd_y); /* a diamond below the samples */
+    }
 #if FT_ES3
     vec4 t = texelFetch(u_bt_err, ivec2(lc), 0);
 #else
@@ -130,30 +201,51 @@ void main()
 {
     vec2 apex = i_tile0.xy;
     vec2 g_raw = apex + a_uv.x * (i_tile0.zw - apex) + a_uv.y * (i_tile1 - apex);
-    vec2 g = min(g_raw, u_grid_size - 1.0); /* padding collapses onto the grid edge */
-    float h = ft_height(g);
-
-    vec2 lo = max(g - 1.0, vec2(0.0));
-    vec2 hi = min(g + 1.0, u_grid_size - 1.0);
-    float dhx = (ft_height(vec2(hi.x, g.y)) - ft_height(vec2(lo.x, g.y))) / ((hi.x - lo.x) * u_cell_m.x);
-    float dhy = (ft_height(vec2(g.x, hi.y)) - ft_height(vec2(g.x, lo.y))) / ((hi.y - lo.y) * u_cell_m.y);
-    v_normal = normalize(vec3(-dhx, -dhy, 1.0));
+    float f = u_bt_sub.x;
+    vec2 g = min(g_raw, (u_grid_size - 1.0) * f); /* padding collapses onto the grid edge */
+    vec2 gs = g / f;                              /* grid coordinates */
+    bool on_sample = (gs == floor(gs));
+    float h;
+    vec4 cell = vec4(0.0); /* corner heights of a sub-sample vertex's cell */
+    vec2 cf = vec2(0.0);   /* that cell's corner, fine units */
+    if (on_sample) {
+        h = ft_height(gs);
+        vec2 lo = max(gs - 1.0, vec2(0.0));
+        vec2 hi = min(gs + 1.0, u_grid_size - 1.0);
+        float dhx = (ft_height(vec2(hi.x, gs.y)) - ft_height(vec2(lo.x, gs.y))) / ((hi.x - lo.x) * u_cell_m.x);
+        float dhy = (ft_height(vec2(gs.x, hi.y)) - ft_height(vec2(gs.x, lo.y))) / ((hi.y - lo.y) * u_cell_m.y);
+        v_normal = normalize(vec3(-dhx, -dhy, 1.0));
+    } else {
+        vec2 c = clamp(floor(gs), vec2(0.0), u_grid_size - 2.0);
+        cell = vec4(ft_height(c), ft_height(c + vec2(1.0, 0.0)), ft_height(c + vec2(0.0, 1.0)),
+                    ft_height(c + vec2(1.0, 1.0)));
+        cf = c * f;
+        h = ft_bilinear(cell, cf, g);
+        vec2 uv = gs - c;
+        float tw = (cell.x + cell.w) - (cell.y + cell.z);
+        float dhx = ((cell.y - cell.x) + tw * uv.y) / u_cell_m.x;
+        float dhy = ((cell.z - cell.x) + tw * uv.x) / u_cell_m.y;
+        v_normal = normalize(vec3(-dhx, -dhy, 1.0));
+    }
 
     float w = 1.0;
     if (u_bt_morph.w > 0.5) {
         vec2 e0, e1;
         float err_m = ft_morph_error(g_raw, e0, e1);
         if (err_m >= 0.0) {
-            vec3 p_true = ft_earth_curve(u_origin_rel_eye_m + vec3(g * u_cell_m, h));
+            vec3 p_true = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
             float dist = max(length(p_true), 1e-3);
             float c = max(dot(p_true, u_bt_axis.xyz) / dist, u_bt_axis.w);
             float rho = u_bt_morph.x * err_m / (dist * c * c);
             w = clamp((rho - u_bt_morph.y) / u_bt_morph.z, 0.0, 1.0);
-            h = mix(0.5 * (ft_height(e0) + ft_height(e1)), h, w);
+            /* a sub-sample vertex's coarse edge lies in its own cell */
+            float h0 = on_sample ? ft_height(e0 / f) : ft_bilinear(cell, cf, e0);
+            float h1 = on_sample ? ft_height(e1 / f) : ft_bilinear(cell, cf, e1);
+            h = mix(0.5 * (h0 + h1), h, w);
         }
     }
     v_morph = w;
     v_height_m = h;
-    v_pos_rel_eye_m = ft_earth_curve(u_origin_rel_eye_m + vec3(g * u_cell_m, h));
+    v_pos_rel_eye_m = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }

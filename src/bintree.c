@@ -25,19 +25,30 @@ static uint32_t lattice_side(uint32_t n, uint32_t k)
     return (k <= n) ? ((1u << (n - k)) + 1u) : 2u;
 }
 
-uint32_t ft_bt_twist_levels(uint32_t w, uint32_t h, uint32_t k)
-{
-    const uint32_t cells = ((w > h) ? w : h) - 1u;
-    uint32_t levels = 1u;
-    while (levels < k + 3u && levels < FT_BT_TWIST_LEVELS_MAX && (1u << (levels - 1u)) < cells) {
-        ++levels;
-    }
-    return levels;
-}
-
 static uint32_t ceil_shift(uint32_t v, uint32_t m)
 {
     return (v + (1u << m) - 1u) >> m;
+}
+
+void ft_bt_twist_layout_for(uint32_t w, uint32_t h, uint32_t k, ft_bt_twist_layout *l)
+{
+    memset(l, 0, sizeof *l);
+    const uint32_t cells = ((w > h) ? w : h) - 1u;
+    l->levels = 1u;
+    while (l->levels < k + 3u && l->levels < FT_BT_TWIST_LEVELS_MAX &&
+           (1u << (l->levels - 1u)) < cells) {
+        ++l->levels;
+    }
+    uint32_t y = 0;
+    for (uint32_t m = 0; m < l->levels; ++m) {
+        l->w[m] = ceil_shift(w - 1u, m);
+        l->h[m] = ceil_shift(h - 1u, m);
+        l->ox[m] = (m == 0u) ? 0u : l->w[0];
+        l->oy[m] = (m == 0u) ? 0u : y;
+        y += (m == 0u) ? 0u : l->h[m];
+    }
+    l->atlas_w = l->w[0] + ((l->levels > 1u) ? l->w[1] : 0u);
+    l->atlas_h = (y > l->h[0]) ? y : l->h[0];
 }
 
 void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
@@ -52,11 +63,9 @@ void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t s
         ft_arena_plan(a, FT_POOL_METHOD, leaves * sizeof(float));
         ft_arena_plan(a, FT_POOL_METHOD, leaves * 2u * sizeof(float));
     } else {
-        const uint32_t levels = ft_bt_twist_levels(w, h, k);
-        for (uint32_t l = 0; l < levels; ++l) {
-            ft_arena_plan(a, FT_POOL_METHOD,
-                          (size_t)ceil_shift(w - 1u, l) * ceil_shift(h - 1u, l) * sizeof(float));
-        }
+        ft_bt_twist_layout l;
+        ft_bt_twist_layout_for(w, h, k, &l);
+        ft_arena_plan(a, FT_POOL_METHOD, (size_t)l.atlas_w * l.atlas_h * sizeof(float));
     }
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile));
     if (k >= FT_BT_TEMPLATE_K_MIN && k <= FT_BT_TEMPLATE_K_MAX) {
@@ -500,14 +509,16 @@ double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
     while (m + 1u < FT_PYRAMID_LEVELS_MAX && (1 << m) < span) {
         ++m;
     }
-    const uint32_t mt = (m < bt->twist_levels) ? m : bt->twist_levels - 1u;
+    const uint32_t mt = (m < bt->twist.levels) ? m : bt->twist.levels - 1u;
     const ft_pyramid *pyr = &bt->terrain->pyr;
     const uint32_t mz = (m < pyr->minmax_levels) ? m : pyr->minmax_levels - 1u;
     double dmax = 0.0;
     float z0 = FLT_MAX, z1 = -FLT_MAX;
     for (int32_t by = cy0 >> mt; by <= (cy1 >> mt); ++by) {
         for (int32_t bx = cx0 >> mt; bx <= (cx1 >> mt); ++bx) {
-            const float d = bt->twist[mt][(size_t)by * bt->twist_w[mt] + (size_t)bx];
+            const float d = bt->twist_atlas[(size_t)(bt->twist.oy[mt] + (uint32_t)by) *
+                                                bt->twist.atlas_w +
+                                            bt->twist.ox[mt] + (uint32_t)bx];
             dmax = ((double)d > dmax) ? (double)d : dmax;
         }
     }
@@ -545,11 +556,17 @@ float ft_bt_height_fine(const ft_bintree *bt, int32_t x, int32_t y)
 }
 
 /* Level 0: |D| per cell; level m + 1: max over 2 x 2 blocks (clamped). */
+static float *twist_at(ft_bintree *bt, uint32_t m, uint32_t x, uint32_t y)
+{
+    return &bt->twist_atlas[(size_t)(bt->twist.oy[m] + y) * bt->twist.atlas_w + bt->twist.ox[m] + x];
+}
+
 static void build_twist(ft_bintree *bt)
 {
-    const uint32_t w0 = bt->twist_w[0], h0 = bt->twist_h[0];
-    for (uint32_t y = 0; y < h0; ++y) {
-        for (uint32_t x = 0; x < w0; ++x) {
+    const ft_bt_twist_layout *l = &bt->twist;
+    memset(bt->twist_atlas, 0, (size_t)l->atlas_w * l->atlas_h * sizeof(float));
+    for (uint32_t y = 0; y < l->h[0]; ++y) {
+        for (uint32_t x = 0; x < l->w[0]; ++x) {
             const double d = (double)height_at(bt, (int32_t)x, (int32_t)y) +
                              height_at(bt, (int32_t)x + 1, (int32_t)y + 1) -
                              height_at(bt, (int32_t)x + 1, (int32_t)y) -
@@ -558,21 +575,20 @@ static void build_twist(ft_bintree *bt)
             if ((double)fd < fabs(d)) {
                 fd = nextafterf(fd, FLT_MAX);
             }
-            bt->twist[0][(size_t)y * w0 + x] = fd;
+            *twist_at(bt, 0u, x, y) = fd;
         }
     }
-    for (uint32_t l = 1; l < bt->twist_levels; ++l) {
-        const uint32_t pw = bt->twist_w[l - 1u], ph = bt->twist_h[l - 1u];
-        for (uint32_t y = 0; y < bt->twist_h[l]; ++y) {
-            for (uint32_t x = 0; x < bt->twist_w[l]; ++x) {
-                float m = 0.0f;
-                for (uint32_t j = 2u * y; j <= 2u * y + 1u && j < ph; ++j) {
-                    for (uint32_t i = 2u * x; i <= 2u * x + 1u && i < pw; ++i) {
-                        const float d = bt->twist[l - 1u][(size_t)j * pw + i];
-                        m = (d > m) ? d : m;
+    for (uint32_t m = 1; m < l->levels; ++m) {
+        for (uint32_t y = 0; y < l->h[m]; ++y) {
+            for (uint32_t x = 0; x < l->w[m]; ++x) {
+                float v = 0.0f;
+                for (uint32_t j = 2u * y; j <= 2u * y + 1u && j < l->h[m - 1u]; ++j) {
+                    for (uint32_t i = 2u * x; i <= 2u * x + 1u && i < l->w[m - 1u]; ++i) {
+                        const float d = *twist_at(bt, m - 1u, i, j);
+                        v = (d > v) ? d : v;
                     }
                 }
-                bt->twist[l][(size_t)y * bt->twist_w[l] + x] = m;
+                *twist_at(bt, m, x, y) = v;
             }
         }
     }
@@ -646,14 +662,10 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
         }
     }
     if (st == FT_OK && sub > 0u) {
-        bt->twist_levels = ft_bt_twist_levels(t->width, t->height, k);
-        for (uint32_t l = 0; l < bt->twist_levels && st == FT_OK; ++l) {
-            bt->twist_w[l] = ceil_shift(t->width - 1u, l);
-            bt->twist_h[l] = ceil_shift(t->height - 1u, l);
-            st = ft_arena_take(a, FT_POOL_METHOD,
-                               (size_t)bt->twist_w[l] * bt->twist_h[l] * sizeof(float),
-                               (void **)&bt->twist[l], err);
-        }
+        ft_bt_twist_layout_for(t->width, t->height, k, &bt->twist);
+        st = ft_arena_take(a, FT_POOL_METHOD,
+                           (size_t)bt->twist.atlas_w * bt->twist.atlas_h * sizeof(float),
+                           (void **)&bt->twist_atlas, err);
     }
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile),

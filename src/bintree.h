@@ -98,6 +98,13 @@ typedef struct ft_bt_select_stats {
     uint32_t level_min, level_max;
 } ft_bt_select_stats;
 
+typedef struct ft_bt_twist_layout {
+    uint32_t levels;
+    uint32_t w[FT_BT_TWIST_LEVELS_MAX], h[FT_BT_TWIST_LEVELS_MAX];
+    uint32_t ox[FT_BT_TWIST_LEVELS_MAX], oy[FT_BT_TWIST_LEVELS_MAX];
+    uint32_t atlas_w, atlas_h;
+} ft_bt_twist_layout;
+
 typedef struct ft_bintree {
     uint32_t n, k;
     uint32_t side_cells;   /* N = 2^n */
@@ -117,10 +124,11 @@ typedef struct ft_bintree {
     float *leaf_err_m;   /* leaf_side^2: error of the level-L diamonds (not refinable) */
     float *leaf_z;       /* leaf_side^2 * 2: their height range (the box's xy is their square) */
     /* S > 0: twist pyramid, level m texel = max |D| over the cells of an
-     * aligned 2^m x 2^m block (D = h00 + h11 - h10 - h01 of a cell) */
-    uint32_t twist_levels;
-    uint32_t twist_w[FT_BT_TWIST_LEVELS_MAX], twist_h[FT_BT_TWIST_LEVELS_MAX];
-    float *twist[FT_BT_TWIST_LEVELS_MAX];
+     * aligned 2^m x 2^m block (D = h00 + h11 - h10 - h01 of a cell), all
+     * levels in one atlas (the GPU's texture too): level 0 at (0, 0), level
+     * m >= 1 at (w0, sum of the heights of levels 1..m-1). */
+    ft_bt_twist_layout twist;
+    float *twist_atlas; /* twist.atlas_w * twist.atlas_h */
     const ft_terrain *terrain; /* its min/max pyramid bounds sub-sample boxes */
     uint32_t tiles_max;
     ft_bt_tile *tiles; /* tiles_max */
@@ -148,8 +156,8 @@ uint32_t ft_bt_domain_n(uint32_t w, uint32_t h);
 void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
                      uint32_t tiles_max);
 
-/* Twist pyramid geometry for a w x h grid (levels, and each level's size). */
-uint32_t ft_bt_twist_levels(uint32_t w, uint32_t h, uint32_t k);
+/* Twist pyramid geometry for a w x h grid and template k. */
+void ft_bt_twist_layout_for(uint32_t w, uint32_t h, uint32_t k, ft_bt_twist_layout *l);
 
 /* Builds the error and bound tables (O(L * N^2)). Fails on k > n, tiles_max
  * outside FT_BT_TILES_MIN..FT_BT_TILES_MAX_LIMIT, or arena exhaustion. */

@@ -50,6 +50,8 @@ typedef struct ft_brute {
 typedef struct ft_bintree_method {
     ft_bintree bt;
     GLuint vbo, ibo, inst_vbo, err_tex;
+    GLuint twist_tex;              /* sub-sample levels: the twist atlas (unit 2) */
+    ft_scalar_format twist_fmt;
     uint32_t index_count, triangles_per_tile;
     float *inst; /* tiles_max * 6 corner coordinates (FT_POOL_METHOD) */
     double tau_px;    /* bintree.tau_px */

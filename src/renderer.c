@@ -140,6 +140,9 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_bt_lattice);
     FT_UNIFORM(u_bt_morph);
     FT_UNIFORM(u_bt_axis);
+    FT_UNIFORM(u_bt_sub);
+    FT_UNIFORM(u_bt_twist);
+    FT_UNIFORM(u_bt_twist_pack);
     FT_UNIFORM(u_earth_drop_per_m2);
     FT_UNIFORM(u_pgm_atlas);
     FT_UNIFORM(u_pgm_atlas_size);
@@ -166,6 +169,11 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
         p->u_pgm_level[l] = gl->GetUniformLocation(prog, name);
         (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
         p->u_pgrid_mm_level[l] = gl->GetUniformLocation(prog, name);
+    }
+    for (uint32_t l = 0; l < FT_BT_TWIST_LEVELS_MAX; ++l) {
+        char name[32];
+        (void)snprintf(name, sizeof name, "u_bt_twist_off[%u]", l);
+        p->u_bt_twist_off[l] = gl->GetUniformLocation(prog, name);
     }
 }
 

@@ -29,6 +29,8 @@ typedef struct ft_terrain_program {
     GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
     GLint u_earth_drop_per_m2; /* curvature (shaders/curvature.glsl) */
     GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph, u_bt_axis; /* bintree geomorph */
+    GLint u_bt_sub, u_bt_twist, u_bt_twist_pack;       /* ... and its sub-sample levels */
+    GLint u_bt_twist_off[FT_BT_TWIST_LEVELS_MAX];
     /* pgm: avg-pyramid atlas, sampling camera, grid band (shaders/pgm.vert.glsl) */
     GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
     GLint u_pgm_fwd, u_pgm_right, u_pgm_up, u_pgm_rect, u_pgm_eye;

@@ -10,6 +10,10 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BINTRE
   add_test(NAME bintree_gl_es3 COMMAND test_bintree_gl es3 ${_dem})
   # the per-tile GLES 2 path in a strict ES 2.0 context
   add_test(NAME bintree_gl_es2 COMMAND test_bintree_gl es2 ${_dem})
+  # the bound with sub-sample levels, on softpipe (see test_bintree_gl.c main)
+  add_test(NAME bintree_gl_bound_sub COMMAND test_bintree_gl bound-sub ${_dem})
+  set_tests_properties(bintree_gl_bound_sub PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800
+                       ENVIRONMENT "GALLIUM_DRIVER=softpipe")
   set_tests_properties(bintree_gl_es3 bintree_gl_es2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
   set_tests_properties(bintree_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
 endif()

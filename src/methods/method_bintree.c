@@ -103,6 +103,39 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     if (st != FT_OK) {
         return st;
     }
+    if (m->bt.sub > 0u) {
+        /* the twist atlas the closed-form errors below the samples read */
+        const ft_bt_twist_layout *tl = &m->bt.twist;
+        if (gl->caps.max_vertex_texture_units < 3) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree.subsample_levels needs 3 vertex texture units; this device "
+                           "has %d", gl->caps.max_vertex_texture_units);
+        }
+        if (tl->atlas_w > (uint32_t)gl->caps.max_texture_size ||
+            tl->atlas_h > (uint32_t)gl->caps.max_texture_size) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree.subsample_levels: the twist atlas %ux%u exceeds "
+                           "GL_MAX_TEXTURE_SIZE %d (use subsample_levels = 0 for this grid)",
+                           tl->atlas_w, tl->atlas_h, gl->caps.max_texture_size);
+        }
+        float dmax = 0.0f;
+        const uint32_t top = tl->levels - 1u;
+        for (uint32_t y = 0; y < tl->h[top]; ++y) {
+            for (uint32_t x = 0; x < tl->w[top]; ++x) {
+                const float d = m->bt.twist_atlas[(size_t)(tl->oy[top] + y) * tl->atlas_w +
+                                                  tl->ox[top] + x];
+                dmax = (d > dmax) ? d : dmax;
+            }
+        }
+        m->twist_fmt.format = m->err_fmt.format;
+        m->twist_fmt.pack_min = 0.0f;
+        m->twist_fmt.pack_range = (dmax > 0.0f) ? dmax : 1.0f;
+        st = ft_gpu_upload_scalar(gl, &m->twist_fmt, m->bt.twist_atlas, tl->atlas_w, tl->atlas_h,
+                                  GL_TEXTURE2, a, &m->twist_tex, &m->gpu_bytes, err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
     return ft_gl_check(gl, "bintree init (template, instance buffer, error texture)", err);
 }
 
@@ -166,7 +199,23 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
     gl->Uniform2f(p->u_bt_err_pack, m->err_fmt.pack_min,
                   m->err_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->err_fmt.pack_range : 0.0f);
     gl->Uniform3f(p->u_bt_lattice, (float)m->bt.step, (float)m->bt.lattice_side,
-                  (float)m->bt.side_cells);
+                  (float)m->bt.fine_side);
+    const ft_bt_twist_layout *tl = &m->bt.twist;
+    gl->Uniform4f(p->u_bt_sub, (float)(1u << m->bt.sub), (float)(m->bt.step << m->bt.sub),
+                  (float)tl->levels, m->bt.sub > 0u ? 1.0f : 0.0f);
+    if (m->bt.sub > 0u) {
+        gl->ActiveTexture(GL_TEXTURE2);
+        gl->BindTexture(GL_TEXTURE_2D, m->twist_tex);
+        gl->ActiveTexture(GL_TEXTURE0);
+        gl->Uniform1i(p->u_bt_twist, 2);
+        gl->Uniform4f(p->u_bt_twist_pack, m->twist_fmt.pack_min,
+                      m->twist_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->twist_fmt.pack_range
+                                                                     : 0.0f,
+                      (float)tl->atlas_w, (float)tl->atlas_h);
+        for (uint32_t l = 0; l < tl->levels; ++l) {
+            gl->Uniform2f(p->u_bt_twist_off[l], (float)tl->ox[l], (float)tl->oy[l]);
+        }
+    }
     gl->Uniform4f(p->u_bt_morph, (float)cam->px_per_rad_k, (float)split, (float)band,
                   (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
     gl->Uniform4f(p->u_bt_axis, (float)cam->forward[0], (float)cam->forward[1],
@@ -223,5 +272,6 @@ void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl)
     if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
     if (m->inst_vbo) gl->DeleteBuffers(1, &m->inst_vbo);
     if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
-    m->vbo = m->ibo = m->inst_vbo = m->err_tex = 0u;
+    if (m->twist_tex) gl->DeleteTextures(1, &m->twist_tex);
+    m->vbo = m->ibo = m->inst_vbo = m->err_tex = m->twist_tex = 0u;
 }

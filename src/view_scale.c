@@ -17,26 +17,24 @@ double ft_view_offaxis_gain(const double fwd[3], double corner_cos, const double
         corner_cos = 1e-3; /* a degenerate frustum: the largest gain pgrid allows too */
     }
     const double worst = 1.0 / (corner_cos * corner_cos);
-    double c[3], r2 = 0.0, d2 = 0.0, along = 0.0;
-    for (int i = 0; i < 3; ++i) {
-        c[i] = 0.5 * (lo[i] + hi[i]);
-        double h = 0.5 * (hi[i] - lo[i]);
-        r2 += h * h;
-        d2 += c[i] * c[i];
-        along += c[i] * fwd[i];
+    /* The angle off the axis is quasi-convex where it is below 90 degrees
+     * (its sublevel sets are convex cones), so over a box in front of the
+     * eye it peaks at a corner. A sub-box therefore never gets a larger gain
+     * than its box: the selection's nested boxes keep nested errors. */
+    double cos_min = 1.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const double p[3] = {(corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1],
+                             (corner & 4) ? hi[2] : lo[2]};
+        const double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        const double along = p[0] * fwd[0] + p[1] * fwd[1] + p[2] * fwd[2];
+        if (!(len > 0.0) || !(along > 0.0)) {
+            return worst; /* a corner at or behind the eye: the box may hold any angle */
+        }
+        const double c = along / len;
+        cos_min = (c < cos_min) ? c : cos_min;
     }
-    if (!(d2 > r2)) {
+    if (cos_min <= corner_cos) {
         return worst;
     }
-    const double d = sqrt(d2);
-    double cos_c = along / d;
-    cos_c = cos_c > 1.0 ? 1.0 : (cos_c < -1.0 ? -1.0 : cos_c);
-    /* every point of the box lies within asin(r / d) of its centre's direction */
-    const double theta = acos(cos_c) + asin(sqrt(r2) / d);
-    const double theta_corner = acos(corner_cos);
-    if (theta >= theta_corner) {
-        return worst;
-    }
-    const double ct = cos(theta);
-    return 1.0 / (ct * ct);
+    return 1.0 / (cos_min * cos_min);
 }

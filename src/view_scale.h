@@ -21,8 +21,10 @@ double ft_view_corner_cos(const ft_camera *c);
 
 /* Upper bound of 1 / cos^2 theta over the points of the axis-aligned box
  * [lo, hi] (relative to the eye, metres) that lie inside the frustum; fwd
- * is the unit view axis. An eye inside the box's bounding sphere gets the
- * corner's gain 1 / corner_cos^2. Always in [1, 1 / corner_cos^2]. */
+ * is the unit view axis. The largest angle over the box is at one of its
+ * corners (exact, and monotone: a sub-box never gets more); a box with a
+ * corner at or behind the eye gets the frustum corner's gain
+ * 1 / corner_cos^2. Always in [1, 1 / corner_cos^2]. */
 double ft_view_offaxis_gain(const double fwd[3], double corner_cos, const double lo_rel_m[3],
                             const double hi_rel_m[3]);
 

@@ -23,6 +23,7 @@
 #include "bintree_template.h"
 #include "pyramid.h"
 #include "test_util.h"
+#include "view_scale.h"
 
 static uint32_t g_rng = 777u;
 static double urand(void)
@@ -214,6 +215,46 @@ static int check_conforming(const ft_bintree *bt, uint32_t count, edge_rec *edge
     return bad;
 }
 
+static int cmp_pt(const void *pa, const void *pb)
+{
+    const int32_t *a = pa, *b = pb;
+    if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+    return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+/* A culled selection is still conforming where it draws: no tile corner lies
+ * at the midpoint of another tile's edge (in a bintree that is the only
+ * place a T-junction can sit). Returns the T-junctions; pts holds 3 points
+ * a tile. */
+static int count_t_junctions(const ft_bintree *bt, uint32_t count, int32_t (*pts)[2])
+{
+    for (uint32_t i = 0; i < count; ++i) {
+        const ft_bt_tile *t = &bt->tiles[i];
+        memcpy(pts[3u * i], t->apex, sizeof pts[0]);
+        memcpy(pts[3u * i + 1u], t->left, sizeof pts[0]);
+        memcpy(pts[3u * i + 2u], t->right, sizeof pts[0]);
+    }
+    qsort(pts, 3u * count, sizeof pts[0], cmp_pt);
+    int bad = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const ft_bt_tile *t = &bt->tiles[i];
+        const int32_t *v[3] = {t->apex, t->left, t->right};
+        for (int e = 0; e < 3; ++e) {
+            const int32_t *a = v[e], *b = v[(e + 1) % 3];
+            if (((a[0] + b[0]) & 1) || ((a[1] + b[1]) & 1)) continue;
+            int32_t m[2] = {(a[0] + b[0]) / 2, (a[1] + b[1]) / 2};
+            if (bsearch(m, pts, 3u * count, sizeof pts[0], cmp_pt) != NULL) {
+                if (bad < 3) {
+                    fprintf(stderr, "T-junction: tile level %u edge (%d,%d)-(%d,%d) has a corner "
+                            "at its midpoint\n", t->level, a[0], a[1], b[0], b[1]);
+                }
+                ++bad;
+            }
+        }
+    }
+    return bad;
+}
+
 static void random_view(const ft_terrain *t, uint32_t n_cells, ft_camera *cam)
 {
     double ext = (double)n_cells * t->cell_x_m;
@@ -285,7 +326,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     static const double taus[] = {0.0, 0.5, 1.0, 2.0, 4.0, 16.0};
     uint32_t total_tiles = 0, morph_vertices = 0, checked_vertices = 0;
     int bad_conf = 0, bad_subset = 0, bad_err = 0, bad_bound = 0, bad_morph = 0;
-    int leaf_tiles = 0, leaf_short = 0;
+    int leaf_tiles = 0, leaf_short = 0, bad_tjunctions = 0;
     double dense_max_ratio = 0.0; /* largest dense error / stored error: <= 1 */
     int ratio_tiles = 0;
     for (uint32_t vi = 0; vi < views; ++vi) {
@@ -404,9 +445,10 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
                 }
             }
         }
-        /* culling only removes tiles */
+        /* culling only removes tiles, and what it keeps is conforming */
         ft_bt_view_from_camera(&cam, &t, 1, morph, &v);
         ft_bintree_select(&bt, &v, tau, &ss);
+        bad_tjunctions += count_t_junctions(&bt, ss.tiles, (int32_t(*)[2])edges);
         for (uint32_t i = 0; i < ss.tiles; ++i) {
             if (bsearch(&bt.tiles[i], nocull, n_nocull, sizeof *nocull, tile_key_cmp) == NULL) {
                 ++bad_subset;
@@ -425,6 +467,8 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         /* the stored error is the exact max, not a loose bound */
         CHECK(ratio_tiles == 0 || dense_max_ratio > 0.9);
     }
+    printf("  culled selections: %d T-junctions\n", bad_tjunctions);
+    CHECK(bad_tjunctions == 0);
     CHECK(bad_conf == 0);
     CHECK(bad_subset == 0);
     CHECK(bad_err == 0);
@@ -464,8 +508,41 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     free(t.heights_m);
 }
 
+/* The off-axis gain of a sub-box never exceeds its box's (the selection's
+ * nested errors rest on it), and it bounds the gain of points inside. */
+static void test_gain_monotone(void)
+{
+    int bad_nest = 0, bad_bound = 0;
+    const double fwd[3] = {0.6, 0.0, -0.8};
+    const double corner_cos = 0.45;
+    for (int i = 0; i < 200000; ++i) {
+        double lo[3], hi[3], slo[3], shi[3], p[3];
+        for (int a = 0; a < 3; ++a) {
+            double c = (a == 0 ? 3000.0 : 0.0) + (urand() - 0.5) * 4000.0;
+            double h = urand() * 1500.0;
+            lo[a] = c - h;
+            hi[a] = c + h;
+            double u = urand(), w = urand();
+            slo[a] = lo[a] + (hi[a] - lo[a]) * fmin(u, w);
+            shi[a] = lo[a] + (hi[a] - lo[a]) * fmax(u, w);
+            p[a] = slo[a] + (shi[a] - slo[a]) * urand();
+        }
+        const double g = ft_view_offaxis_gain(fwd, corner_cos, lo, hi);
+        const double gs = ft_view_offaxis_gain(fwd, corner_cos, slo, shi);
+        bad_nest += gs > g * (1.0 + 1e-12);
+        const double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        const double c = (p[0] * fwd[0] + p[1] * fwd[1] + p[2] * fwd[2]) / len;
+        if (c > corner_cos) bad_bound += 1.0 / (c * c) > gs * (1.0 + 1e-12);
+    }
+    printf("off-axis gain: %d sub-boxes above their box, %d points above their box's bound\n",
+           bad_nest, bad_bound);
+    CHECK(bad_nest == 0);
+    CHECK(bad_bound == 0);
+}
+
 int main(void)
 {
+    test_gain_monotone();
     run_case(65, 65, 1, 0, 60, 1);
     run_case(129, 129, 2, 0, 60, 1);
     run_case(257, 257, 3, 0, 40, 1);

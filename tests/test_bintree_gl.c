@@ -123,6 +123,7 @@ static edge_slot *edge_add(edge_slot *t, size_t cap, int64_t a, int64_t b)
         if (t[i].a == -1) {
             t[i].a = a;
             t[i].b = b;
+            t[i].count = 0u;
             return &t[i];
         }
     }

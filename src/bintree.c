@@ -488,17 +488,13 @@ static int32_t clamp_range(int32_t v, int32_t lo, int32_t hi)
     return (v < lo) ? lo : ((v > hi) ? hi : v);
 }
 
-double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
-                       float box[FT_BT_BOX_FLOATS])
+/* The largest twist and the height range over the cells under the grid
+ * rectangle [gx0, gx1] x [gy0, gy1] (already inside the grid), from <= 4
+ * aligned blocks of the twist and min/max pyramids; the rectangle and range
+ * into box. Sub-rectangles get sub-blocks: nested in, nested out. */
+static double cover_twist(const ft_bintree *bt, double gx0, double gx1, double gy0, double gy1,
+                          float box[FT_BT_BOX_FLOATS])
 {
-    const double f = (double)(1u << bt->sub);
-    const double s = (double)(bt->fine_side >> (level / 2u));
-    const double r = ((level & 1u) != 0u) ? s : 1.5 * s;
-    const double wx = (double)bt->width - 1.0, hy = (double)bt->height - 1.0;
-    const double gx0 = fmin(fmax(((double)c[0] - r) / f, 0.0), wx);
-    const double gx1 = fmin(fmax(((double)c[0] + r) / f, 0.0), wx);
-    const double gy0 = fmin(fmax(((double)c[1] - r) / f, 0.0), hy);
-    const double gy1 = fmin(fmax(((double)c[1] + r) / f, 0.0), hy);
     const int32_t cmx = (int32_t)bt->width - 2, cmy = (int32_t)bt->height - 2;
     const int32_t cx0 = clamp_range((int32_t)floor(gx0), 0, cmx);
     const int32_t cy0 = clamp_range((int32_t)floor(gy0), 0, cmy);
@@ -536,7 +532,41 @@ double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
     box[3] = (float)gy1;
     box[4] = z0;
     box[5] = z1;
-    return sub_q(bt, level) * dmax;
+    return dmax;
+}
+
+double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                       float box[FT_BT_BOX_FLOATS])
+{
+    const double f = (double)(1u << bt->sub);
+    const double s = (double)(bt->fine_side >> (level / 2u));
+    const double r = ((level & 1u) != 0u) ? s : 1.5 * s;
+    const double wx = (double)bt->width - 1.0, hy = (double)bt->height - 1.0;
+    const double gx0 = fmin(fmax(((double)c[0] - r) / f, 0.0), wx);
+    const double gx1 = fmin(fmax(((double)c[0] + r) / f, 0.0), wx);
+    const double gy0 = fmin(fmax(((double)c[1] - r) / f, 0.0), hy);
+    const double gy1 = fmin(fmax(((double)c[1] + r) / f, 0.0), hy);
+    return sub_q(bt, level) * cover_twist(bt, gx0, gx1, gy0, gy1, box);
+}
+
+/* A leaf tile's own error and box (S > 0): its template triangles lie in
+ * the cells under its bounding rectangle, so sub_q x the largest twist
+ * there, and that rectangle's height range. Tighter than the diamond's
+ * closure, which only the split decision needs (for nesting). */
+static double leaf_tile_error(const ft_bintree *bt, const int32_t x[3], const int32_t y[3],
+                              float box[FT_BT_BOX_FLOATS])
+{
+    const double f = (double)(1u << bt->sub);
+    const double wx = (double)bt->width - 1.0, hy = (double)bt->height - 1.0;
+    double gx0 = wx, gx1 = 0.0, gy0 = hy, gy1 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double gx = fmin((double)x[i] / f, wx), gy = fmin((double)y[i] / f, hy);
+        gx0 = fmin(gx0, gx);
+        gx1 = fmax(gx1, gx);
+        gy0 = fmin(gy0, gy);
+        gy1 = fmax(gy1, gy);
+    }
+    return sub_q(bt, bt->leaf_level) * cover_twist(bt, gx0, gx1, gy0, gy1, box);
 }
 
 float ft_bt_height_fine(const ft_bintree *bt, int32_t x, int32_t y)
@@ -914,7 +944,16 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
             }
         } else {
             /* nothing refines a leaf: its own error is what the frame achieves there */
-            const double px = box_error_px(v, e, dbox);
+            double px;
+            if (bt->sub > 0u) {
+                const int32_t xs[3] = {t.apex[0], t.left[0], t.right[0]};
+                const int32_t ys[3] = {t.apex[1], t.left[1], t.right[1]};
+                float lb[FT_BT_BOX_FLOATS];
+                const double le = leaf_tile_error(bt, xs, ys, lb);
+                px = box_error_px(v, le, lb);
+            } else {
+                px = box_error_px(v, e, dbox);
+            }
             st->leaf_px_max = (px > st->leaf_px_max) ? px : st->leaf_px_max;
         }
         if (st->tiles >= bt->tiles_max) {

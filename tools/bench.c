@@ -131,6 +131,10 @@ typedef struct bench_row {
      * (empty in the CSV) for other methods or with --no-oracle */
     int oracle_frames;
     double oracle_med_ms;
+    /* the largest bound a frame reported, and (bintree) the frames whose bound
+     * was over the selection's target: a leaf tile near the eye over tau */
+    double tau_achieved_max_px;
+    int bound_short_frames;
 } bench_row;
 
 typedef struct bench_path {
@@ -738,6 +742,9 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
             ++timed;
             tri += (double)st.triangles;
             row->budget_hits += st.budget_hit != 0;
+            row->tau_achieved_max_px = fmax(row->tau_achieved_max_px, st.tau_achieved_px);
+            row->bound_short_frames +=
+                (st.tau_target_px > 0.0 && st.tau_achieved_px > st.tau_target_px);
             if (st.terrain_px > 0u) {
                 const double frac = (double)st.raycast_px / (double)st.terrain_px;
                 row->rc_frac_mean += frac; /* a sum until the run ends */
@@ -845,7 +852,8 @@ static int write_csv(const char *path)
           "select_median_ms,err_max_px,err_p999_px,err_mean_px,coverage_mismatch_px,"
           "coverage_mismatch_mean_px,nonfinite_px,measured_frames,triangles_mean,budget_hits,"
           "init_ms,occlusion_mismatch_px,occlusion_mismatch_mean_px,occlusion_err_max_px,"
-          "raycast_fraction_mean,raycast_fraction_max,oracle_median_ms,x_oracle\n",
+          "raycast_fraction_mean,raycast_fraction_max,oracle_median_ms,x_oracle,"
+          "tau_achieved_max_px,bound_short_frames\n",
           f);
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
@@ -875,6 +883,8 @@ static int write_csv(const char *path)
         csv_num(f, w->rc_frac_max, 4);
         csv_num(f, w->oracle_med_ms, 3);
         csv_num(f, w->oracle_med_ms > 0.0 ? w->t_med_ms / w->oracle_med_ms : NAN, 4);
+        csv_num(f, w->tau_achieved_max_px, 4);
+        fprintf(f, ",%d", w->bound_short_frames);
         fputc('\n', f);
     }
     int ok = fclose(f) == 0;

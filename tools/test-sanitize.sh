@@ -53,11 +53,12 @@ fi
 # Excluded: the VM tests (label vm, a separate CI step), the tests that
 # are builds (lean_build, lean_profile: they configure and build the tree
 # again without the sanitizer; tools/build-matrix.sh covers the builds) and
-# pgrid_paths (a bench over six flights, 100 s plain and about 5x that
-# sanitized, whose C code the unit and GL tests here already run).
+# pgrid_paths and bintree_paths (benches over flights, 60-100 s plain and
+# about 5x that sanitized, whose C code the unit and GL tests here already
+# run) and bintree_gl_bound_sub (softpipe, 80 s plain).
 status=0
 # shellcheck disable=SC2086  # extra ctest arguments are words on purpose
-ctest --test-dir "$dir" -LE '^vm$' -E '^(lean_build|lean_profile|pgrid_paths)$' --output-on-failure -j "$jobs" \
+ctest --test-dir "$dir" -LE '^vm$' -E '^(lean_build|lean_profile|pgrid_paths|bintree_paths|bintree_gl_bound_sub)$' --output-on-failure -j "$jobs" \
   ${FT_SANITIZE_CTEST_ARGS:-} || status=$?
 t2=$(now_s)
 echo "test-sanitize: CC=$cc build $((t1 - t0)) s, tests $((t2 - t1)) s, total $((t2 - t0)) s"

@@ -85,7 +85,7 @@ static const char k_scene[] =
     "[terrain]\ndem =\nsynth_side = 257\nsynth_spacing_m = 30\nsynth_relief_m = 2000\n"
     "synth_seed = 3\nsynth_octaves = 8\nsynth_anchor_lat_deg = 46.5\nsynth_anchor_lon_deg = 8.0\n"
     "[gpu]\ntexture_bytes = 16M\n[metric]\nenabled = 1\n"
-    "[bintree]\ntemplate_k = 3\ntiles_max = 4096\ntau_px = 1.0\nmorph = 1\n"
+    "[bintree]\ntemplate_k = 3\ntiles_max = 4096\ntau_px = 1.0\nmorph = 1\nsubsample_levels = 2\n"
     "[pgm]\ngrid_cols = 200\ngrid_rows = 800\n"
     "[budget]\nheights_bytes = 512K\npyramids_bytes = 2M\nframe_rgba_bytes = 256K\n"
     "frame_pos_bytes = 1M\nreference_bytes = 2M\nmetric_bytes = 1M\n"

@@ -8,16 +8,26 @@
  * height v_height_m, with the same rules, the same clamps and the same
  * morph weight, in double where the shader works in float.
  *
+ * Sub-sample levels (bt->sub = S > 0): tile coordinates are in fine units
+ * (2^-S of a cell). A vertex on a sample reads it; a vertex between samples
+ * takes the bilinear height of its cell (the floor of its coordinate / 2^S,
+ * clamped to [0, size - 2]), its normal from that cell's bilinear gradient,
+ * its morph endpoints' heights from the same cell's bilinear, and the error
+ * of its inserting diamond from the table when the diamond's split vertex
+ * is a multiple of 2^(k+S) in both axes, else in closed form from <= 4
+ * texels of the twist atlas (the shader's ft_sub_error).
+ *
  * Layout: indexed, one vertex per (tile, template vertex): vertex v of tile
  * i is vertex i * tmpl_verts + v, FT_BT_MESH_FLOATS floats each; the
  * triangles are the template's indices offset by i * tmpl_verts
  * (ft_bt_mesh_indices). So the mesh has exactly the method's triangles, in
  * its order, and as many vertices as the method's vertex shader runs.
  *
- * Heights and diamond errors are read from the float tables (bt->heights_m,
- * bt->err_m): the GPU reads the same values from R32F textures; a context
- * without float vertex textures gets them as 24-bit fixed point (decode.glsl)
- * and differs from this mirror by up to range / 2^24.
+ * Heights, diamond errors and twists are read from the float tables
+ * (bt->heights_m, bt->err_m, bt->twist_atlas): the GPU reads the same values
+ * from R32F textures; a context without float vertex textures gets them as
+ * 24-bit fixed point (decode.glsl) and differs from this mirror by up to
+ * range / 2^24.
  *
  * Used by the bench's oracle and the tests; the runtime never calls it. */
 #ifndef FT_BINTREE_MESH_H
@@ -59,9 +69,14 @@ typedef struct ft_bt_mesh_vertex {
     double normal[3];        /* v_normal */
     double height_m;         /* v_height_m */
     double morph_w;          /* v_morph: 1 = at its own height */
+    /* how it was computed (for the tests) */
+    int on_sample;           /* on a sample (always with S = 0), else between samples */
+    double err_m;            /* error of its inserting diamond; -1 when it does not morph */
+    int err_closed_form;     /* err_m from the closed form (ft_sub_error), not the table */
 } ft_bt_mesh_vertex;
 
-/* Template vertex (a, b) (leg coordinates, multiples of 2^-k) of tile. */
+/* Template vertex (a, b) (leg coordinates, multiples of 2^-k) of tile
+ * (corners in fine units). */
 void ft_bt_mesh_vertex_of(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
                           const ft_bt_tile *tile, double a, double b, ft_bt_mesh_vertex *out);
 

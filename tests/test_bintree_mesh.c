@@ -23,10 +23,19 @@
  *    template, from its own index list), the frame's reported count and the
  *    primitives the GPU wrote (query) must be equal, and the capture must
  *    have written exactly that many vertices.
+ *    Configurations with bintree.subsample_levels S > 0 (tile coordinates
+ *    in fine units) check the sub-sample path the same way: vertices
+ *    between samples (bilinear height, normal and morph endpoints of their
+ *    cell) and the closed-form errors of the diamonds inserting them; one
+ *    view looks along the grid's last sample row, where the cell is clamped.
+ *    Every morphing vertex's error must also equal its diamond's error in
+ *    the selection (ft_bt_diamond_error: the table, or the closed form over
+ *    the whole closure, which the shader reads from <= 4 atlas texels).
  * 2. The test can fail: the same captures against a mirror with the wrong
  *    morph rule (geomorph off where the method morphs, on where it does
  *    not) must show position mismatches, and the views must catch vertices
- *    mid-morph (0 < w < 1), or they would not exercise the geomorph.
+ *    mid-morph (0 < w < 1), or they would not exercise the geomorph; with
+ *    S > 0 many of them between samples.
  * 3. The oracle frame (the mirror's mesh, trivial vertex shader, the same
  *    fragment shader and target) against the real frame: almost every
  *    pixel equal (differences only where float rounding moves a triangle
@@ -63,16 +72,20 @@ static const char k_scene_fmt[] =
     "[view]\nwidth_px = %u\nheight_px = %u\nfovy_deg = 60\n"
     "[terrain]\ndem = %s\n"
     "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = 0\n"
-    "[bintree]\ntemplate_k = %u\ntiles_max = 65536\ntau_px = %.3f\nmorph = %d\n"
+    "[bintree]\ntemplate_k = %u\nsubsample_levels = %u\ntiles_max = 65536\ntau_px = %.3f\n"
+    "morph = %d\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n"
-    "gpu_staging_bytes = 8M\nmethod_bytes = 16M\npng_bytes = 512K\n";
+    "gpu_staging_bytes = 8M\nmethod_bytes = 32M\npng_bytes = 512K\n";
 
 typedef struct totals {
     uint64_t vertices, midmorph, triangles;
     double pos_abs_max, pos_rel_max, pos_op_max, normal_max, height_rel_max, morph_max;
     uint64_t pos_rel_bad, pos_bad, normal_bad, height_bad, morph_bad, unwritten, overrun;
     uint64_t wrong_rule_bad; /* position mismatches against the wrong morph rule */
+    uint64_t between, between_midmorph; /* vertices between samples (S > 0), mid-morph */
+    uint64_t closed_form;  /* morphing vertices whose diamond error is the closed form */
+    uint64_t err_checked, err_bad; /* mirror's morph error vs the selection's diamond error */
     uint64_t oracle_px, oracle_diff_px, oracle_terrain_px;
 } totals;
 
@@ -87,20 +100,49 @@ static double dist3(const float *gpu, const double *cpu)
     return len3(d);
 }
 
-/* |u_origin_rel_eye_m| + |(g * cell, h)|: the size of the terms the shader
- * adds in float for template vertex (a, b) of tile, g as the shader clamps it */
+/* |u_origin_rel_eye_m| + |(gs * cell, h)|: the size of the terms the shader
+ * adds in float for template vertex (a, b) of tile, gs (grid units) as the
+ * shader clamps it */
 static double operand_scale(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
                             const ft_bt_tile *tile, double a, double b, double h)
 {
+    const double f = (double)(1u << bt->sub);
     const double size[2] = {(double)bt->width, (double)bt->height};
     double q[3] = {0.0, 0.0, h};
     for (int i = 0; i < 2; ++i) {
         double g = tile->apex[i] + a * (tile->left[i] - tile->apex[i]) +
                    b * (tile->right[i] - tile->apex[i]);
-        g = fmin(g, size[i] - 1.0);
-        q[i] = g * u->cell_m[i];
+        g = fmin(g, (size[i] - 1.0) * f);
+        q[i] = g / f * u->cell_m[i];
     }
     return len3(u->origin_rel_eye_m) + len3(q);
+}
+
+/* The selection's error of the diamond that inserts template vertex (a, b)
+ * of tile (ft_bt_diamond_error at that diamond's level), or -1 when the
+ * vertex never morphs. The level from the diamond's square side sd = 2 s 2^k
+ * (s the vertex's lowest set bit): even when the vertex is a square's
+ * centre, sd = fine_side >> (level / 2). */
+static double selection_error(const ft_bintree *bt, const ft_bt_tile *tile, double a, double b)
+{
+    int32_t g[2], e0[2], e1[2], c[2];
+    for (int i = 0; i < 2; ++i) {
+        g[i] = (int32_t)(tile->apex[i] + a * (tile->left[i] - tile->apex[i]) +
+                         b * (tile->right[i] - tile->apex[i]));
+    }
+    if (!ft_bt_vertex_morph(bt, g[0], g[1], e0, e1, c)) {
+        return -1.0;
+    }
+    const int32_t s = (g[0] | g[1]) & -(g[0] | g[1]);
+    const int even = ((g[0] / s) & 1) != 0 && ((g[1] / s) & 1) != 0;
+    const uint32_t sd = 2u * (uint32_t)s * bt->step;
+    uint32_t half = 0; /* level / 2 */
+    while ((bt->fine_side >> half) > sd) {
+        ++half;
+    }
+    REQUIRE((bt->fine_side >> half) == sd);
+    float box[FT_BT_BOX_FLOATS];
+    return ft_bt_diamond_error(bt, 2u * half + (even ? 0u : 1u), c, box);
 }
 
 /* Captures the frame's vertices: tiles x expanded template, CAP_FLOATS each,
@@ -257,6 +299,16 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
             if (dw > tot->morph_max) tot->morph_max = dw;
             tot->morph_bad += !(dw <= MORPH_TOL);
             tot->midmorph += (m.morph_w > 0.0 && m.morph_w < 1.0);
+            tot->between += !m.on_sample;
+            tot->between_midmorph += (!m.on_sample && m.morph_w > 0.0 && m.morph_w < 1.0);
+            if (m.err_m >= 0.0) {
+                /* the morph error is the one the selection split the diamond at */
+                const double e = selection_error(&bm->bt, tile, tp->uv[2u * v],
+                                                 tp->uv[2u * v + 1u]);
+                tot->closed_form += (m.err_closed_form != 0);
+                ++tot->err_checked;
+                tot->err_bad += !(e == m.err_m);
+            }
             /* the wrong rule must be caught by the same position test */
             tot->wrong_rule_bad += !(dist3(c, mw.pos_rel_eye_m) <= POS_TOL * scale);
         }
@@ -310,14 +362,15 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
 
 typedef struct config {
     uint32_t k;
+    uint32_t sub; /* bintree.subsample_levels */
     double tau;
     int morph;
 } config;
 
 static void run_config(const char *dem, const config *cf)
 {
-    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, 256u, 192u, dem, cf->k, cf->tau,
-                   cf->morph);
+    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, 256u, 192u, dem, cf->k, cf->sub,
+                   cf->tau, cf->morph);
     ft_test_app_init(&g_app, g_text, "bintree mesh");
     ft_error err;
     static const char *const varyings[4] = {"v_pos_rel_eye_m", "v_normal", "v_height_m",
@@ -352,22 +405,35 @@ static void run_config(const char *dem, const config *cf)
         ft_test_pose(42.20, 1.10, 2400.0, 60.0, -12.0, -20.0),
         ft_test_pose(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),
         ft_test_pose(42.02, 1.97, 3000.0, 225.0, -15.0, 0.0), /* near the grid corner */
+        /* low, over the last sample row, looking east along it to the far
+         * corner and the padding: sub-sample vertices on the last row and
+         * column (their cell is clamped to size - 2). Not lower: the morph
+         * weight's float rounding grows as the vertices near the eye (the
+         * shader's distance is a difference of ~1e5 m operands); here it is
+         * under half of MORPH_TOL */
+        ft_test_pose(42.998, 1.98, 900.0, 80.0, -35.0, 0.0),
     };
     totals tot;
     memset(&tot, 0, sizeof tot);
-    printf("k = %u, tau = %.1f, morph = %d:\n", cf->k, cf->tau, cf->morph);
+    REQUIRE(g_app.renderer.method.u.bintree.bt.sub == cf->sub);
+    printf("k = %u, S = %u, tau = %.1f, morph = %d:\n", cf->k, cf->sub, cf->tau, cf->morph);
     for (size_t v = 0; v < sizeof views / sizeof views[0]; ++v) {
         view(&views[v], &tp, &oracle, &tot);
     }
-    printf("k = %u tau = %.1f morph = %d: %llu vertices (%llu mid-morph), %llu triangles; max "
+    printf("k = %u S = %u tau = %.1f morph = %d: %llu vertices (%llu mid-morph; between "
+           "samples %llu, %llu of them mid-morph), %llu triangles; morph errors: %llu checked "
+           "against the selection's (%llu closed form), %llu differ; max "
            "position error %.3g m (relative to the distance %.3g, allowed %.1g; to the operands "
            "%.3g, allowed %.1g), normal %.3g (%.1g), height "
            "relative %.3g (%.1g), morph weight %.3g (%.1g); mismatches: position %llu, normal "
            "%llu, height %llu, morph %llu; unwritten %llu, overrun %llu; the wrong morph rule: "
            "%llu position mismatches; oracle image: %llu of %llu pixels differ by more than %d "
            "(%llu terrain pixels)\n",
-           cf->k, cf->tau, cf->morph, (unsigned long long)tot.vertices,
-           (unsigned long long)tot.midmorph, (unsigned long long)tot.triangles, tot.pos_abs_max,
+           cf->k, cf->sub, cf->tau, cf->morph, (unsigned long long)tot.vertices,
+           (unsigned long long)tot.midmorph, (unsigned long long)tot.between,
+           (unsigned long long)tot.between_midmorph, (unsigned long long)tot.triangles,
+           (unsigned long long)tot.err_checked, (unsigned long long)tot.closed_form,
+           (unsigned long long)tot.err_bad, tot.pos_abs_max,
            tot.pos_rel_max, POS_REL_TOL, tot.pos_op_max, POS_TOL, tot.normal_max, NORMAL_TOL, tot.height_rel_max,
            HEIGHT_REL_TOL, tot.morph_max, MORPH_TOL, (unsigned long long)tot.pos_bad,
            (unsigned long long)tot.normal_bad, (unsigned long long)tot.height_bad,
@@ -387,6 +453,18 @@ static void run_config(const char *dem, const config *cf)
      * wrong morph rule moves enough of them beyond the tolerance */
     if (cf->morph) CHECK(tot.midmorph > 100u);
     CHECK(tot.wrong_rule_bad > 100u);
+    /* the morph error of every morphing vertex is its diamond's in the
+     * selection (the table, or the closed form from the whole closure) */
+    if (cf->morph) CHECK(tot.err_checked > 1000u);
+    CHECK(tot.err_bad == 0u);
+    /* with sub-sample levels the views exercise that path: vertices between
+     * samples, mid-morph, with closed-form errors */
+    if (cf->sub > 0u) {
+        CHECK(tot.between > 1000u);
+        CHECK(tot.between_midmorph > 100u && tot.closed_form > 100u);
+    } else {
+        CHECK(tot.between == 0u && tot.closed_form == 0u);
+    }
     CHECK(tot.oracle_terrain_px > tot.oracle_px / 2u);
     CHECK((double)tot.oracle_diff_px <= PIXEL_FRACTION_MAX * (double)tot.oracle_px);
     bench_oracle_shutdown(&oracle);
@@ -404,10 +482,12 @@ int main(int argc, char **argv)
     const char *dem = argv[1];
     if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
     static const config configs[] = {
-        {3, 1.0, 1},
-        {2, 2.0, 1},
-        {4, 0.5, 1},
-        {3, 1.0, 0}, /* no geomorph: the mirror without it; the wrong rule morphs */
+        {3, 0, 1.0, 1},
+        {2, 0, 2.0, 1},
+        {4, 0, 0.5, 1},
+        {3, 0, 1.0, 0}, /* no geomorph: the mirror without it; the wrong rule morphs */
+        {3, 2, 1.0, 1}, /* sub-sample levels */
+        {2, 3, 1.0, 1},
     };
     for (size_t i = 0; i < sizeof configs / sizeof configs[0]; ++i) {
         run_config(dem, &configs[i]);

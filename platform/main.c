@@ -160,6 +160,11 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
     if (isfinite(last->depth_res_far_m)) {
         (void)snprintf(res_text, sizeof res_text, "%.4f", last->depth_res_far_m);
     }
+    /* null: no bound (the eye inside a leaf tile's box, or the roots' box) */
+    char tau_text[32] = "null";
+    if (isfinite(last->tau_achieved_px)) {
+        (void)snprintf(tau_text, sizeof tau_text, "%.4f", last->tau_achieved_px);
+    }
     int n = snprintf(
         g_stats_text, sizeof g_stats_text,
         "{\n  \"scene\": \"%s\",\n  \"method\": \"%s\",\n  \"backend\": \"%s\",\n"
@@ -171,7 +176,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
         " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu,"
-        " \"tau_achieved_px\": %.4f, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
+        " \"tau_achieved_px\": %s, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
         "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
@@ -182,7 +187,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
-        (unsigned long long)last->terrain_px, last->tau_achieved_px, last->tau_target_px, last->budget_hit, last->select_ms,
+        (unsigned long long)last->terrain_px, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,

@@ -462,13 +462,13 @@ static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
 
 /* ---- sub-sample levels (S > 0) ----------------------------------------------------
  *
- * Below sub_level a tile's template vertices lie between samples and take
- * the bilinear height, so inside one cell its triangles' surface differs
- * from the truth only by the cell's twist: a triangle of level >= 2n (inside
- * one cell) with axis legs of a cells, or with diagonal legs and
- * hypotenuse a, is off by at most |D| a^2 / 4, or |D| (a/2)^2 / 4 (sub_q;
- * a = 1: the classic |D| / 4 of a cell split along a diagonal). A diamond's error is sub_q times the largest |D|
- * over its closure: the square of half-side 1.5 s (even level, square side
+ * From sub_level on, a tile's template vertices lie on or between samples
+ * and take the bilinear height, so inside one cell its triangles' surface
+ * differs from the truth only by the cell's twist: a triangle of level
+ * >= 2n (inside one cell) with axis legs of a cells, or with diagonal legs
+ * and hypotenuse a, is off by at most |D| a^2 / 4, or |D| (a/2)^2 / 4
+ * (sub_q; a = 1: the classic |D| / 4 of a cell split along a diagonal).
+ * A diamond's error is sub_q times the largest |D| over its closure: the square of half-side 1.5 s (even level, square side
  * s) or s (odd level) around its split vertex, which holds the closures of
  * all its descendants (a child lies s/2 or s/4 from its parent), so errors
  * and boxes nest and the selection stays conforming. The largest |D| and

@@ -322,6 +322,8 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
            bt.side_cells, bt.leaf_level, bt.lattice_side, bt.max_err_m);
     edge_rec *edges = malloc(3u * tiles_max * sizeof *edges);
     ft_bt_tile *nocull = malloc(tiles_max * sizeof *nocull);
+    int32_t(*pts)[2] = malloc(3u * tiles_max * sizeof *pts);
+    REQUIRE(pts != NULL);
     REQUIRE(edges && nocull);
     static const double taus[] = {0.0, 0.5, 1.0, 2.0, 4.0, 16.0};
     uint32_t total_tiles = 0, morph_vertices = 0, checked_vertices = 0;
@@ -448,7 +450,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         /* culling only removes tiles, and what it keeps is conforming */
         ft_bt_view_from_camera(&cam, &t, 1, morph, &v);
         ft_bintree_select(&bt, &v, tau, &ss);
-        bad_tjunctions += count_t_junctions(&bt, ss.tiles, (int32_t(*)[2])edges);
+        bad_tjunctions += count_t_junctions(&bt, ss.tiles, pts);
         for (uint32_t i = 0; i < ss.tiles; ++i) {
             if (bsearch(&bt.tiles[i], nocull, n_nocull, sizeof *nocull, tile_key_cmp) == NULL) {
                 ++bad_subset;
@@ -502,6 +504,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         CHECK(ss.budget_hit || bt.leaf_level == 0u);
         CHECK(!isnan(ss.tau_achieved_px));
     }
+    free(pts);
     free(edges);
     free(nocull);
     free(mem);

@@ -28,11 +28,28 @@
  * src/bintree.c (sub_q x the largest twist over the diamond's closure, from
  * <= 4 texels of the twist atlas).
  *
+ * GLES 3: a vertex on a sample does one fetch, its texel of the vertex table
+ * (src/bintree.h, ft_bt_sample_texel: height, the morph's coarse height,
+ * the inserting diamond's error, a 12+12-bit hemi-octahedral normal), and no search; the
+ * lowest set bit of a coordinate is integer arithmetic. GLES 2 (and GLES 3
+ * with bintree.vertex_table = 0) reads the samples, the error table and the
+ * normal's four neighbours.
+ *
  * Padding: coordinates are clamped into the real grid; clamped vertices do
  * not morph. All arithmetic on grid coordinates is on integers below 2^24
  * (exact in highp float; divisions are by powers of two). */
 
 precision highp float;
+
+/* Compile-time variants (src/method.c, ft_method_vertex_defines): the code a
+ * scene does not use is not in its shader. A branch costs its time on a SIMD
+ * rasteriser even when no vertex takes it, so this is also speed. */
+#ifndef FT_BT_SUB
+#define FT_BT_SUB 1 /* bintree.subsample_levels > 0 */
+#endif
+#ifndef FT_BT_VTX
+#define FT_BT_VTX 0 /* bintree.vertex_table (GLES 3) */
+#endif
 
 #include "curvature.glsl"
 
@@ -53,6 +70,9 @@ uniform vec4 u_bt_sub;        /* (2^S, 2^(k+S): table lattice step in fine units
 uniform sampler2D u_bt_twist; /* twist atlas (S > 0) */
 uniform vec4 u_bt_twist_pack; /* (pack like u_pack, atlas width, height) */
 uniform vec2 u_bt_twist_off[9]; /* atlas origin of each twist level */
+#if FT_ES3 && FT_BT_VTX
+uniform highp sampler2D u_bt_vtx; /* the one-fetch vertex table (src/bintree.h) */
+#endif
 
 FT_IN_VS vec2 a_uv;
 #if FT_ES3
@@ -92,6 +112,7 @@ float ft_bilinear(vec4 h, vec2 cf, vec2 g)
     return h.x + (h.y - h.x) * uv.x + (h.z - h.x) * uv.y + ((h.x + h.w) - (h.y + h.z)) * uv.x * uv.y;
 }
 
+#if FT_BT_SUB
 float ft_twist_texel(vec2 p)
 {
 #if FT_ES3
@@ -134,6 +155,7 @@ float ft_sub_error(vec2 c, float sd, bool even_level)
     d = max(d, ft_twist_texel(off + b1));
     return 0.25 * leg * leg * d;
 }
+#endif
 
 /* Error of the diamond that inserts vertex g (fine units) and the coarse
  * edge e0-e1 it bisects. Negative when g never morphs. */
@@ -141,7 +163,12 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
 {
     e0 = g;
     e1 = g;
-    float s = 0.0; /* lowest power of two that does not divide both coordinates */
+    /* s: the lowest power of two that does not divide both coordinates */
+#if FT_ES3
+    int gi = int(g.x) | int(g.y);
+    float s = float(gi & -gi);
+#else
+    float s = 0.0;
     float p = 1.0;
     for (int i = 0; i < 20; ++i) {
         if (mod(g.x, 2.0 * p) != 0.0 || mod(g.y, 2.0 * p) != 0.0) {
@@ -150,6 +177,7 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
         }
         p *= 2.0;
     }
+#endif
     float sd = 2.0 * s * u_bt_lattice.x; /* square side of the inserting diamond */
     if (s == 0.0 || sd > u_bt_lattice.z) {
         return -1.0;
@@ -186,9 +214,11 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
         return -1.0;
     }
     vec2 lc = c / u_bt_sub.y;
+#if FT_BT_SUB
     if (lc != floor(lc)) {
         return ft_sub_error(c, sd, odd_x && odd_y); /* a diamond below the samples */
     }
+#endif
 #if FT_ES3
     vec4 t = texelFetch(u_bt_err, ivec2(lc), 0);
 #else
@@ -197,24 +227,62 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
     return ft_decode(t, u_bt_err_pack);
 }
 
-void main()
+/* The outputs of a vertex at grid point gs with drawn height h, morph w. */
+void ft_emit(vec2 gs, float h, float w)
 {
-    vec2 apex = i_tile0.xy;
-    vec2 g_raw = apex + a_uv.x * (i_tile0.zw - apex) + a_uv.y * (i_tile1 - apex);
+    v_morph = w;
+    v_height_m = h;
+    v_pos_rel_eye_m = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
+    gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
+}
+
+/* Morph weight of a vertex at gs, true height h, inserting diamond error err_m. */
+float ft_morph_weight(vec2 gs, float h, float err_m)
+{
+    vec3 p_true = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
+    float dist = max(length(p_true), 1e-3);
+    float c = max(dot(p_true, u_bt_axis.xyz) / dist, u_bt_axis.w);
+    float rho = u_bt_morph.x * err_m / (dist * c * c);
+    return clamp((rho - u_bt_morph.y) / u_bt_morph.z, 0.0, 1.0);
+}
+
+#if FT_ES3 && FT_BT_VTX
+/* A vertex on a sample, one fetch: height, coarse height, inserting
+ * diamond's error, normal. moved: the padding clamp moved it (no morph). */
+void ft_sample_vertex(vec2 gs, bool moved)
+{
+    vec4 vt = texelFetch(u_bt_vtx, ivec2(gs), 0);
+    float h = vt.x;
+    float qu = floor(vt.w / 4096.0); /* hemi-octahedral (u, v), 12 bits each */
+    vec2 uv = vec2(qu, vt.w - qu * 4096.0) / 4095.0 * 2.0 - 1.0;
+    vec2 nxy = 0.5 * vec2(uv.x + uv.y, uv.x - uv.y);
+    v_normal = normalize(vec3(nxy, 1.0 - abs(nxy.x) - abs(nxy.y)));
+    float w = 1.0;
+    if (u_bt_morph.w > 0.5 && vt.z >= 0.0 && !moved) {
+        w = ft_morph_weight(gs, h, vt.z);
+        h = mix(vt.y, h, w);
+    }
+    ft_emit(gs, h, w);
+}
+#endif
+
+/* Any vertex, from the samples, the error table and (S > 0) the twist atlas. */
+void ft_general_vertex(vec2 g_raw, vec2 g, vec2 gs, bool on_sample)
+{
     float f = u_bt_sub.x;
-    vec2 g = min(g_raw, (u_grid_size - 1.0) * f); /* padding collapses onto the grid edge */
-    vec2 gs = g / f;                              /* grid coordinates */
-    bool on_sample = (gs == floor(gs));
     float h;
     vec4 cell = vec4(0.0); /* corner heights of a sub-sample vertex's cell */
     vec2 cf = vec2(0.0);   /* that cell's corner, fine units */
+#if FT_BT_SUB
     if (on_sample) {
+#endif
         h = ft_height(gs);
         vec2 lo = max(gs - 1.0, vec2(0.0));
         vec2 hi = min(gs + 1.0, u_grid_size - 1.0);
         float dhx = (ft_height(vec2(hi.x, gs.y)) - ft_height(vec2(lo.x, gs.y))) / ((hi.x - lo.x) * u_cell_m.x);
         float dhy = (ft_height(vec2(gs.x, hi.y)) - ft_height(vec2(gs.x, lo.y))) / ((hi.y - lo.y) * u_cell_m.y);
         v_normal = normalize(vec3(-dhx, -dhy, 1.0));
+#if FT_BT_SUB
     } else {
         vec2 c = clamp(floor(gs), vec2(0.0), u_grid_size - 2.0);
         cell = vec4(ft_height(c), ft_height(c + vec2(1.0, 0.0)), ft_height(c + vec2(0.0, 1.0)),
@@ -227,25 +295,44 @@ void main()
         float dhy = ((cell.z - cell.x) + tw * uv.x) / u_cell_m.y;
         v_normal = normalize(vec3(-dhx, -dhy, 1.0));
     }
+#endif
 
     float w = 1.0;
     if (u_bt_morph.w > 0.5) {
         vec2 e0, e1;
         float err_m = ft_morph_error(g_raw, e0, e1);
         if (err_m >= 0.0) {
-            vec3 p_true = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
-            float dist = max(length(p_true), 1e-3);
-            float c = max(dot(p_true, u_bt_axis.xyz) / dist, u_bt_axis.w);
-            float rho = u_bt_morph.x * err_m / (dist * c * c);
-            w = clamp((rho - u_bt_morph.y) / u_bt_morph.z, 0.0, 1.0);
+            w = ft_morph_weight(gs, h, err_m);
+#if FT_BT_SUB
             /* a sub-sample vertex's coarse edge lies in its own cell */
             float h0 = on_sample ? ft_height(e0 / f) : ft_bilinear(cell, cf, e0);
             float h1 = on_sample ? ft_height(e1 / f) : ft_bilinear(cell, cf, e1);
+#else
+            float h0 = ft_height(e0 / f);
+            float h1 = ft_height(e1 / f);
+#endif
             h = mix(0.5 * (h0 + h1), h, w);
         }
     }
-    v_morph = w;
-    v_height_m = h;
-    v_pos_rel_eye_m = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
-    gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
+    ft_emit(gs, h, w);
+}
+
+void main()
+{
+    vec2 apex = i_tile0.xy;
+    vec2 g_raw = apex + a_uv.x * (i_tile0.zw - apex) + a_uv.y * (i_tile1 - apex);
+    float f = u_bt_sub.x;
+    vec2 g = min(g_raw, (u_grid_size - 1.0) * f); /* padding collapses onto the grid edge */
+    vec2 gs = g / f;                              /* grid coordinates */
+#if FT_ES3 && FT_BT_VTX && FT_BT_SUB
+    if (gs == floor(gs)) {
+        ft_sample_vertex(gs, g_raw != g);
+    } else {
+        ft_general_vertex(g_raw, g, gs, false);
+    }
+#elif FT_ES3 && FT_BT_VTX
+    ft_sample_vertex(gs, g_raw != g); /* without sub-sample levels every vertex is on a sample */
+#else
+    ft_general_vertex(g_raw, g, gs, gs == floor(gs));
+#endif
 }

@@ -889,6 +889,8 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
     const int32_t hy = ((int32_t)bt->height - 1) << bt->sub;
     const float inv_f = 1.0f / (float)(1u << bt->sub); /* exact: a power of two */
     st->tiles = 0;
+    st->tiles_coarse = 0;
+    uint32_t tiles_fine = 0; /* emitted from the end of the list, moved after the coarse */
     st->leaf_px_max = 0.0;
     st->nodes_visited = 0;
     st->culled = 0;
@@ -959,7 +961,10 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
         if (st->tiles >= bt->tiles_max) {
             return 0;
         }
-        ft_bt_tile *out = &bt->tiles[st->tiles++];
+        const int fine = (bt->sub > 0u && t.level >= bt->sub_level);
+        ft_bt_tile *out = fine ? &bt->tiles[bt->tiles_max - 1u - tiles_fine++]
+                               : &bt->tiles[st->tiles_coarse++];
+        st->tiles += 1u;
         memcpy(out->apex, t.apex, sizeof out->apex);
         memcpy(out->left, t.left, sizeof out->left);
         memcpy(out->right, t.right, sizeof out->right);
@@ -967,6 +972,14 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
         st->level_min = (t.level < st->level_min) ? t.level : st->level_min;
         st->level_max = (t.level > st->level_max) ? t.level : st->level_max;
     }
+    /* the fine tiles (in reverse order at the end) follow the coarse ones */
+    ft_bt_tile *fine0 = &bt->tiles[bt->tiles_max - tiles_fine];
+    for (uint32_t a = 0, b = tiles_fine; a + 1u < b; ++a, --b) {
+        const ft_bt_tile tmp = fine0[a];
+        fine0[a] = fine0[b - 1u];
+        fine0[b - 1u] = tmp;
+    }
+    memmove(&bt->tiles[st->tiles_coarse], fine0, (size_t)tiles_fine * sizeof(ft_bt_tile));
     return 1;
 }
 
@@ -1045,4 +1058,77 @@ int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2]
         return 0;
     }
     return 1;
+}
+
+/* ---- the one-fetch vertex table --------------------------------------------- */
+
+float ft_bt_pack_normal(const double n[3])
+{
+    /* hemi-octahedral: project on |x| + |y| + z = 1, turn the diamond 45 deg
+     * into the square [-1, 1]^2 (even precision over the hemisphere) */
+    const double l1 = fabs(n[0]) + fabs(n[1]) + n[2];
+    const double px = n[0] / l1, py = n[1] / l1;
+    const double uv[2] = {px + py, px - py};
+    uint32_t q[2];
+    for (int i = 0; i < 2; ++i) {
+        double v = floor((uv[i] + 1.0) * 0.5 * FT_BT_NORMAL_Q + 0.5);
+        v = (v < 0.0) ? 0.0 : ((v > FT_BT_NORMAL_Q) ? FT_BT_NORMAL_Q : v);
+        q[i] = (uint32_t)v;
+    }
+    return (float)(q[0] * 4096u + q[1]);
+}
+
+void ft_bt_unpack_normal(float packed, double n[3])
+{
+    /* the shader's arithmetic: p / 4096 is exact, floor and subtraction too */
+    const double p = (double)packed;
+    const double qx = floor(p / 4096.0), qy = p - qx * 4096.0;
+    const double u = qx / FT_BT_NORMAL_Q * 2.0 - 1.0, v = qy / FT_BT_NORMAL_Q * 2.0 - 1.0;
+    n[0] = 0.5 * (u + v);
+    n[1] = 0.5 * (u - v);
+    n[2] = 1.0 - fabs(n[0]) - fabs(n[1]);
+    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int i = 0; i < 3; ++i) {
+        n[i] /= len;
+    }
+}
+
+static float sample_at(const ft_bintree *bt, uint32_t x, uint32_t y)
+{
+    return bt->heights_m[(size_t)y * bt->width + x];
+}
+
+void ft_bt_sample_texel(const ft_bintree *bt, uint32_t gx, uint32_t gy, float out[4])
+{
+    const float h = sample_at(bt, gx, gy);
+    /* normal: central differences, one-sided at the grid edge */
+    const uint32_t x0 = (gx > 0u) ? gx - 1u : 0u, x1 = (gx + 1u < bt->width) ? gx + 1u : gx;
+    const uint32_t y0 = (gy > 0u) ? gy - 1u : 0u, y1 = (gy + 1u < bt->height) ? gy + 1u : gy;
+    const double dhx = ((double)sample_at(bt, x1, gy) - (double)sample_at(bt, x0, gy)) /
+                       ((double)(x1 - x0) * bt->terrain->cell_x_m);
+    const double dhy = ((double)sample_at(bt, gx, y1) - (double)sample_at(bt, gx, y0)) /
+                       ((double)(y1 - y0) * bt->terrain->cell_y_m);
+    const double len = sqrt(dhx * dhx + dhy * dhy + 1.0);
+    out[0] = h;
+    out[1] = h;
+    out[2] = -1.0f;
+    const double n[3] = {-dhx / len, -dhy / len, 1.0 / len};
+    out[3] = ft_bt_pack_normal(n);
+    int32_t e0[2], e1[2], c[2];
+    const int32_t x = (int32_t)(gx << bt->sub), y = (int32_t)(gy << bt->sub);
+    if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c)) {
+        return;
+    }
+    /* a sample's inserting diamond lies on the table lattice (its square side
+     * is at least 2^(k+S+1) fine units) */
+    const uint32_t sh = bt->k + bt->sub;
+    const size_t li = (size_t)((uint32_t)c[1] >> sh) * bt->lattice_side + ((uint32_t)c[0] >> sh);
+    if (li >= (size_t)bt->lattice_side * bt->lattice_side) {
+        return;
+    }
+    const float h0 = sample_at(bt, (uint32_t)e0[0] >> bt->sub, (uint32_t)e0[1] >> bt->sub);
+    const float h1 = sample_at(bt, (uint32_t)e1[0] >> bt->sub, (uint32_t)e1[1] >> bt->sub);
+    const float sum = h0 + h1;
+    out[1] = 0.5f * sum;
+    out[2] = bt->err_m[li];
 }

@@ -87,6 +87,9 @@ typedef struct ft_bt_tile {
 
 typedef struct ft_bt_select_stats {
     uint32_t tiles;
+    /* tiles [0, tiles_coarse) have every template vertex on a sample; the
+     * rest (S > 0 only) are finer than the samples; DFS order within each */
+    uint32_t tiles_coarse;
     uint32_t nodes_visited;
     uint32_t culled;
     uint32_t attempts;       /* selections run (1 unless the budget was hit) */
@@ -193,5 +196,22 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
  * diamond c (lattice) splits. Returns 0 when the vertex never morphs. */
 int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
                        int32_t c[2]);
+
+/* The one-fetch vertex table (GLES 3): per sample one RGBA32F texel with
+ * what a vertex on that sample needs, so it does one texel fetch and no
+ * search for its diamond:
+ *   x  its height (m),
+ *   y  the morph's coarse height (h(e0) + h(e1)) / 2 in float arithmetic, the
+ *      shader's own expression (its height when it never morphs),
+ *   z  the error (m) of the diamond that inserts it, or -1 when it never
+ *      morphs (ft_bt_vertex_morph),
+ *   w  its unit normal (central differences, one-sided at the grid edge)
+ *      in hemi-octahedral coordinates (u, v) = (x + y, x - y) / (|x| + |y| + z),
+ *      12 bits each: qu * 4096 + qv, an integer below 2^24 (exact in float).
+ * A vertex between samples reads its cell's four heights instead. */
+#define FT_BT_NORMAL_Q 4095.0
+void ft_bt_sample_texel(const ft_bintree *bt, uint32_t gx, uint32_t gy, float out[4]);
+float ft_bt_pack_normal(const double n[3]); /* n unit, n[2] >= 0 */
+void ft_bt_unpack_normal(float packed, double n[3]);
 
 #endif

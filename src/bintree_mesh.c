@@ -195,6 +195,9 @@ void ft_bt_mesh_vertex_of(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
     out->normal[0] = -dhx / nlen;
     out->normal[1] = -dhy / nlen;
     out->normal[2] = 1.0 / nlen;
+    if (on_sample && u->vertex_table) {
+        ft_bt_unpack_normal(ft_bt_pack_normal(out->normal), out->normal);
+    }
     out->on_sample = on_sample;
     out->err_m = -1.0;
     out->err_closed_form = 0;

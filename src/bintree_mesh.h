@@ -55,6 +55,8 @@ typedef struct ft_bt_mesh_uniforms {
     int morph;                  /* u_bt_morph.w > 0.5 */
     double axis[3];             /* u_bt_axis.xyz: unit view axis */
     double corner_cos;          /* u_bt_axis.w: ft_view_corner_cos */
+    int vertex_table;           /* GLES 3: a sample vertex's normal is the vertex
+                                   table's 12+12-bit one (ft_bt_sample_texel) */
 } ft_bt_mesh_uniforms;
 
 /* The uniforms the method sets for a frame (src/methods/method_bintree.c,

@@ -203,6 +203,10 @@ typedef void *ft_gl_voidp;
        GLint border, GLenum format, GLenum type, const void *pixels),                              \
       (target, level, internalformat, width, height, border, format, type, pixels))                \
     V(TexParameteri, (GLenum target, GLenum pname, GLint param), (target, pname, param))           \
+    V(TexSubImage2D,                                                                               \
+      (GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,    \
+       GLenum format, GLenum type, const void *pixels),                                            \
+      (target, level, xoffset, yoffset, width, height, format, type, pixels))                      \
     V(Uniform1f, (GLint location, GLfloat v0), (location, v0))                                     \
     V(Uniform1i, (GLint location, GLint v0), (location, v0))                                       \
     V(Uniform1fv, (GLint location, GLsizei count, const GLfloat *value), (location, count, value)) \
@@ -236,6 +240,9 @@ typedef void *ft_gl_voidp;
     V(BeginTransformFeedback, (GLenum primitiveMode), (primitiveMode))                             \
     V(EndTransformFeedback, (void), ())                                                            \
     V(BindBufferBase, (GLenum target, GLuint index, GLuint buffer), (target, index, buffer))       \
+    V(BindBufferRange,                                                                             \
+      (GLenum target, GLuint index, GLuint buffer, GLintptr offset, GLsizeiptr size),              \
+      (target, index, buffer, offset, size))                                                       \
     V(DrawBuffers, (GLsizei n, const GLenum *bufs), (n, bufs))                                     \
     R(ft_gl_voidp, MapBufferRange,                                                                 \
       (GLenum target, GLintptr offset, GLsizeiptr length, GLbitfield access),                      \

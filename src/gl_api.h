@@ -70,6 +70,7 @@
     X(PFNGLSHADERSOURCEPROC, ShaderSource)                         \
     X(PFNGLTEXIMAGE2DPROC, TexImage2D)                             \
     X(PFNGLTEXPARAMETERIPROC, TexParameteri)                       \
+    X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D)                       \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                               \
     X(PFNGLUNIFORM1IPROC, Uniform1i)                               \
     X(PFNGLUNIFORM1FVPROC, Uniform1fv)                             \
@@ -94,6 +95,7 @@
     X(PFNGLBEGINTRANSFORMFEEDBACKPROC, BeginTransformFeedback) \
     X(PFNGLENDTRANSFORMFEEDBACKPROC, EndTransformFeedback)   \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)               \
+    X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)             \
     X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                     \
     X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange)               \
     X(PFNGLUNMAPBUFFERPROC, UnmapBuffer)

@@ -26,7 +26,7 @@
     X(FT_POOL_FRAME_POS, "frame_pos_bytes", "position readback (RGBA32F)")         \
     X(FT_POOL_REFERENCE, "reference_bytes", "reference ray-caster output")         \
     X(FT_POOL_METRIC, "metric_bytes", "error metric scratch (per-pixel errors)")   \
-    X(FT_POOL_GPU_STAGING, "gpu_staging_bytes", "upload staging (packed heights)") \
+    X(FT_POOL_GPU_STAGING, "gpu_staging_bytes", "upload staging (packed heights, vertex tables)") \
     X(FT_POOL_METHOD, "method_bytes", "LOD method state (templates, tile lists)")  \
     X(FT_POOL_PNG, "png_bytes", "PNG encoder scratch (libpng + zlib)")
 

@@ -16,6 +16,29 @@ const char *ft_method_vertex_shader(ft_method_kind m)
     }
 }
 
+const char *ft_method_vertex_defines(const ft_scene *s, int es3)
+{
+    if (s->method != FT_METHOD_BINTREE) {
+        return "";
+    }
+    const int sub = s->bintree_subsample_levels > 0u;
+    const int vtx = es3 && s->bintree_vertex_table;
+    static const char *const k_bintree[2][2] = {
+        {"#define FT_BT_SUB 0\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n"},
+        {"#define FT_BT_SUB 1\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 1\n#define FT_BT_VTX 1\n"},
+    };
+    return k_bintree[sub][vtx];
+}
+
+const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3)
+{
+    if (s->method != FT_METHOD_BINTREE || s->bintree_subsample_levels == 0u || !es3 ||
+        !s->bintree_vertex_table) {
+        return NULL;
+    }
+    return "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n";
+}
+
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     (void)t;

@@ -51,12 +51,14 @@ typedef struct ft_bintree_method {
     ft_bintree bt;
     GLuint vbo, ibo, inst_vbo, err_tex;
     GLuint twist_tex;              /* sub-sample levels: the twist atlas (unit 2) */
+    GLuint vtx_tex;                /* GLES 3: the one-fetch vertex table (unit 3, RGBA32F) */
     ft_scalar_format twist_fmt;
     uint32_t index_count, triangles_per_tile;
     float *inst; /* tiles_max * 6 corner coordinates (FT_POOL_METHOD) */
     double tau_px;    /* bintree.tau_px */
     double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
     int morph, es3;
+    int vertex_table; /* GLES 3 and bintree.vertex_table: vtx_tex is used */
     ft_scalar_format err_fmt;
     uint64_t gpu_bytes;
     /* the last selection and the view it was made for */
@@ -150,6 +152,13 @@ typedef struct ft_method {
 
 /* The vertex shader (embedded name) the method draws with. */
 const char *ft_method_vertex_shader(ft_method_kind m);
+/* Lines placed before the vertex shader's body: the compile-time variant
+ * the scene needs (bintree: sub-sample levels, vertex table), "" for none. */
+const char *ft_method_vertex_defines(const ft_scene *s, int es3);
+/* The variant for tiles whose every vertex is on a sample, when the method
+ * draws those with a program of their own (bintree, GLES 3, sub-sample
+ * levels and the vertex table), else NULL. */
+const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3);
 
 /* CPU pool needs (FT_POOL_METHOD) of the scene's method. */
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);

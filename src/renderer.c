@@ -38,8 +38,8 @@ void ft_renderer_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 
 /* ---- programs ------------------------------------------------------------- */
 
-static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, GLuint *out,
-                         ft_error *err)
+static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name,
+                         const char *defines, GLuint *out, ft_error *err)
 {
     const char *prelude =
         ft_shader_find(gl->api == FT_GL_API_ES3 ? "prelude_es3.glsl" : "prelude_es2.glsl");
@@ -48,8 +48,8 @@ static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, G
         return ft_fail(err, FT_ERR_ARG, "embedded shader %s missing", body_name);
     }
     GLuint sh = gl->CreateShader(stage);
-    const GLchar *parts[2] = {prelude, body};
-    gl->ShaderSource(sh, 2, parts, NULL);
+    const GLchar *parts[3] = {prelude, defines != NULL ? defines : "", body};
+    gl->ShaderSource(sh, 3, parts, NULL);
     gl->CompileShader(sh);
     GLint ok = 0;
     gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
@@ -66,18 +66,18 @@ static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name, G
     return FT_OK;
 }
 
-/* Compiles and links vert + frag with attribute slots 0, 1, 2 bound to
- * attribs[0..2]. */
+/* Compiles and links vert (after the lines vert_defines, may be NULL) + frag
+ * with attribute slots 0, 1, 2 bound to attribs[0..2]. */
 static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
-                                      const char *frag_name, const char *const attribs[3],
-                                      GLuint *out, ft_error *err)
+                                      const char *vert_defines, const char *frag_name,
+                                      const char *const attribs[3], GLuint *out, ft_error *err)
 {
     GLuint vs = 0, fs = 0;
-    ft_status s = compile(gl, GL_VERTEX_SHADER, vert_name, &vs, err);
+    ft_status s = compile(gl, GL_VERTEX_SHADER, vert_name, vert_defines, &vs, err);
     if (s != FT_OK) {
         return s;
     }
-    s = compile(gl, GL_FRAGMENT_SHADER, frag_name, &fs, err);
+    s = compile(gl, GL_FRAGMENT_SHADER, frag_name, NULL, &fs, err);
     if (s != FT_OK) {
         gl->DeleteShader(vs);
         return s;
@@ -113,7 +113,7 @@ static ft_status link_program(const ft_gl *gl, const char *vert_name, const char
                               const char *attr0, GLuint *out, ft_error *err)
 {
     const char *const attribs[3] = {attr0, "i_tile0", "i_tile1"};
-    return link_program_attribs(gl, vert_name, frag_name, attribs, out, err);
+    return link_program_attribs(gl, vert_name, NULL, frag_name, attribs, out, err);
 }
 
 static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
@@ -143,6 +143,7 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_bt_sub);
     FT_UNIFORM(u_bt_twist);
     FT_UNIFORM(u_bt_twist_pack);
+    FT_UNIFORM(u_bt_vtx);
     FT_UNIFORM(u_earth_drop_per_m2);
     FT_UNIFORM(u_pgm_atlas);
     FT_UNIFORM(u_pgm_atlas_size);
@@ -179,12 +180,13 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
 
 static const char *const k_terrain_attribs[3] = {"a_uv", "i_tile0", "i_tile1"};
 
-static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                               const char *const attribs[3], ft_terrain_program *p,
-                               ft_error *err)
+static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *vert_defines,
+                               const char *frag_name, const char *const attribs[3],
+                               ft_terrain_program *p, ft_error *err)
 {
     GLuint prog = 0;
-    ft_status s = link_program_attribs(gl, vert_name, frag_name, attribs, &prog, err);
+    ft_status s =
+        link_program_attribs(gl, vert_name, vert_defines, frag_name, attribs, &prog, err);
     if (s != FT_OK) {
         return s;
     }
@@ -424,22 +426,43 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     }
     r->gpu_bytes += r->gt.bytes;
     const char *vert = ft_method_vertex_shader(s->method);
-    st = build_program(gl, vert, "terrain.frag.glsl", k_terrain_attribs, &r->prog_color, err);
+    const char *vert_defines = ft_method_vertex_defines(s, gl->api == FT_GL_API_ES3);
+    st = build_program(gl, vert, vert_defines, "terrain.frag.glsl", k_terrain_attribs,
+                       &r->prog_color, err);
     if (st != FT_OK) {
         return st;
     }
     set_static_uniforms(gl, &r->prog_color, t, &r->gt);
+    const char *coarse_defines = ft_method_vertex_defines_coarse(s, gl->api == FT_GL_API_ES3);
+    if (coarse_defines != NULL) {
+        st = build_program(gl, vert, coarse_defines, "terrain.frag.glsl", k_terrain_attribs,
+                           &r->prog_color_coarse, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        set_static_uniforms(gl, &r->prog_color_coarse, t, &r->gt);
+        r->prog_color.coarse = &r->prog_color_coarse;
+    }
     st = make_targets(r, err);
     if (st != FT_OK) {
         return st;
     }
     if (r->has_pos_target) {
-        st = build_program(gl, vert, "terrain_pos.frag.glsl", k_terrain_attribs, &r->prog_pos,
-                           err);
+        st = build_program(gl, vert, vert_defines, "terrain_pos.frag.glsl", k_terrain_attribs,
+                           &r->prog_pos, err);
         if (st != FT_OK) {
             return st;
         }
         set_static_uniforms(gl, &r->prog_pos, t, &r->gt);
+        if (coarse_defines != NULL) {
+            st = build_program(gl, vert, coarse_defines, "terrain_pos.frag.glsl",
+                               k_terrain_attribs, &r->prog_pos_coarse, err);
+            if (st != FT_OK) {
+                return st;
+            }
+            set_static_uniforms(gl, &r->prog_pos_coarse, t, &r->gt);
+            r->prog_pos.coarse = &r->prog_pos_coarse;
+        }
     }
     if (gpu->display != FT_DISPLAY_NONE) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
@@ -546,16 +569,25 @@ ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyi
         return ft_fail(err, FT_ERR_ARG, "vertex capture: %u varyings (1..%u)", count,
                        FT_CAPTURE_VARYINGS_MAX);
     }
-    ft_terrain_program *p = &r->prog_color;
-    gl->TransformFeedbackVaryings(p->program, (GLsizei)count, varyings, GL_INTERLEAVED_ATTRIBS);
-    gl->LinkProgram(p->program); /* the shaders are still attached */
-    GLint ok = 0;
-    gl->GetProgramiv(p->program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        return ft_fail(err, FT_ERR_GPU, "relinking the colour program for capture failed");
+    ft_terrain_program *progs[2] = {&r->prog_color, &r->prog_color_coarse};
+    for (int i = 0; i < 2; ++i) {
+        ft_terrain_program *p = progs[i];
+        if (p->program == 0u) {
+            continue;
+        }
+        gl->TransformFeedbackVaryings(p->program, (GLsizei)count, varyings,
+                                      GL_INTERLEAVED_ATTRIBS);
+        gl->LinkProgram(p->program); /* the shaders are still attached */
+        GLint ok = 0;
+        gl->GetProgramiv(p->program, GL_LINK_STATUS, &ok);
+        if (!ok) {
+            return ft_fail(err, FT_ERR_GPU, "relinking the colour program for capture failed");
+        }
+        const ft_terrain_program *coarse = p->coarse;
+        locate_uniforms(gl, p); /* a relink may move uniforms and resets their values */
+        p->coarse = coarse;
+        set_static_uniforms(gl, p, r->terrain, &r->gt);
     }
-    locate_uniforms(gl, p); /* a relink may move uniforms and resets their values */
-    set_static_uniforms(gl, p, r->terrain, &r->gt);
     return ft_gl_check(gl, "vertex capture relink", err);
 }
 
@@ -572,13 +604,21 @@ static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_came
     gl->DepthMask(GL_TRUE);
     gl->ClearDepthf(1.0f);
     gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    gl->UseProgram(p->program);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, r->gt.heights_tex);
-    gl->UniformMatrix4fv(p->u_view_proj, 1, GL_FALSE, cam->view_proj);
-    /* Relative to eye: the subtraction happens here, in double. */
-    gl->Uniform3f(p->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
-                  (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+    /* the coarse companion first, so the pass's own program is current after */
+    const ft_terrain_program *progs[2] = {p->coarse, p};
+    for (int i = 0; i < 2; ++i) {
+        if (progs[i] == NULL) {
+            continue;
+        }
+        gl->UseProgram(progs[i]->program);
+        gl->UniformMatrix4fv(progs[i]->u_view_proj, 1, GL_FALSE, cam->view_proj);
+        /* Relative to eye: the subtraction happens here, in double. */
+        gl->Uniform3f(progs[i]->u_origin_rel_eye_m,
+                      (float)(t->origin_world_x_m - cam->eye_m[0]),
+                      (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+    }
     ft_method_draw(&r->method, gl, p, t, cam, ms);
 }
 
@@ -731,6 +771,8 @@ void ft_renderer_shutdown(ft_renderer *r)
     ft_overlay_shutdown(&r->overlay, gl);
     if (r->timer_query) gl->DeleteQueries(1, &r->timer_query);
     if (r->prog_color.program) gl->DeleteProgram(r->prog_color.program);
+    if (r->prog_color_coarse.program) gl->DeleteProgram(r->prog_color_coarse.program);
+    if (r->prog_pos_coarse.program) gl->DeleteProgram(r->prog_pos_coarse.program);
     if (r->present_program) gl->DeleteProgram(r->present_program);
     if (r->present_vbo) gl->DeleteBuffers(1, &r->present_vbo);
     if (r->prog_pos.program) gl->DeleteProgram(r->prog_pos.program);
@@ -772,7 +814,7 @@ ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_te
                                                     const char *const attribs[3],
                                                     ft_terrain_program *p, ft_error *err)
 {
-    ft_status st = build_program(gl, vert_name, frag_name, attribs, p, err);
+    ft_status st = build_program(gl, vert_name, NULL, frag_name, attribs, p, err);
     if (st == FT_OK) {
         set_static_uniforms(gl, p, t, gt);
     }

@@ -30,6 +30,7 @@ typedef struct ft_terrain_program {
     GLint u_earth_drop_per_m2; /* curvature (shaders/curvature.glsl) */
     GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph, u_bt_axis; /* bintree geomorph */
     GLint u_bt_sub, u_bt_twist, u_bt_twist_pack;       /* ... and its sub-sample levels */
+    GLint u_bt_vtx;                                    /* GLES 3: the vertex table */
     GLint u_bt_twist_off[FT_BT_TWIST_LEVELS_MAX];
     /* pgm: avg-pyramid atlas, sampling camera, grid band (shaders/pgm.vert.glsl) */
     GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
@@ -40,6 +41,10 @@ typedef struct ft_terrain_program {
     GLint u_pgrid_quad, u_pgrid_tight; /* the tight bound (src/pgrid.h 6) */
     GLint u_pgrid_vtx, u_pgrid_slope;  /* ... and the vertex pass it reads */
     GLint u_pgrid_mm_level[FT_PYRAMID_LEVELS_MAX];
+    /* The same pass compiled for tiles whose every vertex is on a sample
+     * (ft_method_vertex_defines_coarse), or NULL: the bintree draws its
+     * coarse tiles with it, so they run none of the sub-sample code. */
+    const struct ft_terrain_program *coarse;
 } ft_terrain_program;
 
 /* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
@@ -95,6 +100,7 @@ typedef struct ft_renderer {
     int has_pos_target;
     ft_gpu_terrain gt;
     ft_terrain_program prog_color, prog_pos;
+    ft_terrain_program prog_color_coarse, prog_pos_coarse; /* see ft_terrain_program.coarse */
     ft_method method;
     GLuint present_program, present_vbo; /* display != none only */
     uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */

@@ -154,6 +154,7 @@ void ft_scene_defaults(ft_scene *s)
     s->bintree_tau_px = 1.0;
     s->bintree_morph = 1;
     s->bintree_subsample_levels = 0;
+    s->bintree_vertex_table = 1;
     s->pgm_grid_cols = 430;
     s->pgm_grid_rows = 430;
     s->pgrid_grid_cols = 200;
@@ -495,6 +496,9 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "subsample_levels") == 0) {
             return RANGE(parse_u32(value, 0, 4, &s->bintree_subsample_levels),
                          "expected 0..4");
+        }
+        if (strcmp(key, "vertex_table") == 0) {
+            return RANGE(parse_flag(value, &s->bintree_vertex_table), "expected 0 or 1");
         }
     } else if (strcmp(section, "pgm") == 0) {
         if (strcmp(key, "grid_cols") == 0) {

@@ -41,6 +41,9 @@
  *   bintree.morph         0 | 1: geomorph split vertices (split at tau/2)
  *   bintree.subsample_levels  0..4: tiles refine to 2^-S of a cell, their vertices
  *                         on the bilinear surface (the truth), so tau holds near the eye
+ *   bintree.vertex_table  0 | 1 (GLES 3): a vertex on a sample reads one RGBA32F texel
+ *                         (height, coarse height, diamond error, normal: 16 bytes a
+ *                         sample of GPU memory) instead of 8 fetches; 0 saves the memory
  *   pgm.grid_cols         persistent grid columns (vertices across the view) [2, 8192]
  *   pgm.grid_rows         persistent grid rows (vertices from near to far) [2, 8192]
  *                         (pgm uploads its own avg-pyramid atlas: gpu.pyramid_textures
@@ -179,6 +182,7 @@ typedef struct ft_scene {
     double bintree_tau_px;       /* bintree.tau_px */
     int bintree_morph;           /* bintree.morph */
     uint32_t bintree_subsample_levels; /* bintree.subsample_levels */
+    int bintree_vertex_table;          /* bintree.vertex_table (GLES 3 only) */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */

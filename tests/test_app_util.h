@@ -60,4 +60,75 @@ static inline int ft_test_have_data(const char *path)
     return 1;
 }
 
+/* Transform feedback of the bintree's last frame: its selected tiles drawn
+ * again as triangle lists (tmpl_vbo: the template expanded to tmpl_verts
+ * vertices) into tfb (bytes long, floats_per_vertex floats a vertex, in tile
+ * order), each tile through the program the frame drew it with: the coarse
+ * tiles through the pass's coarse program when it has one, the rest through
+ * the colour program (both still hold the frame's uniforms). Returns the
+ * primitives the GPU reports written, or the expected count without queries. */
+static inline uint64_t ft_test_bintree_capture(const ft_app *app, GLuint tfb, size_t bytes,
+                                               GLuint tmpl_vbo, uint32_t tmpl_verts,
+                                               uint32_t floats_per_vertex)
+{
+    const ft_gl *gl = app->renderer.gl;
+    const ft_bintree_method *bm = &app->renderer.method.u.bintree;
+    const ft_terrain_program *p = &app->renderer.prog_color;
+    const uint32_t n_coarse = (p->coarse != NULL) ? bm->sel.tiles_coarse : 0u;
+    const struct {
+        GLuint program;
+        uint32_t first, count;
+    } groups[2] = {{p->coarse != NULL ? p->coarse->program : 0u, 0u, n_coarse},
+                   {p->program, n_coarse, bm->sel.tiles - n_coarse}};
+    const size_t vertex_bytes = (size_t)floats_per_vertex * sizeof(float);
+    const GLsizei stride = (GLsizei)(6u * sizeof(float)); /* the method's instance layout */
+    GLuint query = 0;
+    if (gl->GenQueries != NULL) {
+        gl->GenQueries(1, &query);
+        gl->BeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
+    }
+    gl->Enable(GL_RASTERIZER_DISCARD);
+    gl->BindBuffer(GL_ARRAY_BUFFER, tmpl_vbo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    gl->BindBuffer(GL_ARRAY_BUFFER, bm->inst_vbo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
+    gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
+    for (int g = 0; g < 2; ++g) {
+        if (groups[g].count == 0u) {
+            continue;
+        }
+        const size_t at = (size_t)groups[g].first * (size_t)stride; /* no base instance */
+        const size_t out = (size_t)groups[g].first * tmpl_verts * vertex_bytes;
+        REQUIRE(out < bytes);
+        gl->UseProgram(groups[g].program);
+        gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)at);
+        gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
+                                (const void *)(at + 4u * sizeof(float)));
+        gl->BindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, tfb, (GLintptr)out,
+                            (GLsizeiptr)(bytes - out));
+        gl->BeginTransformFeedback(GL_TRIANGLES);
+        gl->DrawArraysInstanced(GL_TRIANGLES, 0, (GLsizei)tmpl_verts, (GLsizei)groups[g].count);
+        gl->EndTransformFeedback();
+    }
+    gl->UseProgram(p->program);
+    gl->Disable(GL_RASTERIZER_DISCARD);
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
+    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
+    gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
+    gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
+    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    uint64_t prims = (uint64_t)bm->sel.tiles * tmpl_verts / 3u;
+    if (query != 0u) {
+        gl->EndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+        GLuint n = 0;
+        gl->GetQueryObjectuiv(query, GL_QUERY_RESULT, &n);
+        prims = n;
+        gl->DeleteQueries(1, &query);
+    }
+    return prims;
+}
+
 #endif

@@ -294,6 +294,79 @@ static uint32_t ancestors(const ft_bintree *bt, const ft_bt_tile *tile, int32_t 
     return tile->level;
 }
 
+/* Tiles [0, tiles_coarse) are coarser than the samples (every template
+ * vertex on one), the rest (S > 0 only) finer: the method draws the two
+ * kinds with different programs. Returns the misplaced tiles. */
+static int check_partition(const ft_bintree *bt, const ft_bt_select_stats *ss)
+{
+    int bad = 0;
+    for (uint32_t i = 0; i < ss->tiles; ++i) {
+        const int fine = bt->sub > 0u && bt->tiles[i].level >= bt->sub_level;
+        bad += (i < ss->tiles_coarse) ? fine : !fine;
+    }
+    return bad;
+}
+
+/* The vertex table (ft_bt_sample_texel) against the rules it packs: the
+ * sample, the morph's coarse height in float, the selection's error of the
+ * inserting diamond, and the normal within its 12-bit quantisation. */
+static int check_vertex_table(const ft_bintree *bt, const ft_terrain *t)
+{
+    int bad = 0;
+    double normal_err = 0.0;
+    uint32_t morphing = 0;
+    for (uint32_t gy = 0; gy < bt->height; ++gy) {
+        for (uint32_t gx = 0; gx < bt->width; ++gx) {
+            float tx[4];
+            ft_bt_sample_texel(bt, gx, gy, tx);
+            const float h = t->heights_m[(size_t)gy * t->width + gx];
+            bad += tx[0] != h;
+            int32_t e0[2], e1[2], c[2];
+            const int32_t x = (int32_t)gx << bt->sub, y = (int32_t)gy << bt->sub;
+            if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c)) {
+                bad += tx[1] != h || tx[2] != -1.0f;
+            } else {
+                const float h0 = ft_bt_height_fine(bt, e0[0], e0[1]);
+                const float h1 = ft_bt_height_fine(bt, e1[0], e1[1]);
+                const float sum = h0 + h1;
+                bad += tx[1] != 0.5f * sum;
+                const int32_t s = (x | y) & -(x | y);
+                const int even = ((x / s) & 1) != 0 && ((y / s) & 1) != 0;
+                const uint32_t sd = 2u * (uint32_t)s * bt->step;
+                uint32_t half = 0;
+                while ((bt->fine_side >> half) > sd) {
+                    ++half;
+                }
+                float box[FT_BT_BOX_FLOATS];
+                const double e = ft_bt_diamond_error(bt, 2u * half + (even ? 0u : 1u), c, box);
+                bad += (double)tx[2] != e;
+                morphing += 1u;
+            }
+            /* the normal: central differences, one-sided at the edge */
+            const uint32_t x0 = gx > 0u ? gx - 1u : 0u, x1 = gx + 1u < t->width ? gx + 1u : gx;
+            const uint32_t y0 = gy > 0u ? gy - 1u : 0u, y1 = gy + 1u < t->height ? gy + 1u : gy;
+            const double dhx = ((double)t->heights_m[(size_t)gy * t->width + x1] -
+                                t->heights_m[(size_t)gy * t->width + x0]) /
+                               ((double)(x1 - x0) * t->cell_x_m);
+            const double dhy = ((double)t->heights_m[(size_t)y1 * t->width + gx] -
+                                t->heights_m[(size_t)y0 * t->width + gx]) /
+                               ((double)(y1 - y0) * t->cell_y_m);
+            const double len = sqrt(dhx * dhx + dhy * dhy + 1.0);
+            const double n[3] = {-dhx / len, -dhy / len, 1.0 / len};
+            double u[3];
+            ft_bt_unpack_normal(tx[3], u);
+            for (int i = 0; i < 3; ++i) {
+                normal_err = fmax(normal_err, fabs(u[i] - n[i]));
+            }
+        }
+    }
+    printf("  vertex table: %u x %u texels (%u morph), normal quantisation error %.2e\n",
+           bt->width, bt->height, morphing, normal_err);
+    /* 12 bits a hemi-octahedral component: under 5e-4 anywhere on the hemisphere */
+    bad += !(normal_err < 1e-3);
+    return bad;
+}
+
 static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t views,
                      int exact_checks)
 {
@@ -342,6 +415,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         ft_bt_select_stats ss;
         ft_bintree_select(&bt, &v, tau, &ss);
         CHECK(ss.tiles <= tiles_max);
+        CHECK(check_partition(&bt, &ss) == 0);
         CHECK(!ss.budget_hit);
         CHECK(ss.tau_used_px == tau);
         CHECK(ss.tau_achieved_px == fmax(tau, ss.leaf_px_max));
@@ -450,6 +524,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         /* culling only removes tiles, and what it keeps is conforming */
         ft_bt_view_from_camera(&cam, &t, 1, morph, &v);
         ft_bintree_select(&bt, &v, tau, &ss);
+        CHECK(check_partition(&bt, &ss) == 0);
         bad_tjunctions += count_t_junctions(&bt, ss.tiles, pts);
         for (uint32_t i = 0; i < ss.tiles; ++i) {
             if (bsearch(&bt.tiles[i], nocull, n_nocull, sizeof *nocull, tile_key_cmp) == NULL) {
@@ -458,6 +533,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         }
         CHECK(ss.tiles <= n_nocull);
     }
+    CHECK(check_vertex_table(&bt, &t) == 0);
     printf("  %u views: %u tiles, %u/%u template vertices morph; conformity %d, subset %d, "
            "error %d, bound %d, morph %d failures\n",
            views, total_tiles, morph_vertices, checked_vertices, bad_conf, bad_subset, bad_err,

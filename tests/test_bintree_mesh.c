@@ -149,57 +149,24 @@ static double selection_error(const ft_bintree *bt, const ft_bt_tile *tile, doub
  * into cap (verts + slack vertices, NaN-filled first). Returns the
  * primitives the GPU reports written (or the expected count when the
  * context has no queries). */
-static uint64_t capture(const ft_bintree_method *bm, GLuint tmpl_vbo, uint32_t tmpl_verts,
-                        size_t verts, size_t slack, float *cap)
+static uint64_t capture(GLuint tmpl_vbo, uint32_t tmpl_verts, size_t verts, size_t slack,
+                        float *cap)
 {
     const ft_gl *gl = g_app.renderer.gl;
     const size_t bytes = (verts + slack) * CAP_FLOATS * sizeof(float);
     memset(cap, 0xff, bytes); /* NaN: a vertex the capture did not write stays NaN */
-    GLuint tfb = 0, query = 0;
+    GLuint tfb = 0;
     gl->GenBuffers(1, &tfb);
     gl->BindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb);
     gl->BufferData(GL_TRANSFORM_FEEDBACK_BUFFER, (GLsizeiptr)bytes, cap, GL_STREAM_READ);
-    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, tfb);
-    /* the colour program is still in use, with this frame's uniforms */
-    gl->BindBuffer(GL_ARRAY_BUFFER, tmpl_vbo);
-    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
-    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    const GLsizei stride = (GLsizei)(6u * sizeof(float));
-    gl->BindBuffer(GL_ARRAY_BUFFER, bm->inst_vbo);
-    gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
-    gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
-    gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
-    gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
-                            (const void *)(4u * sizeof(float)));
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
-    if (gl->GenQueries != NULL) {
-        gl->GenQueries(1, &query);
-        gl->BeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
-    }
-    gl->Enable(GL_RASTERIZER_DISCARD);
-    gl->BeginTransformFeedback(GL_TRIANGLES);
-    gl->DrawArraysInstanced(GL_TRIANGLES, 0, (GLsizei)tmpl_verts, (GLsizei)bm->sel.tiles);
-    gl->EndTransformFeedback();
-    gl->Disable(GL_RASTERIZER_DISCARD);
-    uint64_t prims = verts / 3u;
-    if (query != 0u) {
-        gl->EndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-        GLuint n = 0;
-        gl->GetQueryObjectuiv(query, GL_QUERY_RESULT, &n);
-        prims = n;
-        gl->DeleteQueries(1, &query);
-    }
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
-    gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
-    gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
+    const uint64_t prims =
+        ft_test_bintree_capture(&g_app, tfb, bytes, tmpl_vbo, tmpl_verts, CAP_FLOATS);
+    gl->BindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb);
     const void *mapped =
         gl->MapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, (GLsizeiptr)bytes, GL_MAP_READ_BIT);
     REQUIRE(mapped != NULL);
     memcpy(cap, mapped, bytes);
     REQUIRE(gl->UnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER) == GL_TRUE);
-    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     gl->DeleteBuffers(1, &tfb);
     ft_error err;
     REQUIRE(ft_gl_check(gl, "transform feedback capture", &err) == FT_OK);
@@ -225,12 +192,13 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
     const size_t verts = (size_t)tiles * tp->nt * 3u, slack = 3u * tp->nt;
     float *cap = malloc((verts + slack) * CAP_FLOATS * sizeof(float));
     REQUIRE(cap != NULL);
-    const uint64_t prims = capture(bm, tp->flat_vbo, tp->nt * 3u, verts, slack, cap);
+    const uint64_t prims = capture(tp->flat_vbo, tp->nt * 3u, verts, slack, cap);
 
     /* the mirror: the bench's path (floats + indices) and, per vertex, in double */
     ft_bt_mesh_uniforms u, wrong;
     ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, bm->morph, &u);
     ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, !bm->morph, &wrong);
+    u.vertex_table = wrong.vertex_table = bm->vertex_table;
     REQUIRE(u.morph == bm->morph && wrong.morph == !bm->morph);
     const size_t mverts = (size_t)tiles * tp->nv;
     float *mesh = malloc(mverts * FT_BT_MESH_FLOATS * sizeof(float));

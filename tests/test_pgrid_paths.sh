@@ -22,7 +22,7 @@ status=0
 run() { # NAME SCENE DEM
   "$bin" bench --scene "$2" --dem "$3" --methods pgrid --path valley,climb,orbit \
     --size 320x240 --frames 8 --metric-every 2 \
-    --settings 'pgrid.gamma_px=0.5,1,2;pgrid.error_bound=residual;pgrid.ray_casting=1;pgrid.raycast_max_px=76800' \
+    --settings 'pgrid.grid=200x800;pgrid.gamma_px=0.5,1,2;pgrid.error_bound=residual;pgrid.ray_casting=1;pgrid.raycast_max_px=76800' \
     --csv "$out/$1.csv" --plot "$out/$1.png" --quiet > "$out/$1.log" 2>&1 || {
       cat "$out/$1.log"; echo "FAIL: $1: bench failed"; status=1; return; }
   # columns: 2 setting, 10 err_max_px, 18 budget_hits, 23/24 ray-cast fraction

@@ -5,7 +5,9 @@
  * coordinates per tile (6 floats, exact integers), rewritten each frame with
  * glBufferSubData from a staging array in the method pool. GLES 2 (no
  * instancing): one draw per tile with the corners as uniforms. Heights and
- * the diamond errors (for geomorphing) are vertex textures.
+ * the diamond errors (for geomorphing) are vertex textures; on GLES 3 a
+ * vertex on a sample reads all it needs from one texel of the vertex table
+ * (bintree.h, ft_bt_sample_texel).
  *
  * Grids that are not (2^n+1)^2 are padded by clamping (see bintree.h): the
  * vertex shader clamps grid coordinates into the real grid, so the padded
@@ -20,6 +22,9 @@
 #include "view_scale.h"
 
 #define FT_BT_FLOATS_PER_TILE 6u
+/* The one-fetch vertex table goes up in strips of this many rows through
+ * FT_POOL_GPU_STAGING (width * rows * 16 bytes), not in one copy of the grid. */
+#define FT_BT_VTX_STRIP_ROWS 8u
 
 void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
@@ -33,6 +38,50 @@ void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_arena_plan(a, FT_POOL_METHOD,
                   (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
     ft_bintree_plan(a, t->width, t->height, k, s->bintree_subsample_levels, s->bintree_tiles_max);
+    if (s->bintree_vertex_table && s->backend != FT_BACKEND_EGL_GLES2) {
+        ft_arena_plan(a, FT_POOL_GPU_STAGING,
+                      (size_t)t->width * FT_BT_VTX_STRIP_ROWS * 4u * sizeof(float));
+    }
+}
+
+/* GLES 3: the one-fetch vertex table (bintree.h, ft_bt_sample_texel) as an
+ * RGBA32F texture on unit 3, filled strip by strip. */
+static ft_status upload_vertex_table(ft_bintree_method *m, const ft_gl *gl, ft_arena *a,
+                                     ft_error *err)
+{
+    const uint32_t w = m->bt.width, h = m->bt.height;
+    float *strip = NULL;
+    const size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
+    ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING,
+                                 (size_t)w * FT_BT_VTX_STRIP_ROWS * 4u * sizeof(float),
+                                 (void **)&strip, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    gl->GenTextures(1, &m->vtx_tex);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
+                   NULL);
+    for (uint32_t y0 = 0; y0 < h; y0 += FT_BT_VTX_STRIP_ROWS) {
+        const uint32_t rows = (h - y0 < FT_BT_VTX_STRIP_ROWS) ? h - y0 : FT_BT_VTX_STRIP_ROWS;
+        for (uint32_t y = 0; y < rows; ++y) {
+            for (uint32_t x = 0; x < w; ++x) {
+                ft_bt_sample_texel(&m->bt, x, y0 + y, strip + ((size_t)y * w + x) * 4u);
+            }
+        }
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)y0, (GLsizei)w, (GLsizei)rows, GL_RGBA,
+                          GL_FLOAT, strip);
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
+    m->gpu_bytes += (uint64_t)w * h * 4u * sizeof(float);
+    return ft_gl_check(gl, "bintree vertex table upload", err);
 }
 
 ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
@@ -44,6 +93,7 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     m->lod_scale = 1.0;
     m->morph = s->bintree_morph;
     m->es3 = (gl->api == FT_GL_API_ES3);
+    m->vertex_table = m->es3 && s->bintree_vertex_table;
     ft_status st =
         ft_bintree_init(&m->bt, t, k, s->bintree_subsample_levels, s->bintree_tiles_max, a, err);
     if (st != FT_OK) {
@@ -102,6 +152,17 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
                               err);
     if (st != FT_OK) {
         return st;
+    }
+    if (m->vertex_table) {
+        if (gl->caps.max_vertex_texture_units < 4) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree on GLES 3 needs 4 vertex texture units; this device has %d",
+                           gl->caps.max_vertex_texture_units);
+        }
+        st = upload_vertex_table(m, gl, a, err);
+        if (st != FT_OK) {
+            return st;
+        }
     }
     if (m->bt.sub > 0u) {
         /* the twist atlas the closed-form errors below the samples read */
@@ -184,17 +245,13 @@ void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale)
     }
 }
 
-void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
-                            const struct ft_terrain_program *p, const ft_terrain *t,
-                            const ft_camera *cam, ft_method_draw_stats *st)
+/* The method's uniforms on program p (current). */
+static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
+                         const struct ft_terrain_program *p, const ft_camera *cam)
 {
-    ft_bintree_method_select(m, t, cam);
     const double tau = m->sel.tau_used_px; /* the morph band is the selection's */
     const double split = m->morph ? FT_BT_SPLIT_FRACTION * tau : tau;
     const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
-    gl->ActiveTexture(GL_TEXTURE1);
-    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
-    gl->ActiveTexture(GL_TEXTURE0);
     gl->Uniform1i(p->u_bt_err, 1);
     gl->Uniform2f(p->u_bt_err_pack, m->err_fmt.pack_min,
                   m->err_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->err_fmt.pack_range : 0.0f);
@@ -203,10 +260,10 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
     const ft_bt_twist_layout *tl = &m->bt.twist;
     gl->Uniform4f(p->u_bt_sub, (float)(1u << m->bt.sub), (float)(m->bt.step << m->bt.sub),
                   (float)tl->levels, m->bt.sub > 0u ? 1.0f : 0.0f);
+    if (m->vertex_table) {
+        gl->Uniform1i(p->u_bt_vtx, 3);
+    }
     if (m->bt.sub > 0u) {
-        gl->ActiveTexture(GL_TEXTURE2);
-        gl->BindTexture(GL_TEXTURE_2D, m->twist_tex);
-        gl->ActiveTexture(GL_TEXTURE0);
         gl->Uniform1i(p->u_bt_twist, 2);
         gl->Uniform4f(p->u_bt_twist_pack, m->twist_fmt.pack_min,
                       m->twist_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->twist_fmt.pack_range
@@ -220,6 +277,46 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
                   (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
     gl->Uniform4f(p->u_bt_axis, (float)cam->forward[0], (float)cam->forward[1],
                   (float)cam->forward[2], (float)ft_view_corner_cos(cam));
+}
+
+/* GLES 3: tiles [first, first + count) of the instance buffer, instanced. */
+static void draw_instances(const ft_bintree_method *m, const ft_gl *gl, uint32_t first,
+                           uint32_t count)
+{
+    const GLsizei stride = (GLsizei)(FT_BT_FLOATS_PER_TILE * sizeof(float));
+    const size_t base = (size_t)first * (size_t)stride; /* no base instance on GLES 3.0 */
+    gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)base);
+    gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
+                            (const void *)(base + 4u * sizeof(float)));
+    gl->DrawElementsInstanced(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
+                              (const void *)0, (GLsizei)count);
+}
+
+void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
+                            const struct ft_terrain_program *p, const ft_terrain *t,
+                            const ft_camera *cam, ft_method_draw_stats *st)
+{
+    ft_bintree_method_select(m, t, cam);
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    if (m->bt.sub > 0u) {
+        gl->ActiveTexture(GL_TEXTURE2);
+        gl->BindTexture(GL_TEXTURE_2D, m->twist_tex);
+    }
+    if (m->vertex_table) {
+        gl->ActiveTexture(GL_TEXTURE3);
+        gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
+    /* Coarse tiles (every vertex on a sample) go through the pass's coarse
+     * program when it has one: the sub-sample code is not in it. */
+    const struct ft_terrain_program *coarse = m->vertex_table ? p->coarse : NULL;
+    if (coarse != NULL) {
+        gl->UseProgram(coarse->program);
+        set_uniforms(m, gl, coarse, cam);
+        gl->UseProgram(p->program);
+    }
+    set_uniforms(m, gl, p, cam);
 
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
@@ -227,27 +324,33 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
     gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     const uint32_t tiles = m->sel.tiles;
     if (tiles > 0u && m->es3) {
-        const GLsizei stride = (GLsizei)(FT_BT_FLOATS_PER_TILE * sizeof(float));
         gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
         if (!m->uploaded) {
-            gl->BufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)((size_t)tiles * (size_t)stride),
+            gl->BufferSubData(GL_ARRAY_BUFFER, 0,
+                              (GLsizeiptr)((size_t)tiles * FT_BT_FLOATS_PER_TILE * sizeof(float)),
                               m->inst);
             m->uploaded = 1;
         }
         gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
         gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
-        gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
-        gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
-                                (const void *)(4u * sizeof(float)));
         gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
         gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
-        gl->DrawElementsInstanced(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
-                                  (const void *)0, (GLsizei)tiles);
+        const uint32_t n_coarse = (coarse != NULL) ? m->sel.tiles_coarse : 0u;
+        st->draw_calls = 0u;
+        if (n_coarse > 0u) {
+            gl->UseProgram(coarse->program);
+            draw_instances(m, gl, 0u, n_coarse);
+            gl->UseProgram(p->program);
+            st->draw_calls += 1u;
+        }
+        if (tiles > n_coarse) {
+            draw_instances(m, gl, n_coarse, tiles - n_coarse);
+            st->draw_calls += 1u;
+        }
         gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
         gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
         gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
         gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
-        st->draw_calls = 1u;
     } else {
         /* GLES 2: bounded by tiles_max draws */
         for (uint32_t i = 0; i < tiles; ++i) {
@@ -273,5 +376,6 @@ void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl)
     if (m->inst_vbo) gl->DeleteBuffers(1, &m->inst_vbo);
     if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
     if (m->twist_tex) gl->DeleteTextures(1, &m->twist_tex);
-    m->vbo = m->ibo = m->inst_vbo = m->err_tex = m->twist_tex = 0u;
+    if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
+    m->vbo = m->ibo = m->inst_vbo = m->err_tex = m->twist_tex = m->vtx_tex = 0u;
 }

@@ -759,6 +759,7 @@ void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull,
     v->curv_drop_per_m2 = t->curv_drop_per_m2;
     v->cull = cull;
     v->morph = morph;
+    v->split_fraction = FT_BT_SPLIT_FRACTION;
     const double tv = tan(0.5 * cam->fovy_rad);
     const double th = tv * (double)cam->width_px / (double)cam->height_px;
     for (int i = 0; i < 3; ++i) {
@@ -986,7 +987,7 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
 void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
                        ft_bt_select_stats *st)
 {
-    const double f = v->morph ? FT_BT_SPLIT_FRACTION : 1.0;
+    const double f = v->morph ? v->split_fraction : 1.0;
     double tau = (tau_px > 0.0) ? tau_px : 0.0;
     memset(st, 0, sizeof *st);
     st->tau_target_px = tau;

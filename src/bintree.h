@@ -61,6 +61,7 @@
 #include "camera.h"
 #include "ft_status.h"
 #include "mem_budget.h"
+#include "scene.h"
 #include "terrain.h"
 
 #define FT_BT_N_MAX 14u /* N = 2^14: FT_GRID_SIDE_MAX = 16385 */
@@ -70,9 +71,10 @@
 #define FT_BT_STACK_MAX (FT_BT_LEVELS_MAX + 4u)
 #define FT_BT_TILES_MIN 2u
 #define FT_BT_TILES_MAX_LIMIT 1048576u
-/* With geomorphing a diamond splits at half the target and its new vertices
- * morph in over the second half, so the drawn surface stays within tau. */
-#define FT_BT_SPLIT_FRACTION 0.5
+/* With geomorphing a diamond splits at a fraction f of the target and its
+ * new vertices morph in over the rest of the way, so the drawn surface stays
+ * within tau (bintree.split_fraction, scene.h: FT_BT_SPLIT_FRACTION is the
+ * default and the least, FT_BT_SPLIT_FRACTION_MAX the most). */
 #define FT_BT_COARSEN_FACTOR 1.5
 #define FT_BT_COARSEN_STEPS_MAX 40u
 #define FT_BT_BOX_FLOATS 6u /* x0, x1, y0, y1 (grid), z0, z1 (m) */
@@ -150,6 +152,7 @@ typedef struct ft_bt_view {
     double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
     int cull;
     int morph;
+    double split_fraction; /* with morph: split at this x tau (FT_BT_SPLIT_FRACTION unless set) */
 } ft_bt_view;
 
 /* Smallest n with 2^n >= max(w, h) - 1. */

@@ -8,7 +8,7 @@
 #include "view_scale.h"
 
 void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_target_px,
-                             int morph, ft_bt_mesh_uniforms *u)
+                             int morph, double split_fraction, ft_bt_mesh_uniforms *u)
 {
     memset(u, 0, sizeof *u);
     /* renderer.c draw_pass: the subtraction in double */
@@ -20,7 +20,7 @@ void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double t
     u->drop_per_m2 = t->curv_drop_per_m2;
     /* method_bintree.c ft_bintree_method_draw */
     const double tau = tau_target_px;
-    const double split = morph ? FT_BT_SPLIT_FRACTION * tau : tau;
+    const double split = morph ? split_fraction * tau : tau;
     u->k_px = cam->px_per_rad_k;
     u->split_px = split;
     u->band_px = (tau - split > 1e-6) ? tau - split : 1e-6;

@@ -61,9 +61,10 @@ typedef struct ft_bt_mesh_uniforms {
 
 /* The uniforms the method sets for a frame (src/methods/method_bintree.c,
  * ft_bintree_method_draw, and the renderer's draw pass): tau_target_px is
- * the selection's target (tau_used_px), morph the scene's bintree.morph. */
+ * the selection's target (tau_used_px), morph and split_fraction the
+ * scene's bintree.morph and bintree.split_fraction. */
 void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_target_px,
-                             int morph, ft_bt_mesh_uniforms *u);
+                             int morph, double split_fraction, ft_bt_mesh_uniforms *u);
 
 /* One vertex as the shader outputs it. */
 typedef struct ft_bt_mesh_vertex {

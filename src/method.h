@@ -59,6 +59,7 @@ typedef struct ft_bintree_method {
     double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
     int morph, es3;
     int vertex_table; /* GLES 3 and bintree.vertex_table: vtx_tex is used */
+    double split_fraction; /* bintree.split_fraction */
     ft_scalar_format err_fmt;
     uint64_t gpu_bytes;
     /* the last selection and the view it was made for */

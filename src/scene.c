@@ -155,6 +155,7 @@ void ft_scene_defaults(ft_scene *s)
     s->bintree_morph = 1;
     s->bintree_subsample_levels = 0;
     s->bintree_vertex_table = 1;
+    s->bintree_split_fraction = FT_BT_SPLIT_FRACTION;
     s->pgm_grid_cols = 430;
     s->pgm_grid_rows = 430;
     s->pgrid_grid_cols = 200;
@@ -496,6 +497,11 @@ static int on_key(void *user, const char *section, const char *key, const char *
         if (strcmp(key, "subsample_levels") == 0) {
             return RANGE(parse_u32(value, 0, 4, &s->bintree_subsample_levels),
                          "expected 0..4");
+        }
+        if (strcmp(key, "split_fraction") == 0) {
+            return RANGE(parse_f64(value, FT_BT_SPLIT_FRACTION, FT_BT_SPLIT_FRACTION_MAX,
+                                   &s->bintree_split_fraction),
+                         "expected 0.5..0.95");
         }
         if (strcmp(key, "vertex_table") == 0) {
             return RANGE(parse_flag(value, &s->bintree_vertex_table), "expected 0 or 1");

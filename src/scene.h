@@ -38,7 +38,10 @@
  *   bintree.template_k    template refinement: 2k bisections, 2^k segments per leg [1, 6]
  *   bintree.tiles_max     tile budget per frame [2, 1048576]
  *   bintree.tau_px        target screen-space error in pixels [0, 1000]
- *   bintree.morph         0 | 1: geomorph split vertices (split at tau/2)
+ *   bintree.morph         0 | 1: geomorph split vertices (split at split_fraction x tau)
+ *   bintree.split_fraction  [0.5, 0.95]: with morph, a diamond splits at this x tau and
+ *                         its vertices morph in before tau (higher: fewer triangles,
+ *                         faster morphs)
  *   bintree.subsample_levels  0..4: tiles refine to 2^-S of a cell, their vertices
  *                         on the bilinear surface (the truth), so tau holds near the eye
  *   bintree.vertex_table  0 | 1 (GLES 3): a vertex on a sample reads one RGBA32F texel
@@ -157,6 +160,10 @@ typedef enum ft_method_kind {
 const char *ft_method_name(ft_method_kind m);
 int ft_method_from_name(const char *name, ft_method_kind *out);
 
+/* bintree.split_fraction: default (and least) and most */
+#define FT_BT_SPLIT_FRACTION 0.5
+#define FT_BT_SPLIT_FRACTION_MAX 0.95
+
 typedef struct ft_scene {
     char name[FT_SCENE_NAME_MAX];
     ft_method_kind method;
@@ -181,6 +188,7 @@ typedef struct ft_scene {
     uint32_t bintree_tiles_max;  /* bintree.tiles_max */
     double bintree_tau_px;       /* bintree.tau_px */
     int bintree_morph;           /* bintree.morph */
+    double bintree_split_fraction; /* bintree.split_fraction */
     uint32_t bintree_subsample_levels; /* bintree.subsample_levels */
     int bintree_vertex_table;          /* bintree.vertex_table (GLES 3 only) */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */

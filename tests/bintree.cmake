@@ -21,7 +21,8 @@ endif()
 # The bound over the bench's five built-in paths on N42E001 and Rainier
 # (imported here) at 640x480, tau 0.5/1/2, subsample_levels 4: max error
 # <= tau + 0.05 px on every row, no budget hit, no frame reporting a bound
-# over tau (tests/test_bintree_paths.sh). About 60 s on 2 cores.
+# over tau (tests/test_bintree_paths.sh). About 4 minutes on 2 cores (the
+# softpipe rows 3.5).
 if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_BINTREE
    AND FIXTERRAIN_WITH_GDAL_TOOLS)
   add_test(NAME bintree_paths

@@ -73,7 +73,7 @@ static const char k_scene_fmt[] =
     "[terrain]\ndem = %s\n"
     "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = 0\n"
     "[bintree]\ntemplate_k = %u\nsubsample_levels = %u\ntiles_max = 65536\ntau_px = %.3f\n"
-    "morph = %d\n"
+    "morph = %d\nsplit_fraction = %.2f\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 32M\npng_bytes = 512K\n";
@@ -196,8 +196,10 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
 
     /* the mirror: the bench's path (floats + indices) and, per vertex, in double */
     ft_bt_mesh_uniforms u, wrong;
-    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, bm->morph, &u);
-    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, !bm->morph, &wrong);
+    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, bm->morph,
+                            bm->split_fraction, &u);
+    ft_bt_mesh_uniforms_for(&g_app.terrain, &cam, bm->sel.tau_used_px, !bm->morph,
+                            bm->split_fraction, &wrong);
     u.vertex_table = wrong.vertex_table = bm->vertex_table;
     REQUIRE(u.morph == bm->morph && wrong.morph == !bm->morph);
     const size_t mverts = (size_t)tiles * tp->nv;
@@ -333,13 +335,15 @@ typedef struct config {
     uint32_t sub; /* bintree.subsample_levels */
     double tau;
     int morph;
+    double split_fraction; /* bintree.split_fraction */
 } config;
 
 static void run_config(const char *dem, const config *cf)
 {
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, 256u, 192u, dem, cf->k, cf->sub,
-                   cf->tau, cf->morph);
+                   cf->tau, cf->morph, cf->split_fraction);
     ft_test_app_init(&g_app, g_text, "bintree mesh");
+    REQUIRE(g_app.renderer.method.u.bintree.split_fraction == cf->split_fraction);
     ft_error err;
     static const char *const varyings[4] = {"v_pos_rel_eye_m", "v_normal", "v_height_m",
                                             "v_morph"};
@@ -384,7 +388,8 @@ static void run_config(const char *dem, const config *cf)
     totals tot;
     memset(&tot, 0, sizeof tot);
     REQUIRE(g_app.renderer.method.u.bintree.bt.sub == cf->sub);
-    printf("k = %u, S = %u, tau = %.1f, morph = %d:\n", cf->k, cf->sub, cf->tau, cf->morph);
+    printf("k = %u, S = %u, tau = %.1f, morph = %d, split_fraction %.2f:\n", cf->k, cf->sub,
+           cf->tau, cf->morph, cf->split_fraction);
     for (size_t v = 0; v < sizeof views / sizeof views[0]; ++v) {
         view(&views[v], &tp, &oracle, &tot);
     }
@@ -450,12 +455,12 @@ int main(int argc, char **argv)
     const char *dem = argv[1];
     if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
     static const config configs[] = {
-        {3, 0, 1.0, 1},
-        {2, 0, 2.0, 1},
-        {4, 0, 0.5, 1},
-        {3, 0, 1.0, 0}, /* no geomorph: the mirror without it; the wrong rule morphs */
-        {3, 2, 1.0, 1}, /* sub-sample levels */
-        {2, 3, 1.0, 1},
+        {3, 0, 1.0, 1, 0.5},
+        {2, 0, 2.0, 1, 0.5},
+        {4, 0, 0.5, 1, 0.9},  /* a narrow morph band */
+        {3, 0, 1.0, 0, 0.5},  /* no geomorph: the mirror without it; the wrong rule morphs */
+        {3, 2, 1.0, 1, 0.75}, /* sub-sample levels */
+        {2, 3, 1.0, 1, 0.5},
     };
     for (size_t i = 0; i < sizeof configs / sizeof configs[0]; ++i) {
         run_config(dem, &configs[i]);

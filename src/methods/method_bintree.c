@@ -92,6 +92,7 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     m->tau_px = s->bintree_tau_px;
     m->lod_scale = 1.0;
     m->morph = s->bintree_morph;
+    m->split_fraction = s->bintree_split_fraction;
     m->es3 = (gl->api == FT_GL_API_ES3);
     m->vertex_table = m->es3 && s->bintree_vertex_table;
     ft_status st =
@@ -215,6 +216,7 @@ void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const f
     }
     ft_bt_view v;
     ft_bt_view_from_camera(cam, t, 1, m->morph, &v);
+    v.split_fraction = m->split_fraction;
     ft_bintree_select(&m->bt, &v, m->tau_px * m->lod_scale, &m->sel);
     for (uint32_t i = 0; i < m->sel.tiles; ++i) {
         const ft_bt_tile *tile = &m->bt.tiles[i];
@@ -250,7 +252,7 @@ static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
                          const struct ft_terrain_program *p, const ft_camera *cam)
 {
     const double tau = m->sel.tau_used_px; /* the morph band is the selection's */
-    const double split = m->morph ? FT_BT_SPLIT_FRACTION * tau : tau;
+    const double split = m->morph ? m->split_fraction * tau : tau;
     const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
     gl->Uniform1i(p->u_bt_err, 1);
     gl->Uniform2f(p->u_bt_err_pack, m->err_fmt.pack_min,

@@ -2,10 +2,12 @@
  * job. Errors go to stderr with the reason; information goes to stdout.
  * Exit status: 0 ok, 1 runtime error, 2 usage error. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app.h"
 #include "default_view.h"
@@ -17,12 +19,6 @@
 #include "live.h"
 #endif
 #include "scene.h"
-#if FT_WITH_GDAL_TOOLS
-#include "../tools/import_gdal.h"
-#endif
-#if FT_WITH_REFERENCE
-#include "../tools/bench.h"
-#endif
 
 #define FT_EXIT_OK 0
 #define FT_EXIT_ERROR 1
@@ -71,14 +67,10 @@ static void print_help(void)
            "  run       live: pose from CAN and GPIO, frames at the scene's rate\n"
            "  budget    static memory, GPU memory and worst-case work against the budgets\n"
            "  bench     error against run time: every method and setting over flight paths\n"
-           "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file%s\n"
+           "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file\n"
            "  help      this text\n\n"
+           "bench and import are tools: this runtime runs fixterrain-tools for them.\n"
            "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
-#if FT_WITH_GDAL_TOOLS
-           "",
-#else
-           " (not in this build)",
-#endif
            "0.1.0");
 }
 
@@ -1027,6 +1019,34 @@ static int cmd_budget(int argc, char **argv)
     return FT_EXIT_OK;
 }
 
+/* The benchmark and the DEM import are workstation tools with their own
+ * binary (fixterrain-tools: GDAL, the plotter, heap use), so the runtime a
+ * display computer runs contains none of them. For the user's convenience
+ * `fixterrain bench|import` runs that binary from beside this one, then from
+ * PATH; only the error path returns. */
+#define FT_TOOLS_NAME "fixterrain-tools"
+static int forward_to_tools(const char *cmd, char **argv)
+{
+    char path[4096];
+    const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+    if (n > 0 && (size_t)n < sizeof path - 1) {
+        path[n] = '\0';
+        char *slash = strrchr(path, '/');
+        if (slash != NULL && (size_t)(slash + 1 - path) + sizeof FT_TOOLS_NAME <= sizeof path) {
+            memcpy(slash + 1, FT_TOOLS_NAME, sizeof FT_TOOLS_NAME);
+            argv[0] = path;
+            (void)execv(path, argv);
+        }
+    }
+    argv[0] = (char *)FT_TOOLS_NAME;
+    (void)execvp(FT_TOOLS_NAME, argv);
+    fprintf(stderr,
+            "fixterrain: '%s' is a workstation tool, not part of the display runtime: "
+            "install %s beside fixterrain or on PATH (%s)\n",
+            cmd, FT_TOOLS_NAME, strerror(errno));
+    return FT_EXIT_ERROR;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -1051,23 +1071,8 @@ int main(int argc, char **argv)
         return FT_EXIT_ERROR;
 #endif
     }
-    if (strcmp(cmd, "bench") == 0) {
-#if FT_WITH_REFERENCE
-        return ft_cmd_bench(argc - 1, argv + 1);
-#else
-        fprintf(stderr, "fixterrain: 'bench' was left out of this build "
-                        "(FIXTERRAIN_WITH_REFERENCE=OFF)\n");
-        return FT_EXIT_ERROR;
-#endif
-    }
-    if (strcmp(cmd, "import") == 0) {
-#if FT_WITH_GDAL_TOOLS
-        return ft_cmd_import(argc - 1, argv + 1);
-#else
-        fprintf(stderr, "fixterrain: 'import' was left out of this build "
-                        "(FIXTERRAIN_WITH_GDAL_TOOLS=OFF)\n");
-        return FT_EXIT_ERROR;
-#endif
+    if (strcmp(cmd, "bench") == 0 || strcmp(cmd, "import") == 0) {
+        return forward_to_tools(cmd, argv);
     }
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
         print_help();

@@ -3,6 +3,12 @@ if(TARGET fixterrain)
                             ${CMAKE_BINARY_DIR}/test-out ${FT_SHARED_DATA_DIR})
   set_tests_properties(cli PROPERTIES TIMEOUT 300)
 
+  # The display runtime carries no tool (GDAL, bench, plotter, heap use).
+  add_test(NAME runtime_split
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_runtime_split.sh $<TARGET_FILE:fixterrain>
+                      $<TARGET_FILE:fixterrain-tools> ${CMAKE_BINARY_DIR}/test-out)
+  set_tests_properties(runtime_split PROPERTIES TIMEOUT 60)
+
   # "Leave out what a scene does not need": a build with every option off
   # must build, and a minimal EGL + brute build must render.
   add_test(NAME lean_build

@@ -791,6 +791,7 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         g_stats_text, sizeof g_stats_text,
         "{\n  \"frames\": %u,\n  \"deadline_misses\": %u,\n  \"frame_ms_max\": %.3f,\n%s"
         "  \"frames_annunciated\": %u,\n  \"frames_frozen\": %u,\n  \"frames_test\": %u,\n"
+        "  \"frames_night\": %u,\n"
         "  \"frames_backup\": %u,\n  \"source_switches\": %u,\n"
         "  \"can_frames\": [%llu, %llu],\n  \"can_dropped\": [%llu, %llu],\n"
         "  \"decoder_rejects\": %llu,\n  \"messages_lost\": %llu,\n"
@@ -806,7 +807,7 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         "  \"jobs\": {\"run\": %llu, \"deferred_frames\": %llu, \"refused\": %llu, \"high_water\": %u}\n}\n",
         r->frames, r->deadline_misses, r->frame_ms_max, position, r->frames_annunciated,
         r->frames_frozen,
-        r->frames_test, r->frames_backup, r->source_switches,
+        r->frames_test, r->frames_night, r->frames_backup, r->source_switches,
         (unsigned long long)r->can_frames[0], (unsigned long long)r->can_frames[1],
         (unsigned long long)r->can_dropped[0], (unsigned long long)r->can_dropped[1],
         (unsigned long long)ft_pose_feed_rejected(f), (unsigned long long)f->dec.lost,
@@ -963,6 +964,44 @@ static uint64_t worst_triangles(const ft_app *app, const char **rule)
     }
 }
 
+/* "#define A 1\n#define B 0\n" -> "A=1 B=0" (or "none"). */
+static void print_defines(const char *defines)
+{
+    int any = 0;
+    const char *p = defines;
+    for (int guard = 0; p != NULL && guard < 32; ++guard) {
+        const char *d = strstr(p, "#define ");
+        if (d == NULL) {
+            break;
+        }
+        d += 8;
+        const char *sp = strchr(d, ' ');
+        const char *nl = strchr(d, '\n');
+        if (sp == NULL || nl == NULL || sp > nl) {
+            break;
+        }
+        printf("%s%.*s=%.*s", any ? " " : "", (int)(sp - d), d, (int)(nl - sp - 1), sp + 1);
+        any = 1;
+        p = nl + 1;
+    }
+    printf("%s", any ? "" : "none");
+}
+
+/* The shader variants this scene compiles: only the code it uses. */
+static void print_shader_variants(const ft_scene *s, int es3)
+{
+    printf("shader variants: %s [", ft_method_vertex_shader(s->method));
+    print_defines(ft_method_vertex_defines(s, es3));
+    const char *coarse = ft_method_vertex_defines_coarse(s, es3);
+    if (coarse != NULL) {
+        printf("] and [");
+        print_defines(coarse);
+    }
+    printf("], colour fragment shaders [");
+    print_defines(ft_renderer_shade_defines(s));
+    printf("]\n");
+}
+
 static int cmd_budget(int argc, char **argv)
 {
     scene_opts o;
@@ -1009,6 +1048,7 @@ static int cmd_budget(int argc, char **argv)
     printf("GPU memory: %llu of %llu bytes (gpu.texture_bytes)\n",
            (unsigned long long)g_app.renderer.gpu_bytes,
            (unsigned long long)scene.gpu_texture_bytes);
+    print_shader_variants(&scene, g_app.gpu.gl.api == FT_GL_API_ES3);
     const char *rule = "";
     const uint64_t tris = worst_triangles(&g_app, &rule);
     printf("worst-case triangles per frame: %llu (%s)\n", (unsigned long long)tris, rule);

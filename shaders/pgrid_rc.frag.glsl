@@ -8,7 +8,7 @@
  * samples, level 0 = the cell's 4 samples) skips every texel box the ray
  * passes above; at level 0 the ray's height minus the bilinear patch along
  * it is a quadratic in t, solved in closed form for its first root in the
- * cell. Output: colour (ramp x Lambert, as terrain.frag.glsl) or the
+ * cell. Output: colour (shade.glsl, as terrain.frag.glsl) or the
  * position (xyz rel. eye, w 1) and gl_FragDepth of the hit; a miss writes
  * the sky (u_rc_sky, depth 1). Pixels under the threshold are discarded, so
  * the mesh stays there. Bounded loop (FT_RC_STEPS visits).
@@ -27,7 +27,6 @@ precision mediump float;
 out vec4 o_color;
 
 #define FT_RC_STEPS 4096
-#define FT_RAMP_STOPS 6
 #define FT_LEVELS 16
 
 uniform sampler2D u_err;          /* the error buffer (G = code) */
@@ -47,13 +46,11 @@ uniform vec2 u_rc_size;           /* viewport px */
 uniform mat4 u_view_proj;
 uniform float u_rc_mode;          /* 0 colour, 1 position */
 uniform vec4 u_rc_sky;
-uniform float u_ramp_height_m[FT_RAMP_STOPS];
-uniform vec3 u_ramp_rgb[FT_RAMP_STOPS];
-uniform vec3 u_sun_dir;
-uniform vec2 u_light;
 uniform float u_earth_drop_per_m2; /* k: 1 / (2 R) or 0 */
 
 #include "decode.glsl"
+#include "shade_relative.glsl"
+#include "shade.glsl"
 
 float hs(vec2 ij)
 {
@@ -159,21 +156,6 @@ bool solve_cell(vec2 ij, vec3 o, vec3 d, float bend, float ta, float tb, bool en
     }
     th = ta + best;
     return best < 1e29;
-}
-
-vec3 shade(float h, vec3 n)
-{
-    vec3 rgb = u_ramp_rgb[FT_RAMP_STOPS - 1];
-    for (int i = 0; i < FT_RAMP_STOPS - 1; ++i) {
-        if (h <= u_ramp_height_m[i + 1] || i == FT_RAMP_STOPS - 2) {
-            float t = clamp((h - u_ramp_height_m[i]) / (u_ramp_height_m[i + 1] - u_ramp_height_m[i]),
-                            0.0, 1.0);
-            rgb = mix(u_ramp_rgb[i], u_ramp_rgb[i + 1], t);
-            break;
-        }
-    }
-    float light = u_light.x + u_light.y * max(0.0, dot(normalize(n), u_sun_dir));
-    return clamp(rgb * light, 0.0, 1.0);
 }
 
 void main()
@@ -282,7 +264,7 @@ void main()
     float dhx = mix(h10 - h00, h11 - h01, f.y) / u_cell_m.x;
     float dhy = mix(h01 - h00, h11 - h10, f.x) / u_cell_m.y;
     float h = mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
-    o_color = vec4(shade(h, vec3(-dhx, -dhy, 1.0)), 1.0);
+    o_color = vec4(ft_shade(h, vec3(-dhx, -dhy, 1.0)), 1.0);
 }
 #else
 /* GLSL ES 1.00 has no gl_FragDepth or texelFetch: pgrid never ray casts on

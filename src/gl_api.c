@@ -211,6 +211,7 @@ typedef void *ft_gl_voidp;
     V(Uniform1i, (GLint location, GLint v0), (location, v0))                                       \
     V(Uniform1fv, (GLint location, GLsizei count, const GLfloat *value), (location, count, value)) \
     V(Uniform3fv, (GLint location, GLsizei count, const GLfloat *value), (location, count, value)) \
+    V(Uniform4fv, (GLint location, GLsizei count, const GLfloat *value), (location, count, value)) \
     V(Uniform2f, (GLint location, GLfloat v0, GLfloat v1), (location, v0, v1))                     \
     V(Uniform3f, (GLint location, GLfloat v0, GLfloat v1, GLfloat v2), (location, v0, v1, v2))     \
     V(Uniform4f, (GLint location, GLfloat v0, GLfloat v1, GLfloat v2, GLfloat v3),                 \

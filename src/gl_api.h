@@ -75,6 +75,7 @@
     X(PFNGLUNIFORM1IPROC, Uniform1i)                               \
     X(PFNGLUNIFORM1FVPROC, Uniform1fv)                             \
     X(PFNGLUNIFORM3FVPROC, Uniform3fv)                             \
+    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                             \
     X(PFNGLUNIFORM2FPROC, Uniform2f)                               \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                               \
     X(PFNGLUNIFORM4FPROC, Uniform4f)                               \

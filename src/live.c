@@ -251,6 +251,10 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         }
         frozen = freeze;
         const ft_pose *draw_pose = frozen ? &frozen_pose : &v.pose;
+        /* the palette switch takes effect on this very frame */
+        const ft_palette palette =
+            input_active(lv, FT_GPIO_NIGHT) ? FT_PALETTE_NIGHT : app->scene.present_palette;
+        ft_renderer_set_palette(&app->renderer, palette);
         const int test = input_active(lv, FT_GPIO_TEST);
         const char *reason = test ? FT_LIVE_TEST_REASON : (v.annunciate ? v.reason : NULL);
         ft_camera cam;
@@ -288,6 +292,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         r->frames_annunciated += (reason != NULL);
         r->frames_frozen += (uint32_t)frozen;
         r->frames_test += (uint32_t)test;
+        r->frames_night += (uint32_t)(palette == FT_PALETTE_NIGHT);
         r->frames_backup += (uint32_t)source;
         r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
         r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);

@@ -57,6 +57,7 @@ typedef struct ft_live_desc {
 
 typedef struct ft_live_result {
     uint32_t frames, frames_annunciated, frames_frozen, frames_test, frames_backup;
+    uint32_t frames_night; /* drawn in the night palette */
     uint32_t frames_pos_predicted;  /* position predicted from a velocity */
     uint32_t frames_velocity_stale; /* a velocity quantity stale or never received */
     uint32_t deadline_misses;

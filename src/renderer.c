@@ -70,14 +70,15 @@ static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name,
  * with attribute slots 0, 1, 2 bound to attribs[0..2]. */
 static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
                                       const char *vert_defines, const char *frag_name,
-                                      const char *const attribs[3], GLuint *out, ft_error *err)
+                                      const char *frag_defines, const char *const attribs[3],
+                                      GLuint *out, ft_error *err)
 {
     GLuint vs = 0, fs = 0;
     ft_status s = compile(gl, GL_VERTEX_SHADER, vert_name, vert_defines, &vs, err);
     if (s != FT_OK) {
         return s;
     }
-    s = compile(gl, GL_FRAGMENT_SHADER, frag_name, NULL, &fs, err);
+    s = compile(gl, GL_FRAGMENT_SHADER, frag_name, frag_defines, &fs, err);
     if (s != FT_OK) {
         gl->DeleteShader(vs);
         return s;
@@ -112,8 +113,7 @@ static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
 static ft_status link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
                               const char *attr0, GLuint *out, ft_error *err)
 {
-    const char *const attribs[3] = {attr0, "i_tile0", "i_tile1"};
-    return link_program_attribs(gl, vert_name, NULL, frag_name, attribs, out, err);
+    return ft_renderer_link_program_frag(gl, vert_name, frag_name, NULL, attr0, out, err);
 }
 
 static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
@@ -129,10 +129,6 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_view_proj);
     FT_UNIFORM(u_pack);
     FT_UNIFORM(u_clamp_box);
-    FT_UNIFORM(u_ramp_height_m);
-    FT_UNIFORM(u_ramp_rgb);
-    FT_UNIFORM(u_sun_dir);
-    FT_UNIFORM(u_light);
     FT_UNIFORM(u_tile0);
     FT_UNIFORM(u_tile1);
     FT_UNIFORM(u_bt_err);
@@ -163,7 +159,8 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
     FT_UNIFORM(u_pgrid_vtx);
     FT_UNIFORM(u_pgrid_slope);
 #undef FT_UNIFORM
-    /* the pgm level table element by element (the GL subset has no Uniform4fv) */
+    ft_renderer_shade_locate(gl, prog, &p->shade);
+    /* the pgm level table: one location per element, set element by element */
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
         char name[32];
         (void)snprintf(name, sizeof name, "u_pgm_level[%u]", l);
@@ -181,12 +178,13 @@ static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
 static const char *const k_terrain_attribs[3] = {"a_uv", "i_tile0", "i_tile1"};
 
 static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *vert_defines,
-                               const char *frag_name, const char *const attribs[3],
-                               ft_terrain_program *p, ft_error *err)
+                               const char *frag_name, const char *frag_defines,
+                               const char *const attribs[3], ft_terrain_program *p,
+                               ft_error *err)
 {
     GLuint prog = 0;
-    ft_status s =
-        link_program_attribs(gl, vert_name, vert_defines, frag_name, attribs, &prog, err);
+    ft_status s = link_program_attribs(gl, vert_name, vert_defines, frag_name, frag_defines,
+                                       attribs, &prog, err);
     if (s != FT_OK) {
         return s;
     }
@@ -208,14 +206,61 @@ static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, co
     gl->Uniform1f(p->u_earth_drop_per_m2, (float)t->curv_drop_per_m2);
     gl->Uniform2f(p->u_pack, gt->pack_min_m,
                   gt->format == FT_HEIGHT_FORMAT_PACKED ? gt->pack_range_m : 0.0f);
-    if (p->u_ramp_height_m >= 0) {
-        gl->Uniform1fv(p->u_ramp_height_m, FT_RAMP_STOPS, ft_ramp_height_m);
-        gl->Uniform3fv(p->u_ramp_rgb, FT_RAMP_STOPS, &ft_ramp_rgb[0][0]);
-        float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
-                        FT_SUN_DIR_Z * FT_SUN_DIR_Z);
-        gl->Uniform3f(p->u_sun_dir, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
-        gl->Uniform2f(p->u_light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+}
+
+/* ---- colour: shaders/shade.glsl ---------------------------------------------- */
+
+const char *ft_renderer_shade_defines(const ft_scene *s)
+{
+    return s->present_relative ? "#define FT_SHADE_RELATIVE 1\n" : "";
+}
+
+void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
+{
+    u->ramp_h = gl->GetUniformLocation(prog, "u_ramp_height_m");
+    u->ramp_rgb = gl->GetUniformLocation(prog, "u_ramp_rgb");
+    u->sun = gl->GetUniformLocation(prog, "u_sun_dir");
+    u->light = gl->GetUniformLocation(prog, "u_light");
+#if FT_WITH_RELATIVE_COLOURING
+    u->band_edge = gl->GetUniformLocation(prog, "u_band_edge_m");
+    u->band_rgba = gl->GetUniformLocation(prog, "u_band_rgba");
+    u->aircraft_alt = gl->GetUniformLocation(prog, "u_aircraft_alt_m");
+#else
+    u->band_edge = u->band_rgba = u->aircraft_alt = -1;
+#endif
+}
+
+/* Program must be current. A few dozen floats: set every frame, so a
+ * palette switch takes effect on the next frame with no other state. */
+void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
+                                const ft_shade_state *st)
+{
+    if (u->ramp_h < 0) {
+        return;
     }
+    float ramp[FT_RAMP_STOPS][3];
+    ft_shade_palette_ramp(st->palette, ramp);
+    gl->Uniform1fv(u->ramp_h, FT_RAMP_STOPS, ft_ramp_height_m);
+    gl->Uniform3fv(u->ramp_rgb, FT_RAMP_STOPS, &ramp[0][0]);
+    const float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
+                          FT_SUN_DIR_Z * FT_SUN_DIR_Z);
+    gl->Uniform3f(u->sun, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
+    gl->Uniform2f(u->light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+#if FT_WITH_RELATIVE_COLOURING
+    if (u->band_rgba >= 0) {
+        float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
+        ft_shade_bands_gpu(st, edge_m, rgba);
+        gl->Uniform1fv(u->band_edge, (GLsizei)(FT_BANDS_MAX - 1u), edge_m);
+        gl->Uniform4fv(u->band_rgba, (GLsizei)FT_BANDS_MAX, &rgba[0][0]);
+        gl->Uniform1f(u->aircraft_alt, st->aircraft_alt_m);
+    }
+#endif
+}
+
+void ft_renderer_set_palette(ft_renderer *r, ft_palette p)
+{
+    r->shade.palette = p;
+    ft_shade_palette_sky(p, r->clear_rgb);
 }
 
 /* ---- terrain textures ------------------------------------------------------- */
@@ -397,13 +442,17 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     r->gl = &gpu->gl;
     r->terrain = t;
     r->scene = s;
-    r->clear_rgb[0] = FT_SKY_R;
-    r->clear_rgb[1] = FT_SKY_G;
-    r->clear_rgb[2] = FT_SKY_B;
+    ft_shade_state_from_scene(&r->shade, s);
+    ft_renderer_set_palette(r, s->present_palette);
     r->width_px = s->width_px;
     r->height_px = s->height_px;
     const ft_gl *gl = r->gl;
 
+    if (s->present_relative && !FT_WITH_RELATIVE_COLOURING) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "presentation.colouring = relative was left out of this build "
+                       "(FIXTERRAIN_WITH_RELATIVE_COLOURING=OFF)");
+    }
     if (gl->caps.max_vertex_texture_units < 1) {
         return ft_fail(err, FT_ERR_UNSUPPORTED,
                        "this device has no vertex texture units "
@@ -427,35 +476,38 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     r->gpu_bytes += r->gt.bytes;
     const char *vert = ft_method_vertex_shader(s->method);
     const char *vert_defines = ft_method_vertex_defines(s, gl->api == FT_GL_API_ES3);
-    st = build_program(gl, vert, vert_defines, "terrain.frag.glsl", k_terrain_attribs,
-                       &r->prog_color, err);
+    const char *frag_defines = ft_renderer_shade_defines(s);
+    st = build_program(gl, vert, vert_defines, "terrain.frag.glsl", frag_defines,
+                       k_terrain_attribs, &r->prog_color, err);
     if (st != FT_OK) {
         return st;
     }
     set_static_uniforms(gl, &r->prog_color, t, &r->gt);
+    r->prog_color.shade_state = &r->shade;
     const char *coarse_defines = ft_method_vertex_defines_coarse(s, gl->api == FT_GL_API_ES3);
     if (coarse_defines != NULL) {
-        st = build_program(gl, vert, coarse_defines, "terrain.frag.glsl", k_terrain_attribs,
-                           &r->prog_color_coarse, err);
+        st = build_program(gl, vert, coarse_defines, "terrain.frag.glsl", frag_defines,
+                           k_terrain_attribs, &r->prog_color_coarse, err);
         if (st != FT_OK) {
             return st;
         }
         set_static_uniforms(gl, &r->prog_color_coarse, t, &r->gt);
         r->prog_color.coarse = &r->prog_color_coarse;
+        r->prog_color_coarse.shade_state = &r->shade;
     }
     st = make_targets(r, err);
     if (st != FT_OK) {
         return st;
     }
     if (r->has_pos_target) {
-        st = build_program(gl, vert, vert_defines, "terrain_pos.frag.glsl", k_terrain_attribs,
-                           &r->prog_pos, err);
+        st = build_program(gl, vert, vert_defines, "terrain_pos.frag.glsl", NULL,
+                           k_terrain_attribs, &r->prog_pos, err);
         if (st != FT_OK) {
             return st;
         }
         set_static_uniforms(gl, &r->prog_pos, t, &r->gt);
         if (coarse_defines != NULL) {
-            st = build_program(gl, vert, coarse_defines, "terrain_pos.frag.glsl",
+            st = build_program(gl, vert, coarse_defines, "terrain_pos.frag.glsl", NULL,
                                k_terrain_attribs, &r->prog_pos_coarse, err);
             if (st != FT_OK) {
                 return st;
@@ -618,6 +670,7 @@ static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_came
         gl->Uniform3f(progs[i]->u_origin_rel_eye_m,
                       (float)(t->origin_world_x_m - cam->eye_m[0]),
                       (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+        ft_renderer_shade_uniforms(gl, &progs[i]->shade, &r->shade);
     }
     ft_method_draw(&r->method, gl, p, t, cam, ms);
 }
@@ -642,6 +695,7 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     if (r->timer_query != 0u) {
         gl->BeginQuery(GL_TIME_ELAPSED_EXT, r->timer_query);
     }
+    r->shade.aircraft_alt_m = (float)cam->eye_m[2]; /* the pose's altitude */
     draw_pass(r, &r->prog_color, cam, &ms);
     if (r->timer_query != 0u) {
         gl->EndQuery(GL_TIME_ELAPSED_EXT);
@@ -799,6 +853,15 @@ ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const
     return link_program(gl, vert_name, frag_name, attr0, out, err);
 }
 
+ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
+                                        const char *frag_name, const char *frag_defines,
+                                        const char *attr0, GLuint *out, ft_error *err)
+{
+    const char *const attribs[3] = {attr0, "i_tile0", "i_tile1"};
+    return link_program_attribs(gl, vert_name, NULL, frag_name, frag_defines, attribs, out,
+                                err);
+}
+
 ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
                                             const ft_gpu_terrain *gt, const char *vert_name,
                                             const char *frag_name, ft_terrain_program *p,
@@ -814,7 +877,7 @@ ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_te
                                                     const char *const attribs[3],
                                                     ft_terrain_program *p, ft_error *err)
 {
-    ft_status st = build_program(gl, vert_name, NULL, frag_name, attribs, p, err);
+    ft_status st = build_program(gl, vert_name, NULL, frag_name, NULL, attribs, p, err);
     if (st == FT_OK) {
         set_static_uniforms(gl, p, t, gt);
     }

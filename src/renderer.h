@@ -17,15 +17,23 @@
 #include "method.h"
 #include "overlay.h"
 #include "scene.h"
+#include "shade.h"
 #include "terrain.h"
 
 #define FT_TERRAIN_TEXTURES_MAX (1u + 3u * FT_PYRAMID_LEVELS_MAX)
+
+/* The colour uniforms of shaders/shade.glsl (-1 where a program lacks them:
+ * position passes; the band uniforms outside the relative variant). */
+typedef struct ft_shade_locs {
+    GLint ramp_h, ramp_rgb, sun, light;
+    GLint band_edge, band_rgba, aircraft_alt;
+} ft_shade_locs;
 
 typedef struct ft_terrain_program {
     GLuint program;
     GLint u_heights, u_grid_size, u_patch_origin, u_patch_stride, u_cell_m;
     GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
-    GLint u_ramp_height_m, u_ramp_rgb, u_sun_dir, u_light;
+    ft_shade_locs shade; /* shade.ramp_h < 0: a position pass */
     GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
     GLint u_earth_drop_per_m2; /* curvature (shaders/curvature.glsl) */
     GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph, u_bt_axis; /* bintree geomorph */
@@ -45,6 +53,9 @@ typedef struct ft_terrain_program {
      * (ft_method_vertex_defines_coarse), or NULL: the bintree draws its
      * coarse tiles with it, so they run none of the sub-sample code. */
     const struct ft_terrain_program *coarse;
+    /* The colour state in force (palette, bands, aircraft altitude), for
+     * passes a method draws with programs of its own (pgrid's ray cast). */
+    const struct ft_shade_state *shade_state;
 } ft_terrain_program;
 
 /* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
@@ -108,6 +119,7 @@ typedef struct ft_renderer {
     ft_overlay overlay; /* the failure annunciation (red cross + reason) */
     GLuint timer_query; /* GL_TIME_ELAPSED around the frame's draw (0: none) */
     float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
+    ft_shade_state shade; /* palette, bands, aircraft altitude (set each frame) */
     uint64_t gpu_bytes;
     uint64_t frames;
     /* glGetError in the frame path. 0: none (the safety-critical frame loop
@@ -184,6 +196,22 @@ void ft_renderer_shutdown(ft_renderer *r);
  * program (the renderer's uniform set, static uniforms set from gt). */
 ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
                                    const char *attr0, GLuint *out, ft_error *err);
+/* The same with lines inserted before the fragment body (NULL: none). */
+ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
+                                        const char *frag_name, const char *frag_defines,
+                                        const char *attr0, GLuint *out, ft_error *err);
+
+/* The colour variant a scene needs: "#define FT_SHADE_RELATIVE 1\n" with
+ * relative colouring, else "" (the band code is not compiled at all). */
+const char *ft_renderer_shade_defines(const ft_scene *s);
+/* shade.glsl's uniform locations of a program, and their values for a
+ * colour state (palette ramp, sun, light; bands and aircraft altitude in the
+ * relative variant). */
+void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u);
+void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
+                                const ft_shade_state *st);
+/* Palette for the next frame (presentation.palette, or a GPIO discrete). */
+void ft_renderer_set_palette(ft_renderer *r, ft_palette p);
 ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
                                             const ft_gpu_terrain *gt, const char *vert_name,
                                             const char *frag_name, ft_terrain_program *p,

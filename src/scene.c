@@ -121,6 +121,24 @@ static void can_map_to_pose_ranges(ft_can_map *m)
     }
 }
 
+/* TAWS practice (e.g. the FAA's Advanced Avionics Handbook): terrain more
+ * than 1000 ft below the aircraft as it is, 1000 to 100 ft below yellow,
+ * within 100 ft below or above red; painted over the terrain colour at 60%
+ * and 70% so the relief stays readable (config/default.ini says the same). */
+void ft_scene_default_bands(ft_bands *b)
+{
+    static const float rgba[3][4] = {
+        {0.0f, 0.0f, 0.0f, 0.0f},
+        {1.0f, 204.0f / 255.0f, 0.0f, 153.0f / 255.0f}, /* FFCC0099 */
+        {1.0f, 0.0f, 0.0f, 179.0f / 255.0f}};           /* FF0000B3 */
+    memset(b, 0, sizeof *b);
+    b->edges = 2u;
+    b->edge_ft[0] = -1000.0f;
+    b->edge_ft[1] = -100.0f;
+    b->colours = 3u;
+    memcpy(b->rgba, rgba, sizeof rgba);
+}
+
 void ft_scene_defaults(ft_scene *s)
 {
     memset(s, 0, sizeof *s);
@@ -164,6 +182,9 @@ void ft_scene_defaults(ft_scene *s)
     s->pgrid_ray_casting = 1;
     s->pgrid_gamma_px = 1.0;
     s->pgrid_raycast_max_px = 262144;
+    s->present_relative = 0;
+    s->present_palette = FT_PALETTE_DAY;
+    ft_scene_default_bands(&s->present_bands);
     s->metric_enabled = 0;
     s->frame_period_ms = 16.667;
     s->frame_budget_ms = 0.0;
@@ -271,6 +292,73 @@ static int parse_u32(const char *v, uint32_t lo, uint32_t hi, uint32_t *out)
 }
 
 /* A 0|1 switch into an int. */
+/* "E1, E2, ...": 1..FT_BANDS_MAX-1 numbers in ft, strictly increasing. */
+static int parse_band_edges(const char *v, ft_bands *b)
+{
+    uint32_t n = 0u;
+    const char *p = v;
+    for (uint32_t guard = 0u; guard < FT_BANDS_MAX; ++guard) {
+        char *end = NULL;
+        errno = 0;
+        const double d = strtod(p, &end);
+        if (end == p || errno != 0 || !isfinite(d) || d < -FT_BAND_EDGE_LIMIT_FT ||
+            d > FT_BAND_EDGE_LIMIT_FT || n >= FT_BANDS_MAX - 1u ||
+            (n > 0u && !(d > (double)b->edge_ft[n - 1u]))) {
+            return 0;
+        }
+        b->edge_ft[n++] = (float)d;
+        while (*end == ' ' || *end == '\t') ++end;
+        if (*end == '\0') {
+            b->edges = n;
+            return 1;
+        }
+        if (*end != ',') {
+            return 0;
+        }
+        p = end + 1;
+    }
+    return 0;
+}
+
+/* "RRGGBBAA, ...": 2..FT_BANDS_MAX colours, 8 hex digits each. */
+static int parse_band_rgba(const char *v, ft_bands *b)
+{
+    uint32_t n = 0u;
+    const char *p = v;
+    for (uint32_t guard = 0u; guard < FT_BANDS_MAX; ++guard) {
+        while (*p == ' ' || *p == '\t') ++p;
+        uint32_t word = 0u;
+        for (int i = 0; i < 8; ++i) {
+            const char ch = p[i];
+            uint32_t d;
+            if (ch >= '0' && ch <= '9') d = (uint32_t)(ch - '0');
+            else if (ch >= 'a' && ch <= 'f') d = (uint32_t)(ch - 'a' + 10);
+            else if (ch >= 'A' && ch <= 'F') d = (uint32_t)(ch - 'A' + 10);
+            else return 0;
+            word = (word << 4) | d;
+        }
+        if (n >= FT_BANDS_MAX) {
+            return 0;
+        }
+        for (int c = 0; c < 4; ++c) {
+            b->rgba[n][c] = (float)((word >> (24 - 8 * c)) & 0xffu) / 255.0f;
+        }
+        ++n;
+        p += 8;
+        while (*p == ' ' || *p == '\t') ++p;
+        if (*p == '\0') {
+            if (n < 2u) return 0;
+            b->colours = n;
+            return 1;
+        }
+        if (*p != ',') {
+            return 0;
+        }
+        ++p;
+    }
+    return 0;
+}
+
 static int parse_flag(const char *v, int *out)
 {
     uint32_t u;
@@ -682,6 +770,30 @@ static int on_key(void *user, const char *section, const char *key, const char *
             }
             return 1;
         }
+    } else if (strcmp(section, "presentation") == 0) {
+        if (strcmp(key, "colouring") == 0) {
+            if (strcmp(value, "absolute") == 0 || strcmp(value, "relative") == 0) {
+                s->present_relative = (value[0] == 'r');
+                return 1;
+            }
+            return fail_key(c, section, key, value, "expected absolute or relative");
+        }
+        if (strcmp(key, "palette") == 0) {
+            if (strcmp(value, "day") == 0 || strcmp(value, "night") == 0) {
+                s->present_palette = value[0] == 'n' ? FT_PALETTE_NIGHT : FT_PALETTE_DAY;
+                return 1;
+            }
+            return fail_key(c, section, key, value, "expected day or night");
+        }
+        if (strcmp(key, "band_edges_ft") == 0) {
+            return RANGE(parse_band_edges(value, &s->present_bands),
+                         "expected 1 to 5 comma-separated heights in ft relative to the "
+                         "aircraft, strictly increasing, within +-60000");
+        }
+        if (strcmp(key, "band_rgba") == 0) {
+            return RANGE(parse_band_rgba(value, &s->present_bands),
+                         "expected 2 to 6 comma-separated colours RRGGBBAA (hex)");
+        }
     } else if (strcmp(section, "metric") == 0) {
         if (strcmp(key, "enabled") == 0) {
             return RANGE(parse_flag(value, &s->metric_enabled), "expected 0 or 1");
@@ -748,6 +860,12 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
                        "pose_input.converge_ms %u (0..10000) or pose_input.snap_m %g "
                        "(1..100000) out of range",
                        s->pose_converge_ms, s->pose_snap_m);
+    }
+    if (s->present_bands.colours != s->present_bands.edges + 1u) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "presentation: %u band colours (band_rgba) for %u band edges "
+                       "(band_edges_ft): a colour for each band, edges + 1",
+                       s->present_bands.colours, s->present_bands.edges);
     }
     /* GPIO lines: each used at most once */
     int used[FT_GPIO_INPUT_COUNT + 1];

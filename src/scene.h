@@ -133,7 +133,8 @@
 #define FT_GPIO_INPUT_LIST(X)                                             \
     X(FT_GPIO_FREEZE, "freeze", "hold the drawn pose")                     \
     X(FT_GPIO_SOURCE, "source", "use the backup CAN interface")            \
-    X(FT_GPIO_TEST, "test", "annunciation test")
+    X(FT_GPIO_TEST, "test", "annunciation test")                          \
+    X(FT_GPIO_NIGHT, "night", "night palette (else presentation.palette)")
 
 typedef enum ft_gpio_input {
 #define FT_GPIO_INPUT_ENUM(id, name, what) id,
@@ -163,6 +164,24 @@ int ft_method_from_name(const char *name, ft_method_kind *out);
 /* bintree.split_fraction: default (and least) and most */
 #define FT_BT_SPLIT_FRACTION 0.5
 #define FT_BT_SPLIT_FRACTION_MAX 0.95
+
+/* [presentation]: how the terrain is coloured (src/shade.h). Relative
+ * colouring paints bands of terrain height relative to the aircraft's
+ * altitude over the terrain colour, as a TAWS terrain display does. Band
+ * edges are in feet (the unit of altimeters and TAWS), relative to the
+ * aircraft (negative: below it), strictly increasing; band i lies between
+ * edge i-1 and edge i (band 0 below the first edge, the last band at or
+ * above the last edge). Each band's RGBA: the colour and how much of it
+ * replaces the terrain colour (alpha 0: the terrain colour shows). */
+#define FT_BANDS_MAX 6u
+#define FT_BAND_EDGE_LIMIT_FT 60000.0
+typedef enum ft_palette { FT_PALETTE_DAY = 0, FT_PALETTE_NIGHT, FT_PALETTE_COUNT } ft_palette;
+typedef struct ft_bands {
+    uint32_t edges;                      /* presentation.band_edges_ft: 1..FT_BANDS_MAX-1 */
+    float edge_ft[FT_BANDS_MAX - 1u];
+    uint32_t colours;                    /* presentation.band_rgba: must be edges + 1 */
+    float rgba[FT_BANDS_MAX][4];         /* 0..1 */
+} ft_bands;
 
 typedef struct ft_scene {
     char name[FT_SCENE_NAME_MAX];
@@ -200,6 +219,9 @@ typedef struct ft_scene {
     int pgrid_ray_casting;       /* pgrid.ray_casting */
     double pgrid_gamma_px;       /* pgrid.gamma_px */
     uint32_t pgrid_raycast_max_px; /* pgrid.raycast_max_px */
+    int present_relative;   /* presentation.colouring: 0 absolute, 1 relative */
+    ft_palette present_palette; /* presentation.palette: day | night */
+    ft_bands present_bands; /* presentation.band_edges_ft, band_rgba */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
     double frame_period_ms;   /* frame.period_ms */
     double frame_budget_ms;   /* frame.budget_ms, 0 = the period */
@@ -228,6 +250,8 @@ extern const char ft_default_scene_text[];
 
 /* Fills every field with its default (what config/default.ini also says). */
 void ft_scene_defaults(ft_scene *s);
+/* The default relative-altitude bands (presentation.band_*). */
+void ft_scene_default_bands(ft_bands *b);
 
 /* Parses INI text over the current contents of s (start from defaults). */
 ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name, ft_error *err);

@@ -17,7 +17,67 @@ static float clamp01(float x)
     return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
 }
 
-void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
+void ft_shade_palette_ramp(ft_palette p, float rgb[FT_RAMP_STOPS][3])
+{
+    const float gain = p == FT_PALETTE_NIGHT ? FT_NIGHT_TERRAIN_GAIN : 1.0f;
+    for (int i = 0; i < FT_RAMP_STOPS; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            rgb[i][c] = ft_ramp_rgb[i][c] * gain;
+        }
+    }
+}
+
+void ft_shade_palette_sky(ft_palette p, float rgb[3])
+{
+    const int night = (p == FT_PALETTE_NIGHT);
+    rgb[0] = night ? FT_NIGHT_SKY_R : FT_SKY_R;
+    rgb[1] = night ? FT_NIGHT_SKY_G : FT_SKY_G;
+    rgb[2] = night ? FT_NIGHT_SKY_B : FT_SKY_B;
+}
+
+void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s)
+{
+    st->palette = s->present_palette;
+    st->relative = s->present_relative;
+    st->bands = s->present_bands;
+    st->aircraft_alt_m = (float)s->pose.alt_m;
+}
+
+#if FT_WITH_RELATIVE_COLOURING
+void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u],
+                        float rgba[FT_BANDS_MAX][4])
+{
+    const float gain = st->palette == FT_PALETTE_NIGHT ? FT_NIGHT_BAND_GAIN : 1.0f;
+    for (uint32_t i = 0; i < FT_BANDS_MAX - 1u; ++i) {
+        edge_m[i] = i < st->bands.edges ? (float)((double)st->bands.edge_ft[i] * FT_FT_TO_M)
+                                        : FT_BAND_EDGE_NONE_M;
+    }
+    for (uint32_t i = 0; i < FT_BANDS_MAX; ++i) {
+        const uint32_t b = i < st->bands.colours ? i : st->bands.colours - 1u;
+        for (int c = 0; c < 3; ++c) {
+            rgba[i][c] = st->bands.rgba[b][c] * gain;
+        }
+        rgba[i][3] = st->bands.rgba[b][3];
+    }
+}
+
+uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
+{
+    float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
+    ft_shade_bands_gpu(st, edge_m, rgba);
+    const float rel = height_m - st->aircraft_alt_m;
+    uint32_t band = 0u;
+    for (uint32_t i = 0; i < FT_BANDS_MAX - 1u; ++i) {
+        if (rel >= edge_m[i]) {
+            band = i + 1u;
+        }
+    }
+    return band;
+}
+#endif
+
+static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, float height_m,
+                  const float n[3], uint8_t out[4])
 {
     float rgb[3];
     int i = 0;
@@ -27,7 +87,10 @@ void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
     float t = clamp01((height_m - ft_ramp_height_m[i]) /
                       (ft_ramp_height_m[i + 1] - ft_ramp_height_m[i]));
     for (int c = 0; c < 3; ++c) {
-        rgb[c] = ft_ramp_rgb[i][c] + (ft_ramp_rgb[i + 1][c] - ft_ramp_rgb[i][c]) * t;
+        rgb[c] = ramp[i][c] + (ramp[i + 1][c] - ramp[i][c]) * t;
+        if (band_rgba != NULL) {
+            rgb[c] += (band_rgba[c] - rgb[c]) * band_rgba[3];
+        }
     }
     float sl = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
                      FT_SUN_DIR_Z * FT_SUN_DIR_Z);
@@ -37,4 +100,25 @@ void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
         out[c] = (uint8_t)(clamp01(rgb[c] * light) * 255.0f + 0.5f);
     }
     out[3] = 255;
+}
+
+void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
+{
+    shade(ft_ramp_rgb, NULL, height_m, n, out);
+}
+
+void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
+                          uint8_t out[4])
+{
+    float ramp[FT_RAMP_STOPS][3];
+    ft_shade_palette_ramp(st->palette, ramp);
+#if FT_WITH_RELATIVE_COLOURING
+    if (st->relative) {
+        float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
+        ft_shade_bands_gpu(st, edge_m, rgba);
+        shade((const float(*)[3])ramp, rgba[ft_shade_band_of(st, height_m)], height_m, n, out);
+        return;
+    }
+#endif
+    shade((const float(*)[3])ramp, NULL, height_m, n, out);
 }

@@ -12,6 +12,8 @@
 
 #include <stdint.h>
 
+#include "scene.h"
+
 #define FT_SHADE_AMBIENT 0.35f
 #define FT_SHADE_DIFFUSE 0.65f
 #define FT_SUN_DIR_X 0.4f
@@ -29,7 +31,44 @@ extern const float ft_ramp_rgb[FT_RAMP_STOPS][3];
 #define FT_SKY_G 0.70f
 #define FT_SKY_B 0.92f
 
-/* n: unit surface normal (world, z up). Writes RGBA8 (alpha 255). */
+/* n: unit surface normal (world, z up). Writes RGBA8 (alpha 255): the day
+ * palette, absolute colouring. */
 void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4]);
+
+/* Palettes (presentation.palette; a GPIO discrete may switch it per frame):
+ * the same ramp scaled to a lower luminance at night, a dark sky, and the
+ * relative-altitude bands dimmed less than the terrain so alerts stay the
+ * brightest thing on the display. Not a certified palette: the data a
+ * display engineer tunes. */
+#define FT_NIGHT_TERRAIN_GAIN 0.3f
+#define FT_NIGHT_BAND_GAIN 0.6f
+#define FT_NIGHT_SKY_R 0.02f
+#define FT_NIGHT_SKY_G 0.03f
+#define FT_NIGHT_SKY_B 0.08f
+#define FT_FT_TO_M 0.3048 /* international foot, exact */
+
+/* Everything the colour depends on besides the fragment: what the scene
+ * chose, the palette in force and the aircraft's altitude this frame. */
+typedef struct ft_shade_state {
+    ft_palette palette;
+    int relative;         /* presentation.colouring = relative */
+    ft_bands bands;       /* edges in ft, colours before the palette's gain */
+    float aircraft_alt_m; /* the pose's altitude, same datum as the heights */
+} ft_shade_state;
+
+void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s);
+/* The palette's ramp colours, sky colour and band colours (after its gain);
+ * edge_m: the band edges in metres relative to the aircraft, unused edges
+ * FT_BAND_EDGE_NONE_M (above any height). */
+#define FT_BAND_EDGE_NONE_M 1e30f
+void ft_shade_palette_ramp(ft_palette p, float rgb[FT_RAMP_STOPS][3]);
+void ft_shade_palette_sky(ft_palette p, float rgb[3]);
+void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u],
+                        float rgba[FT_BANDS_MAX][4]);
+/* The band a height falls in (0 .. bands.edges), as the shader picks it. */
+uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m);
+/* The colour the fragment shader computes for this state (the CPU mirror). */
+void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
+                          uint8_t out[4]);
 
 #endif

@@ -49,6 +49,7 @@
 #include "terrain.h"
 #include "terrain_file.h"
 #include "test_util.h"
+#include "test_terrain_util.h"
 #if FT_DEPTH_GL
 #include "app.h"
 #include "shade.h"
@@ -56,49 +57,6 @@
 #endif
 
 #define PI 3.14159265358979323846
-
-/* ---- terrains in memory ---------------------------------------------------------- */
-
-typedef double (*height_fn)(double x_m, double y_m, uint32_t ix, uint32_t iy);
-
-static void *g_pyr_storage;
-
-static void terrain_make(ft_terrain *t, uint32_t w, uint32_t h, double dx_m, double dy_m,
-                         double x0, double y0, height_fn fn)
-{
-    memset(t, 0, sizeof *t);
-    t->width = w;
-    t->height = h;
-    t->unit = FT_UNIT_METRE;
-    t->spacing_x = dx_m;
-    t->spacing_y = dy_m;
-    t->origin_x = x0;
-    t->origin_y = y0;
-    t->anchor_lat_deg = 45.0;
-    t->anchor_lon_deg = 9.0;
-    (void)snprintf(t->crs, sizeof t->crs, "local-test");
-    REQUIRE(ft_terrain_derive_frame(t, NULL) == FT_OK);
-    t->heights_m = malloc((size_t)w * h * sizeof(float));
-    size_t pb = ft_pyramid_bytes(w, h);
-    g_pyr_storage = aligned_alloc(64, (pb + 63u) & ~(size_t)63u);
-    REQUIRE(t->heights_m != NULL && g_pyr_storage != NULL);
-    REQUIRE(ft_pyramid_layout(t, g_pyr_storage, pb, NULL) == FT_OK);
-    for (uint32_t iy = 0; iy < h; ++iy) {
-        for (uint32_t ix = 0; ix < w; ++ix) {
-            t->heights_m[(size_t)iy * w + ix] =
-                (float)fn(x0 + ix * dx_m, y0 + iy * dy_m, ix, iy);
-        }
-    }
-    ft_pyramid_build(t);
-}
-
-static void terrain_free(ft_terrain *t)
-{
-    free(t->heights_m);
-    free(g_pyr_storage);
-    g_pyr_storage = NULL;
-    t->heights_m = NULL;
-}
 
 /* ---- rule ------------------------------------------------------------------------- */
 
@@ -311,24 +269,12 @@ static double ridge_height(double x, double y, uint32_t ix, uint32_t iy)
     return r < 1500.0 ? 4000.0 * (1.0 - r / 1500.0) : 0.0;
 }
 
-static ft_status stdio_write(void *ctx, const void *src, size_t bytes)
-{
-    return fwrite(src, 1, bytes, (FILE *)ctx) == bytes ? FT_OK : FT_ERR_IO;
-}
-
 static void write_ridges(const char *path, int with_b)
 {
     ft_terrain t;
-    ft_error err;
     g_with_b = with_b;
     terrain_make(&t, ORD_W, ORD_H, ORD_DX, ORD_DY, ORD_X0, ORD_Y0, ridge_height);
-    FILE *f = fopen(path, "wb");
-    REQUIRE(f != NULL);
-    ft_writer w = {f, stdio_write, path};
-    ft_status st = ft_tfile_write(&t, -32768.0f, &w, &err);
-    if (st != FT_OK) fprintf(stderr, "write %s: %s\n", path, err.text);
-    REQUIRE(st == FT_OK);
-    REQUIRE(fclose(f) == 0);
+    terrain_write_ftt(&t, path);
     terrain_free(&t);
 }
 

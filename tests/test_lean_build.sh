@@ -48,6 +48,22 @@ for left_out in "run --frames 1" "render --method brute"; do
 done
 "$pbin" budget --scene "$src/config/minimal.ini" > "$dir/profile-budget.txt" 2>&1 \
   || { cat "$dir/profile-budget.txt"; exit 1; }
+# Relative colouring (presentation.colouring) is not in the minimal scene:
+# neither its shader text nor its code is in the binary, and a scene that
+# asks for it is refused by name. The full build has both (the check can see).
+if grep -q "u_band_rgba" "$pbin" || nm "$pbin" | grep -q " T ft_shade_bands_gpu$"; then
+  echo "FAIL: the minimal profile contains relative colouring"; exit 1
+fi
+if [ -n "$full" ] && ! { grep -q "u_band_rgba" "$full" && nm "$full" | grep -q " T ft_shade_bands_gpu$"; }; then
+  echo "FAIL: the full build lacks relative colouring: the check above sees nothing"; exit 1
+fi
+{ cat "$src/config/minimal.ini"; printf '[presentation]\ncolouring = relative\n'; } > "$dir/relative.ini"
+if "$pbin" render --scene "$dir/relative.ini" --size 64x48 --out "$dir/x.png" > "$dir/rel.log" 2>&1 \
+   || ! grep -q "colouring = relative was left out of this build" "$dir/rel.log"; then
+  echo "FAIL: the minimal profile did not refuse relative colouring by name:"; cat "$dir/rel.log"; exit 1
+fi
+grep -q "shader variants: bintree.vert.glsl" "$dir/profile-budget.txt" \
+  || { echo "FAIL: budget lists no shader variants"; cat "$dir/profile-budget.txt"; exit 1; }
 sizes() { size "$1" | awk 'NR == 2 { printf "text %d, data %d, bss %d bytes", $1, $2, $3 }'; }
 echo "binary sizes (text/data/bss, debug info aside):"
 echo "  all options off:            $(sizes "$dir/off/fixterrain")"

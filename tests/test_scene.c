@@ -73,6 +73,8 @@ int main(void)
     CHECK(memcmp(a.gpio_input_line, b.gpio_input_line, sizeof a.gpio_input_line) == 0);
     CHECK(a.gpio_debounce_ms == b.gpio_debounce_ms && a.gpio_active_low == b.gpio_active_low);
     CHECK(a.build_inputs == b.build_inputs && a.build_png == b.build_png);
+    CHECK(a.present_relative == b.present_relative && a.present_palette == b.present_palette);
+    CHECK(memcmp(&a.present_bands, &b.present_bands, sizeof a.present_bands) == 0);
     CHECK(a.pyramid_textures == b.pyramid_textures);
     CHECK(a.height_format == b.height_format);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {

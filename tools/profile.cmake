@@ -3,8 +3,8 @@
 #
 # Forces every FIXTERRAIN_WITH_* option from what the scene uses: its method
 # (scene.method), backend (scene.backend), display (scene.display), pose
-# inputs (build.inputs: replay, can, gpio), PNG output (build.png) and error
-# metric (metric.enabled). Everything else is OFF, the GDAL import tool
+# inputs (build.inputs: replay, can, gpio), PNG output (build.png), error
+# metric (metric.enabled) and relative colouring (presentation.colouring). Everything else is OFF, the GDAL import tool
 # included. Included by CMakeLists.txt before option().
 #
 # One parser: the scene is read by the runtime's own reader and parser
@@ -56,7 +56,7 @@ if(FIXTERRAIN_PROFILE)
     string(REGEX MATCH "^([a-z_]+)=(.*)$" _kv "${_kv}")
     set(_p_${CMAKE_MATCH_1} "${CMAKE_MATCH_2}")
   endforeach()
-  foreach(_k method backend display inputs_replay inputs_can inputs_gpio png metric)
+  foreach(_k method backend display inputs_replay inputs_can inputs_gpio png metric relative)
     if(NOT DEFINED _p_${_k})
       message(FATAL_ERROR "FIXTERRAIN_PROFILE: the scene parser did not say '${_k}':\n${_p_out}")
     endif()
@@ -90,7 +90,8 @@ if(FIXTERRAIN_PROFILE)
     _ft_force(KMS ON)
   endif()
   # the parser's 0/1 answers, never CMake truthiness of the file's text
-  foreach(_pair "CAN;inputs_can" "GPIO;inputs_gpio" "PNG;png" "REFERENCE;metric")
+  foreach(_pair "CAN;inputs_can" "GPIO;inputs_gpio" "PNG;png" "REFERENCE;metric"
+                "RELATIVE_COLOURING;relative")
     list(GET _pair 0 _opt)
     list(GET _pair 1 _k)
     if(_p_${_k} STREQUAL "1")
@@ -103,5 +104,5 @@ if(FIXTERRAIN_PROFILE)
   message(STATUS "fixterrain profile ${FIXTERRAIN_PROFILE} (read by the runtime's parser): "
                  "method ${_p_method}, backend ${_p_backend}, display ${_p_display}, inputs "
                  "replay ${_p_inputs_replay} can ${_p_inputs_can} gpio ${_p_inputs_gpio}, "
-                 "png ${_p_png}, metric ${_p_metric}")
+                 "png ${_p_png}, metric ${_p_metric}, relative colouring ${_p_relative}")
 endif()

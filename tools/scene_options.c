@@ -7,7 +7,7 @@
  * needs, one KEY=VALUE per line:
  *   method=brute|bintree|pgm|pgrid   backend=egl-gles3|egl-gles2|osmesa
  *   display=none|x11|kms   inputs_replay=0|1   inputs_can=0|1   inputs_gpio=0|1
- *   png=0|1   metric=0|1
+ *   png=0|1   metric=0|1   relative=0|1 (presentation.colouring)
  * A scene the runtime refuses: the runtime's message on stderr
  * ("fixterrain: scene: ..."), exit status 1; a usage error: 2.
  * Compiled and run on the build host at configure time; never installed. */
@@ -40,6 +40,7 @@ int main(int argc, char **argv)
     printf("inputs_replay=%d\ninputs_can=%d\ninputs_gpio=%d\n",
            (s.build_inputs & FT_BUILD_INPUT_REPLAY) != 0u, (s.build_inputs & FT_BUILD_INPUT_CAN) != 0u,
            (s.build_inputs & FT_BUILD_INPUT_GPIO) != 0u);
-    printf("png=%d\nmetric=%d\n", s.build_png != 0, s.metric_enabled != 0);
+    printf("png=%d\nmetric=%d\nrelative=%d\n", s.build_png != 0, s.metric_enabled != 0,
+           s.present_relative != 0);
     return fflush(stdout) == 0 ? 0 : 1;
 }

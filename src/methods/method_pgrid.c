@@ -30,7 +30,8 @@
  * member of this struct. */
 typedef struct pgrid_rc_locs {
     GLint err, heights, mm, thr, pack, grid_size, mm_info, mm_levels, eye_g, cell_m, drop;
-    GLint fwd, right, up, tan, size, view_proj, mode, sky, ramp_h, ramp_rgb, sun, light;
+    GLint fwd, right, up, tan, size, view_proj, mode, sky;
+    ft_shade_locs shade;
     GLint mm_level[FT_PYRAMID_LEVELS_MAX];
 } pgrid_rc_locs;
 
@@ -66,11 +67,8 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
     U(view_proj, "u_view_proj");
     U(mode, "u_rc_mode");
     U(sky, "u_rc_sky");
-    U(ramp_h, "u_ramp_height_m");
-    U(ramp_rgb, "u_ramp_rgb");
-    U(sun, "u_sun_dir");
-    U(light, "u_light");
 #undef U
+    ft_renderer_shade_locate(gl, prog, &u->shade);
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
         char name[40];
         (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
@@ -425,8 +423,9 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     m->u_err_envelope = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_envelope");
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
-        st = ft_renderer_link_program(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl", "a_corner",
-                                      &m->rc_prog, err);
+        st = ft_renderer_link_program_frag(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
+                                           ft_renderer_shade_defines(s), "a_corner",
+                                           &m->rc_prog, err);
         if (st != FT_OK) {
             return st;
         }
@@ -664,7 +663,7 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
                      const ft_terrain *t, const ft_camera *cam)
 {
     const GLuint prog = m->rc_prog;
-    const int pos_pass = (p->u_ramp_height_m < 0);
+    const int pos_pass = (p->shade.ramp_h < 0);
     gl->UseProgram(prog);
     const pgrid_rc_locs *u = rc_locs(m);
     gl->ActiveTexture(GL_TEXTURE3);
@@ -702,15 +701,12 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     gl->Uniform2f(u->size, (float)m->w_px, (float)m->h_px);
     gl->UniformMatrix4fv(u->view_proj, 1, GL_FALSE, cam->view_proj);
     gl->Uniform1f(u->mode, pos_pass ? 1.0f : 0.0f);
-    gl->Uniform4f(u->sky, FT_SKY_R, FT_SKY_G, FT_SKY_B, 1.0f);
-    if (!pos_pass) {
-        gl->Uniform1fv(u->ramp_h, FT_RAMP_STOPS, ft_ramp_height_m);
-        gl->Uniform3fv(u->ramp_rgb, FT_RAMP_STOPS, &ft_ramp_rgb[0][0]);
-        const float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
-                              FT_SUN_DIR_Z * FT_SUN_DIR_Z);
-        gl->Uniform3f(u->sun, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
-        gl->Uniform2f(u->light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+    float sky[3] = {FT_SKY_R, FT_SKY_G, FT_SKY_B};
+    if (!pos_pass && p->shade_state != NULL) {
+        ft_shade_palette_sky(p->shade_state->palette, sky);
+        ft_renderer_shade_uniforms(gl, &u->shade, p->shade_state);
     }
+    gl->Uniform4f(u->sky, sky[0], sky[1], sky[2], 1.0f);
     gl->DepthFunc(GL_ALWAYS);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
     gl->EnableVertexAttribArray(0);
@@ -736,7 +732,7 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
     gl->ActiveTexture(GL_TEXTURE0);
     set_grid_uniforms(m, gl, p);
     ft_pgm_method_draw(&m->pgm, gl, p, t, cam, st);
-    const int pos_pass = (p->u_ramp_height_m < 0);
+    const int pos_pass = (p->shade.ramp_h < 0);
     /* 2. the error buffer (the position pass reuses the colour pass's) */
     {
         const ft_terrain_program *e = m->err_prog;

@@ -45,6 +45,8 @@ sleep 1.5; pull 0 pull-up      # freeze for 1 s
 sleep 1;   pull 0 pull-down
 sleep 0.5; pull 1 pull-up      # annunciation test for 0.5 s
 sleep 0.5; pull 1 pull-down
+sleep 0.5; pull 3 pull-up      # night palette for 0.5 s
+sleep 0.5; pull 3 pull-down
 wait "$player" || fail "canplayer failed"
 sleep 1
 kill -TERM "$pid"

@@ -49,6 +49,7 @@ backup_interface = vcan1
 chip = ft-gpio-sim
 freeze_line = 0
 test_line = 1
+night_line = 3
 heartbeat_line = 7
 debounce_ms = 10
 EOS
@@ -73,6 +74,12 @@ echo "live-test: $frames frames, $misses deadline misses, $toggles heartbeat tog
 [ "$misses" -eq 0 ] || fail "$misses deadline misses at ${period_ms} ms frames"
 [ "$toggles" -eq "$frames" ] || fail "heartbeat toggled $toggles times for $frames frames"
 grep -q '"can_dropped": \[0, 0\]' "$out/live.json" || fail "the kernel dropped CAN frames"
+# the night line was held 0.5 s (guest's sleep): the frames drawn in the
+# night palette are those of its debounced span, switched on the next frame
+night=$(sed -n 's/.*"frames_night": \([0-9]*\).*/\1/p' "$out/live.json")
+echo "live-test: $night frames in the night palette (line held 0.5 s at ${period_ms} ms frames)"
+awk -v n="$night" -v p="$period_ms" 'BEGIN { want = 500 / p; exit !(n >= 1 && n <= want + 4) }' \
+  || fail "night palette on $night frames for a 0.5 s pulse"
 # the position came from the velocity frames on vcan0: predicted on most
 # frames, never snapped (the flight has no GPS jump), no velocity rejected
 pos_pred=$(sed -n 's/.*"position": {"frames_predicted": \([0-9]*\).*/\1/p' "$out/live.json")

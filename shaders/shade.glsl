@@ -1,0 +1,29 @@
+/* shade.glsl - the terrain colour of a fragment at height h (m) with normal
+ * n: the palette's height ramp, the relative-altitude band painted over it
+ * (only in the FT_SHADE_RELATIVE variant), times one Lambert light.
+ * src/shade.c (ft_shade_rgba8_state) is the same rule on the CPU; the
+ * uniforms come from the same C tables. */
+#define FT_RAMP_STOPS 6
+uniform float u_ramp_height_m[FT_RAMP_STOPS];
+uniform vec3 u_ramp_rgb[FT_RAMP_STOPS];
+uniform vec3 u_sun_dir; /* unit */
+uniform vec2 u_light;   /* (ambient, diffuse) */
+
+vec3 ft_shade(float h, vec3 n)
+{
+    vec3 rgb = u_ramp_rgb[FT_RAMP_STOPS - 1];
+    for (int i = 0; i < FT_RAMP_STOPS - 1; ++i) {
+        /* first segment whose upper stop is at or above the height */
+        if (h <= u_ramp_height_m[i + 1] || i == FT_RAMP_STOPS - 2) {
+            float t = clamp((h - u_ramp_height_m[i]) / (u_ramp_height_m[i + 1] - u_ramp_height_m[i]),
+                            0.0, 1.0);
+            rgb = mix(u_ramp_rgb[i], u_ramp_rgb[i + 1], t);
+            break;
+        }
+    }
+#ifdef FT_SHADE_RELATIVE
+    rgb = ft_relative_band(h, rgb);
+#endif
+    float light = u_light.x + u_light.y * max(0.0, dot(normalize(n), u_sun_dir));
+    return clamp(rgb * light, 0.0, 1.0);
+}

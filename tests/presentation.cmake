@@ -1,0 +1,23 @@
+# Presentation: the [presentation] keys and band rule (no GPU), and a
+# staircase terrain coloured by relative altitude on real contexts.
+if(NOT FIXTERRAIN_WITH_RELATIVE_COLOURING)
+  return()
+endif()
+ft_add_test(test_presentation SOURCES test_presentation.c ARGS parse LIBS m)
+if(NOT (TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE))
+  target_compile_definitions(test_presentation PRIVATE FT_PRESENTATION_GL=0)
+else()
+  target_compile_definitions(test_presentation PRIVATE FT_PRESENTATION_GL=1)
+  target_link_libraries(test_presentation PRIVATE ft_app)
+  if(FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_BRUTE)
+    add_test(NAME presentation_stairs_gles3 COMMAND test_presentation stairs egl-gles3 brute)
+    # a true ES 2.0 context (without the override Mesa returns ES 3.2)
+    add_test(NAME presentation_stairs_gles2 COMMAND test_presentation stairs egl-gles2 brute)
+    set_tests_properties(presentation_stairs_gles2 PROPERTIES
+                         ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+  endif()
+  if(FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_PGRID)
+    # the ray-cast pixels colour through their own shader (pgrid_rc.frag.glsl)
+    add_test(NAME presentation_stairs_pgrid COMMAND test_presentation stairs egl-gles3 pgrid)
+  endif()
+endif()

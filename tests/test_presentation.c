@@ -1,0 +1,309 @@
+/* test_presentation.c - how the terrain is coloured ([presentation]).
+ *
+ *   test_presentation parse
+ *     the scene keys (defaults, ranges, cross-field check) and the band rule
+ *     at its edges (src/shade.c, the CPU mirror of shaders/shade.glsl).
+ *   test_presentation stairs BACKEND METHOD
+ *     a staircase terrain (4 flat steps at known heights, metres CRS) seen
+ *     from above at a known altitude, relative colouring with 4 opaque
+ *     bands: every pixel whose 3 x 3 neighbourhood sees one flat step must
+ *     have exactly (+-2 of 255, the rounding) the colour of its band, the
+ *     band found from the reference ray caster's hit height; each band must
+ *     cover at least 2000 such pixels. The same view in the night palette
+ *     (and its sky), and with absolute colouring (the day ramp). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene.h"
+#include "shade.h"
+#include "test_util.h"
+#if FT_PRESENTATION_GL
+#include "app.h"
+#include "reference.h"
+#include "test_app_util.h"
+#include "test_terrain_util.h"
+#endif
+
+#define PI 3.14159265358979323846
+
+/* ---- the scene keys ---------------------------------------------------------------- */
+
+static ft_status parse(const char *text, ft_scene *s, ft_error *err)
+{
+    ft_scene_defaults(s);
+    return ft_scene_parse(s, text, "test", err);
+}
+
+static void expect_refused(const char *text, const char *needle)
+{
+    static ft_scene s;
+    ft_error err;
+    memset(&err, 0, sizeof err);
+    const ft_status st = parse(text, &s, &err);
+    CHECK(st != FT_OK);
+    if (st != FT_OK && strstr(err.text, needle) == NULL) {
+        fprintf(stderr, "refused without '%s': %s\n", needle, err.text);
+        CHECK(0);
+    }
+}
+
+static int run_parse(void)
+{
+    static ft_scene s;
+    ft_error err;
+    REQUIRE(parse("", &s, &err) == FT_OK);
+    CHECK(s.present_relative == 0 && s.present_palette == FT_PALETTE_DAY);
+    CHECK(s.present_bands.edges == 2u && s.present_bands.colours == 3u);
+    CHECK(s.present_bands.edge_ft[0] == -1000.0f && s.present_bands.edge_ft[1] == -100.0f);
+
+    REQUIRE(parse("[presentation]\ncolouring = relative\npalette = night\n"
+                  "band_edges_ft = -3000, -2000,-1000\n"
+                  "band_rgba = 0000ffff, 00FF00FF, ffff0080 ,FF000000\n",
+                  &s, &err) == FT_OK);
+    CHECK(s.present_relative == 1 && s.present_palette == FT_PALETTE_NIGHT);
+    CHECK(s.present_bands.edges == 3u && s.present_bands.colours == 4u);
+    CHECK(s.present_bands.edge_ft[1] == -2000.0f);
+    CHECK(s.present_bands.rgba[0][2] == 1.0f && s.present_bands.rgba[0][0] == 0.0f);
+    CHECK_NEAR(s.present_bands.rgba[2][3], 128.0 / 255.0, 1e-7);
+
+    expect_refused("[presentation]\ncolouring = relief\n", "expected absolute or relative");
+    expect_refused("[presentation]\npalette = dusk\n", "expected day or night");
+    expect_refused("[presentation]\nband_edges_ft = -100, -1000\n", "strictly increasing");
+    expect_refused("[presentation]\nband_edges_ft = -100, -100\n", "strictly increasing");
+    expect_refused("[presentation]\nband_edges_ft = 1, 2, 3, 4, 5, 6\n", "1 to 5");
+    expect_refused("[presentation]\nband_edges_ft = 70000\n", "60000");
+    expect_refused("[presentation]\nband_edges_ft = -100,\n", "1 to 5");
+    expect_refused("[presentation]\nband_edges_ft = nan\n", "1 to 5");
+    expect_refused("[presentation]\nband_rgba = FF0000, 00FF00FF\n", "RRGGBBAA");
+    expect_refused("[presentation]\nband_rgba = GG0000FF, 00FF00FF\n", "RRGGBBAA");
+    expect_refused("[presentation]\nband_rgba = FF0000FF\n", "2 to 6");
+    /* edges and colours must agree, whatever order the keys come in */
+    expect_refused("[presentation]\nband_edges_ft = -500\n", "band colours");
+    expect_refused("[presentation]\nband_rgba = FF0000FF, 00FF00FF, 0000FFFF, 000000FF\n",
+                   "band colours");
+
+    /* the band rule at its edges: a height exactly on an edge is in the band above */
+    ft_shade_state st;
+    REQUIRE(parse("", &s, &err) == FT_OK);
+    ft_shade_state_from_scene(&st, &s);
+    st.aircraft_alt_m = 1000.0f;
+    const float e0 = (float)(-1000.0 * FT_FT_TO_M), e1 = (float)(-100.0 * FT_FT_TO_M);
+    CHECK(ft_shade_band_of(&st, 1000.0f + e0 - 0.01f) == 0u);
+    CHECK(ft_shade_band_of(&st, 1000.0f + e0) == 1u);
+    CHECK(ft_shade_band_of(&st, 1000.0f + e1 - 0.01f) == 1u);
+    CHECK(ft_shade_band_of(&st, 1000.0f + e1) == 2u);
+    CHECK(ft_shade_band_of(&st, 9000.0f) == 2u);
+    CHECK(ft_shade_band_of(&st, -500.0f) == 0u);
+    /* alpha 0 (band 0 by default) leaves the terrain colour as it is */
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    uint8_t a[4], b[4];
+    st.relative = 1;
+    ft_shade_rgba8_state(&st, 200.0f, up, a);
+    ft_shade_rgba8(200.0f, up, b);
+    CHECK(memcmp(a, b, 4) == 0);
+    return ft_test_result("presentation parse");
+}
+
+/* ---- the staircase ------------------------------------------------------------------ */
+
+#if FT_PRESENTATION_GL
+
+#define ST_SIDE 257u
+#define ST_CELL_M 20.0
+#define ST_STEP_COLS 64u /* steps: columns [0,64) [64,128) [128,192) [192,256] */
+#define ST_X0 500000.0
+#define ST_Y0 4900000.0
+#define ST_ALT_M 5000.0
+#define ST_W 320u
+#define ST_H 240u
+#define ST_MIN_PX_PER_BAND 2000u
+
+/* heights relative to the aircraft: -4500, -3300, -2700, -2000 m; band edges
+ * -12000, -10000, -8000 ft = -3657.6, -3048, -2438.4 m: one step per band */
+static const double k_step_m[4] = {500.0, 1700.0, 2300.0, 3000.0};
+
+static double stairs_height(double x, double y, uint32_t ix, uint32_t iy)
+{
+    (void)x;
+    (void)y;
+    (void)iy;
+    const uint32_t k = ix / ST_STEP_COLS;
+    return k_step_m[k < 4u ? k : 3u];
+}
+
+static ft_app g_app;
+static char g_text[2048];
+static int8_t g_cls[ST_W * ST_H]; /* per pixel: step 0..3, -1 sky, -2 by a riser */
+static float g_hit_z[ST_W * ST_H];
+
+static const char k_stairs_scene[] =
+    "[scene]\nname = stairs\nmethod = %s\nbackend = %s\n"
+    "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 60\n"
+    "[terrain]\ndem = %s\n"
+    "[gpu]\ntexture_bytes = 32M\n[metric]\nenabled = 0\n"
+    "[presentation]\ncolouring = %s\npalette = %s\n"
+    "band_edges_ft = -12000, -10000, -8000\n"
+    "band_rgba = 0000FFFF, 00FF00FF, FFFF00FF, FF0000FF\n"
+    "[budget]\nheights_bytes = 2M\npyramids_bytes = 8M\ndem_io_bytes = 2M\n"
+    "frame_rgba_bytes = 512K\ngpu_staging_bytes = 2M\nmethod_bytes = 8M\npng_bytes = 512K\n";
+
+/* Classifies every pixel by the reference ray caster: which flat step it
+ * sees, the sky, or a riser (the cell between two steps and the cells
+ * beside it, whose vertex normals are not the flat step's). */
+static void classify(const ft_terrain *t, const ft_camera *cam)
+{
+    for (uint32_t py = 0; py < ST_H; ++py) {
+        for (uint32_t px = 0; px < ST_W; ++px) {
+            const size_t i = (size_t)py * ST_W + px;
+            double dir[3], th = 0.0;
+            ft_camera_pixel_ray(cam, px + 0.5, py + 0.5, dir);
+            if (!ft_reference_ray(t, cam->eye_m, dir, &th)) {
+                g_cls[i] = -1;
+                continue;
+            }
+            const double x = cam->eye_m[0] + dir[0] * th;
+            g_hit_z[i] = (float)(cam->eye_m[2] + dir[2] * th);
+            const double u = (x - t->origin_world_x_m) / t->cell_x_m;
+            const double cell = floor(u);
+            const uint32_t c = cell < 0.0 ? 0u : (uint32_t)cell;
+            /* the riser cell, and the cells beside it: a mesh's vertex
+             * normals there lean towards the riser (central differences) */
+            const uint32_t m = c % ST_STEP_COLS;
+            const int riser = c < 3u * ST_STEP_COLS + 1u && c >= ST_STEP_COLS - 2u &&
+                              (m >= ST_STEP_COLS - 2u || m == 0u);
+            const uint32_t k = c / ST_STEP_COLS;
+            g_cls[i] = riser ? (int8_t)-2 : (int8_t)(k < 4u ? k : 3u);
+        }
+    }
+}
+
+/* 1 when the pixel and its 8 neighbours see the same flat step. */
+static int interior(uint32_t px, uint32_t py)
+{
+    if (px == 0u || py == 0u || px + 1u >= ST_W || py + 1u >= ST_H) {
+        return 0;
+    }
+    const int8_t c = g_cls[(size_t)py * ST_W + px];
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            if (g_cls[(size_t)(py + (uint32_t)(int)dy) * ST_W + (px + (uint32_t)(int)dx)] != c) {
+                return 0;
+            }
+        }
+    }
+    return c >= 0;
+}
+
+/* Renders the staircase with one colouring and palette; checks every
+ * interior pixel against the CPU mirror and every sky pixel against the
+ * palette's sky. */
+static void stairs_case(const char *backend, const char *method, const char *dem,
+                        const char *colouring, const char *palette)
+{
+    (void)snprintf(g_text, sizeof g_text, k_stairs_scene, method, backend, dem, colouring,
+                   palette);
+    ft_test_app_init(&g_app, g_text, colouring);
+    const ft_terrain *t = &g_app.terrain;
+    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double ex = ST_X0 + 128.0 * ST_CELL_M, ey = ST_Y0 + 128.0 * ST_CELL_M;
+    ft_pose p = {t->anchor_lat_deg + (ey - ST_Y0) / m_per_deg,
+                 t->anchor_lon_deg + (ex - ST_X0) / (m_per_deg * cos(t->anchor_lat_deg * PI / 180.0)),
+                 ST_ALT_M, 0.0, -89.5, 0.0};
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, &p, &cam, &fs);
+    CHECK(fabs(cam.eye_m[0] - ex) < 0.01 && fabs(cam.eye_m[1] - ey) < 0.01);
+    classify(t, &cam);
+
+    ft_shade_state st;
+    ft_shade_state_from_scene(&st, &g_app.scene);
+    st.aircraft_alt_m = (float)ST_ALT_M;
+    float sky[3];
+    ft_shade_palette_sky(st.palette, sky);
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    uint32_t checked[4] = {0u, 0u, 0u, 0u}, band_px[FT_BANDS_MAX] = {0u};
+    uint32_t bad = 0u, sky_checked = 0u, sky_bad = 0u;
+    const uint8_t *rgba = g_app.renderer.rgba;
+    for (uint32_t py = 0; py < ST_H; ++py) {
+        for (uint32_t px = 0; px < ST_W; ++px) {
+            const size_t i = (size_t)py * ST_W + px;
+            const uint8_t *got = rgba + 4u * i;
+            if (g_cls[i] == -1) {
+                /* sky away from the terrain's edge: it and its 4 neighbours */
+                if (px > 0u && py > 0u && px + 1u < ST_W && py + 1u < ST_H &&
+                    g_cls[i - 1u] == -1 && g_cls[i + 1u] == -1 && g_cls[i - ST_W] == -1 &&
+                    g_cls[i + ST_W] == -1) {
+                    ++sky_checked;
+                    int off = 0;
+                    for (int c = 0; c < 3; ++c) {
+                        off |= abs((int)got[c] - (int)(sky[c] * 255.0f + 0.5f)) > 2;
+                    }
+                    sky_bad += (uint32_t)off;
+                }
+                continue;
+            }
+            if (!interior(px, py)) {
+                continue;
+            }
+            uint8_t want[4];
+            ft_shade_rgba8_state(&st, g_hit_z[i], up, want);
+            ++checked[g_cls[i]];
+            ++band_px[ft_shade_band_of(&st, g_hit_z[i])];
+            int off = 0;
+            for (int c = 0; c < 3; ++c) {
+                off |= abs((int)got[c] - (int)want[c]) > 2;
+            }
+            if (off) {
+                if (bad < 5u) {
+                    fprintf(stderr,
+                            "  pixel (%u, %u), step %d, height %.1f m: got %u %u %u, want %u %u %u\n",
+                            px, py, g_cls[i], (double)g_hit_z[i], got[0], got[1], got[2], want[0],
+                            want[1], want[2]);
+                }
+                ++bad;
+            }
+        }
+    }
+    printf("%s %s %s %s: interior pixels per step %u %u %u %u, per band %u %u %u %u, %u off; "
+           "sky %u checked, %u off\n",
+           backend, method, colouring, palette, checked[0], checked[1], checked[2], checked[3],
+           band_px[0], band_px[1], band_px[2], band_px[3], bad, sky_checked, sky_bad);
+    CHECK(bad == 0u);
+    CHECK(sky_bad == 0u);
+    for (int k = 0; k < 4; ++k) {
+        CHECK(checked[k] >= ST_MIN_PX_PER_BAND);
+        /* relative: one step per band, so each band is seen (and checked) */
+        if (st.relative) CHECK(band_px[k] == checked[k]);
+    }
+    ft_app_shutdown(&g_app);
+}
+
+static int run_stairs(const char *backend, const char *method)
+{
+    char dem[512];
+    (void)snprintf(dem, sizeof dem, "%s/stairs_%s_%s.ftt", FT_TEST_OUT_DIR, backend, method);
+    ft_terrain t;
+    terrain_make(&t, ST_SIDE, ST_SIDE, ST_CELL_M, ST_CELL_M, ST_X0, ST_Y0, stairs_height);
+    terrain_write_ftt(&t, dem);
+    terrain_free(&t);
+    stairs_case(backend, method, dem, "relative", "day");
+    stairs_case(backend, method, dem, "relative", "night");
+    stairs_case(backend, method, dem, "absolute", "day");
+    return ft_test_result("presentation stairs");
+}
+#endif
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && strcmp(argv[1], "parse") == 0) {
+        return run_parse();
+    }
+#if FT_PRESENTATION_GL
+    if (argc >= 4 && strcmp(argv[1], "stairs") == 0) {
+        return run_stairs(argv[2], argv[3]);
+    }
+#endif
+    fprintf(stderr, "usage: test_presentation parse | stairs BACKEND METHOD\n");
+    return 2;
+}

@@ -1,6 +1,7 @@
 /* shade.glsl - the terrain colour of a fragment at height h (m) with normal
  * n: the palette's height ramp, the relative-altitude band painted over it
- * (only in the FT_SHADE_RELATIVE variant), times one Lambert light.
+ * (only in the FT_SHADE_RELATIVE variant), times one Lambert light; then
+ * (FT_SHADE_HAZE variant) ft_haze by the fragment's distance.
  * src/shade.c (ft_shade_rgba8_state) is the same rule on the CPU; the
  * uniforms come from the same C tables. */
 #define FT_RAMP_STOPS 6
@@ -27,3 +28,13 @@ vec3 ft_shade(float h, vec3 n)
     float light = u_light.x + u_light.y * max(0.0, dot(normalize(n), u_sun_dir));
     return clamp(rgb * light, 0.0, 1.0);
 }
+
+#ifdef FT_SHADE_HAZE
+/* Distance haze (presentation.haze_km): towards the sky colour, capped so
+ * far ridgelines keep a quarter of their contrast (src/shade.h). */
+uniform vec4 u_haze; /* (sky r, g, b, 1 / visibility m) */
+vec3 ft_haze(vec3 rgb, float dist_m)
+{
+    return mix(rgb, u_haze.rgb, 0.75 * (1.0 - exp(-dist_m * u_haze.w)));
+}
+#endif

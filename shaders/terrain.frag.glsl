@@ -22,5 +22,9 @@ FT_IN_FS float v_height_m;
 
 void main()
 {
-    FT_FRAG_COLOR = vec4(ft_shade(v_height_m, v_normal), 1.0);
+    vec3 rgb = ft_shade(v_height_m, v_normal);
+#ifdef FT_SHADE_HAZE
+    rgb = ft_haze(rgb, length(v_pos_rel_eye_m));
+#endif
+    FT_FRAG_COLOR = vec4(rgb, 1.0);
 }

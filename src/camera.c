@@ -85,6 +85,37 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
     return FT_OK;
 }
 
+int ft_camera_horizon_px(const ft_camera *c, double p0[2], double p1[2])
+{
+    /* d(sx, sy) = forward + sx right + sy up (sx, sy: image-plane tangents)
+     * is horizontal where f_z + sx r_z + sy u_z = 0, a line in the image */
+    const double t = tan(c->fovy_rad * 0.5);
+    const double aspect = (double)c->width_px / (double)c->height_px;
+    const double fz = c->forward[2], rz = c->right[2], uz = c->up[2];
+    const double w = (double)c->width_px, h = (double)c->height_px;
+    if (fabs(uz) >= fabs(rz)) {
+        if (fabs(uz) < 1e-9) {
+            return 0;
+        }
+        for (int i = 0; i < 2; ++i) {
+            const double sx = (i == 0 ? -1.0 : 1.0) * t * aspect;
+            const double sy = -(fz + sx * rz) / uz;
+            double *p = i == 0 ? p0 : p1;
+            p[0] = i == 0 ? 0.0 : w;
+            p[1] = (1.0 - sy / t) * 0.5 * h;
+        }
+    } else {
+        for (int i = 0; i < 2; ++i) {
+            const double sy = (i == 0 ? 1.0 : -1.0) * t;
+            const double sx = -(fz + sy * uz) / rz;
+            double *p = i == 0 ? p0 : p1;
+            p[0] = (sx / (t * aspect) + 1.0) * 0.5 * w;
+            p[1] = i == 0 ? 0.0 : h;
+        }
+    }
+    return isfinite(p0[0]) && isfinite(p0[1]) && isfinite(p1[0]) && isfinite(p1[1]);
+}
+
 void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3])
 {
     double t = tan(c->fovy_rad * 0.5);

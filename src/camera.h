@@ -42,6 +42,15 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
                          double pitch_rad, double roll_rad, double fovy_rad, uint32_t width_px,
                          uint32_t height_px, double near_m, double far_m, ft_error *err);
 
+/* The zero-pitch line (the horizon of the eye's horizontal plane: every
+ * view direction with no vertical component) in pixel coordinates (origin
+ * top-left, y down): two points on it at the view's left and right edges
+ * (or top and bottom edges when it is steeper than 45 degrees). Returns 0
+ * when the view looks straight up or down (the line is not in the image
+ * plane's finite part). On a flat sea the visible sea edge lies below it by
+ * the dip sqrt(2 h / R) (h the eye's height, R the earth's radius). */
+int ft_camera_horizon_px(const ft_camera *c, double p0[2], double p1[2]);
+
 /* Unit ray direction (world) through image point (px, py) in pixel units:
  * pass (x + 0.5, y + 0.5) for the centre of pixel (x, y). */
 void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3]);

@@ -93,12 +93,12 @@ ft_status ft_overlay_layout_for(uint32_t width_px, uint32_t height_px, const cha
 
 typedef struct vbuild {
     int16_t (*v)[2];
-    uint32_t n;
+    uint32_t n, cap;
 } vbuild;
 
 static void put(vbuild *b, int32_t x, int32_t y)
 {
-    if (b->n < FT_OVERLAY_VERTICES_MAX) { /* cannot fail: the capacity is the worst case */
+    if (b->n < b->cap) { /* cannot fail: each capacity is its worst case */
         b->v[b->n][0] = (int16_t)x;
         b->v[b->n][1] = (int16_t)y;
         b->n += 1u;
@@ -143,7 +143,7 @@ static void bar(vbuild *b, double x0, double y0, double x1, double y1, double t)
 static void build(ft_overlay *ov, uint32_t width_px, uint32_t height_px)
 {
     const ft_overlay_layout *l = &ov->layout;
-    vbuild b = {ov->verts, 0u};
+    vbuild b = {ov->verts, 0u, FT_OVERLAY_VERTICES_MAX};
     const double w = (double)width_px, h = (double)height_px, t = (double)l->thickness_px;
     bar(&b, 0.0, 0.0, w, h, t);
     bar(&b, w, 0.0, 0.0, h, t);
@@ -225,6 +225,58 @@ ft_status ft_overlay_init(ft_overlay *ov, const ft_gl *gl, ft_error *err)
     return st;
 }
 
+/* The GL state every overlay draw sets (the renderer sets it every frame). */
+static void begin_draw(const ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
+                       uint32_t height_px)
+{
+    set_attrib(gl);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->Disable(GL_STENCIL_TEST);
+    gl->Disable(GL_SCISSOR_TEST);
+    gl->Disable(GL_BLEND);
+    gl->Disable(GL_CULL_FACE);
+    gl->Viewport(0, 0, (GLsizei)width_px, (GLsizei)height_px);
+    gl->UseProgram(ov->program);
+    gl->Uniform2f(ov->u_px_to_ndc, 2.0f / (float)width_px, 2.0f / (float)height_px);
+}
+
+ft_status ft_overlay_draw_line(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
+                               uint32_t height_px, const double p0[2], const double p1[2],
+                               double thickness_px, const float rgba[4], ft_error *err)
+{
+    if (ov->program == 0u) {
+        return ft_fail(err, FT_ERR_ARG, "overlay: not initialised");
+    }
+    const double lim = (double)FT_OVERLAY_VIEW_MAX_PX;
+    for (int k = 0; k < 2; ++k) {
+        if (!(fabs(p0[k]) <= lim && fabs(p1[k]) <= lim) || !(thickness_px >= 1.0) ||
+            !(thickness_px <= 64.0)) {
+            return ft_fail(err, FT_ERR_ARG, "overlay line: ends or thickness out of range");
+        }
+    }
+    if (p0[0] == p1[0] && p0[1] == p1[1]) {
+        return ft_fail(err, FT_ERR_ARG, "overlay line: both ends at one point");
+    }
+    vbuild b = {ov->line_verts, 0u, FT_OVERLAY_LINE_VERTICES};
+    bar(&b, p0[0], p0[1], p1[0], p1[1], thickness_px);
+    GLint prev_vao = 0;
+    if (ov->vao != 0u) {
+        gl->GetIntegerv(GL_VERTEX_ARRAY_BINDING, &prev_vao);
+        gl->BindVertexArray(ov->vao);
+    }
+    gl->BindBuffer(GL_ARRAY_BUFFER, ov->vbo);
+    gl->BufferSubData(GL_ARRAY_BUFFER,
+                      (GLintptr)((size_t)FT_OVERLAY_VERTICES_MAX * sizeof ov->verts[0]),
+                      (GLsizeiptr)sizeof ov->line_verts, ov->line_verts);
+    begin_draw(ov, gl, width_px, height_px);
+    gl->Uniform4f(ov->u_color, rgba[0], rgba[1], rgba[2], rgba[3]);
+    gl->DrawArrays(GL_TRIANGLES, (GLint)FT_OVERLAY_VERTICES_MAX, (GLsizei)b.n);
+    if (ov->vao != 0u) {
+        gl->BindVertexArray((GLuint)prev_vao);
+    }
+    return FT_OK;
+}
+
 ft_status ft_overlay_draw_annunciation(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
                                        uint32_t height_px, const char *reason, ft_error *err)
 {
@@ -257,15 +309,7 @@ ft_status ft_overlay_draw_annunciation(ft_overlay *ov, const ft_gl *gl, uint32_t
         ov->cache_w = width_px;
         ov->cache_h = height_px;
     }
-    set_attrib(gl);
-    gl->Disable(GL_DEPTH_TEST);
-    gl->Disable(GL_STENCIL_TEST);
-    gl->Disable(GL_SCISSOR_TEST);
-    gl->Disable(GL_BLEND);
-    gl->Disable(GL_CULL_FACE);
-    gl->Viewport(0, 0, (GLsizei)width_px, (GLsizei)height_px);
-    gl->UseProgram(ov->program);
-    gl->Uniform2f(ov->u_px_to_ndc, 2.0f / (float)width_px, 2.0f / (float)height_px);
+    begin_draw(ov, gl, width_px, height_px);
     gl->Uniform4f(ov->u_color, 1.0f, 0.0f, 0.0f, 1.0f);
     gl->DrawArrays(GL_TRIANGLES, 0, (GLsizei)ov->cross_vertices);
     if (ov->box_vertices > 0u) {

@@ -41,8 +41,11 @@
       FT_OVERLAY_TEXT_MAX * FT_OVERLAY_QUADS_PER_GLYPH_MAX))
 /* Vertices are int16 pixel coordinates: views up to this size per side. */
 #define FT_OVERLAY_VIEW_MAX_PX 8192u
+/* One line across the view (the conformal horizon): a quad after them. */
+#define FT_OVERLAY_LINE_VERTICES FT_OVERLAY_VERTICES_PER_QUAD
 /* Bytes of the GPU vertex buffer (for the scene's GPU budget). */
-#define FT_OVERLAY_GPU_BYTES ((uint64_t)FT_OVERLAY_VERTICES_MAX * 2u * sizeof(int16_t))
+#define FT_OVERLAY_GPU_BYTES                                                         \
+    ((uint64_t)(FT_OVERLAY_VERTICES_MAX + FT_OVERLAY_LINE_VERTICES) * 2u * sizeof(int16_t))
 
 /* Where the annunciation goes for one view and reason (pure CPU). */
 typedef struct ft_overlay_layout {
@@ -67,6 +70,7 @@ typedef struct ft_overlay {
     ft_overlay_layout layout;
     uint32_t cross_vertices, box_vertices, text_vertices;
     int16_t verts[FT_OVERLAY_VERTICES_MAX][2];
+    int16_t line_verts[FT_OVERLAY_LINE_VERTICES][2];
 } ft_overlay;
 
 /* Computes the layout for a width_px x height_px view (both 1 ..
@@ -89,6 +93,15 @@ ft_status ft_overlay_init(ft_overlay *ov, const ft_gl *gl, ft_error *err);
  * enabled, pointing into the overlay's buffer. */
 ft_status ft_overlay_draw_annunciation(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
                                        uint32_t height_px, const char *reason, ft_error *err);
+
+/* Draws a line of thickness_px through p0 and p1 (pixels, origin top-left,
+ * y down; two points on the view's border, ft_camera_horizon_px) in colour
+ * rgba, with the same state rules as ft_overlay_draw_annunciation. Its
+ * corners are rounded to whole pixels like every overlay vertex: the line's
+ * centre is within half a pixel of the exact one. */
+ft_status ft_overlay_draw_line(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
+                               uint32_t height_px, const double p0[2], const double p1[2],
+                               double thickness_px, const float rgba[4], ft_error *err);
 
 /* Deletes the GL objects (context current); safe on a zeroed or failed ov. */
 void ft_overlay_shutdown(ft_overlay *ov, const ft_gl *gl);

@@ -212,7 +212,10 @@ static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, co
 
 const char *ft_renderer_shade_defines(const ft_scene *s)
 {
-    return s->present_relative ? "#define FT_SHADE_RELATIVE 1\n" : "";
+    static const char *const k_variants[4] = {
+        "", "#define FT_SHADE_RELATIVE 1\n", "#define FT_SHADE_HAZE 1\n",
+        "#define FT_SHADE_RELATIVE 1\n#define FT_SHADE_HAZE 1\n"};
+    return k_variants[(s->present_relative ? 1 : 0) + (s->present_haze_km > 0.0 ? 2 : 0)];
 }
 
 void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
@@ -228,6 +231,7 @@ void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
 #else
     u->band_edge = u->band_rgba = u->aircraft_alt = -1;
 #endif
+    u->haze = gl->GetUniformLocation(prog, "u_haze");
 }
 
 /* Program must be current. A few dozen floats: set every frame, so a
@@ -246,6 +250,11 @@ void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
                           FT_SUN_DIR_Z * FT_SUN_DIR_Z);
     gl->Uniform3f(u->sun, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
     gl->Uniform2f(u->light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+    if (u->haze >= 0) {
+        float sky[3];
+        ft_shade_palette_sky(st->palette, sky);
+        gl->Uniform4f(u->haze, sky[0], sky[1], sky[2], st->haze_per_m);
+    }
 #if FT_WITH_RELATIVE_COLOURING
     if (u->band_rgba >= 0) {
         float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
@@ -680,6 +689,52 @@ void ft_renderer_select(ft_renderer *r, const ft_camera *cam)
     ft_method_select(&r->method, r->terrain, cam);
 }
 
+/* Liang-Barsky: clips segment a-b to [x0, x1] x [y0, y1]; 0 if outside. */
+static int clip_segment(double a[2], double b[2], double x0, double y0, double x1, double y1)
+{
+    const double d[2] = {b[0] - a[0], b[1] - a[1]};
+    const double p[4] = {-d[0], d[0], -d[1], d[1]};
+    const double q[4] = {a[0] - x0, x1 - a[0], a[1] - y0, y1 - a[1]};
+    double t0 = 0.0, t1 = 1.0;
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0.0) {
+            if (q[i] < 0.0) return 0;
+            continue;
+        }
+        const double t = q[i] / p[i];
+        if (p[i] < 0.0) {
+            if (t > t1) return 0;
+            if (t > t0) t0 = t;
+        } else {
+            if (t < t0) return 0;
+            if (t < t1) t1 = t;
+        }
+    }
+    const double a0[2] = {a[0], a[1]};
+    for (int k = 0; k < 2; ++k) {
+        a[k] = a0[k] + t0 * d[k];
+        b[k] = a0[k] + t1 * d[k];
+    }
+    return t1 > t0;
+}
+
+/* The conformal horizon (presentation.horizon): the zero-pitch line over
+ * terrain and sky, where the view shows it. */
+static ft_status draw_horizon(ft_renderer *r, const ft_camera *cam, ft_error *err)
+{
+    double p0[2], p1[2];
+    const double m = FT_HORIZON_LINE_PX;
+    if (!ft_camera_horizon_px(cam, p0, p1) ||
+        !clip_segment(p0, p1, -m, -m, (double)r->width_px + m, (double)r->height_px + m)) {
+        return FT_OK; /* looking straight up or down, or the line is off the view */
+    }
+    const float g =
+        r->shade.palette == FT_PALETTE_NIGHT ? FT_HORIZON_NIGHT_GREY : FT_HORIZON_DAY_GREY;
+    const float rgba[4] = {g, g, g, 1.0f};
+    return ft_overlay_draw_line(&r->overlay, r->gl, r->width_px, r->height_px, p0, p1,
+                                FT_HORIZON_LINE_PX, rgba, err);
+}
+
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
                            ft_error *err)
 {
@@ -697,6 +752,12 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     }
     r->shade.aircraft_alt_m = (float)cam->eye_m[2]; /* the pose's altitude */
     draw_pass(r, &r->prog_color, cam, &ms);
+    if (r->scene->present_horizon) {
+        const ft_status hs = draw_horizon(r, cam, err);
+        if (hs != FT_OK) {
+            return hs;
+        }
+    }
     if (r->timer_query != 0u) {
         gl->EndQuery(GL_TIME_ELAPSED_EXT);
     }
@@ -867,17 +928,18 @@ ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t
                                             const char *frag_name, ft_terrain_program *p,
                                             ft_error *err)
 {
-    return ft_renderer_build_terrain_program_attribs(gl, t, gt, vert_name, frag_name,
+    return ft_renderer_build_terrain_program_attribs(gl, t, gt, vert_name, frag_name, NULL,
                                                      k_terrain_attribs, p, err);
 }
 
 ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
                                                     const ft_gpu_terrain *gt,
                                                     const char *vert_name, const char *frag_name,
+                                                    const char *frag_defines,
                                                     const char *const attribs[3],
                                                     ft_terrain_program *p, ft_error *err)
 {
-    ft_status st = build_program(gl, vert_name, NULL, frag_name, NULL, attribs, p, err);
+    ft_status st = build_program(gl, vert_name, NULL, frag_name, frag_defines, attribs, p, err);
     if (st == FT_OK) {
         set_static_uniforms(gl, p, t, gt);
     }

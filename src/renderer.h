@@ -27,6 +27,7 @@
 typedef struct ft_shade_locs {
     GLint ramp_h, ramp_rgb, sun, light;
     GLint band_edge, band_rgba, aircraft_alt;
+    GLint haze; /* FT_SHADE_HAZE variant */
 } ft_shade_locs;
 
 typedef struct ft_terrain_program {
@@ -202,7 +203,8 @@ ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
                                         const char *attr0, GLuint *out, ft_error *err);
 
 /* The colour variant a scene needs: "#define FT_SHADE_RELATIVE 1\n" with
- * relative colouring, else "" (the band code is not compiled at all). */
+ * relative colouring, "#define FT_SHADE_HAZE 1\n" with haze, else "" (the
+ * code of a part the scene does not use is not compiled at all). */
 const char *ft_renderer_shade_defines(const ft_scene *s);
 /* shade.glsl's uniform locations of a program, and their values for a
  * colour state (palette ramp, sun, light; bands and aircraft altitude in the
@@ -221,6 +223,7 @@ ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t
 ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
                                                     const ft_gpu_terrain *gt,
                                                     const char *vert_name, const char *frag_name,
+                                                    const char *frag_defines,
                                                     const char *const attribs[3],
                                                     ft_terrain_program *p, ft_error *err);
 

@@ -185,6 +185,8 @@ void ft_scene_defaults(ft_scene *s)
     s->present_relative = 0;
     s->present_palette = FT_PALETTE_DAY;
     ft_scene_default_bands(&s->present_bands);
+    s->present_horizon = 0;
+    s->present_haze_km = 0.0;
     s->metric_enabled = 0;
     s->frame_period_ms = 16.667;
     s->frame_budget_ms = 0.0;
@@ -784,6 +786,18 @@ static int on_key(void *user, const char *section, const char *key, const char *
                 return 1;
             }
             return fail_key(c, section, key, value, "expected day or night");
+        }
+        if (strcmp(key, "horizon") == 0) {
+            return RANGE(parse_flag(value, &s->present_horizon), "expected 0 or 1");
+        }
+        if (strcmp(key, "haze_km") == 0) {
+            double v;
+            if (!parse_f64(value, 0.0, FT_HAZE_KM_MAX, &v) || (v > 0.0 && v < FT_HAZE_KM_MIN)) {
+                return fail_key(c, section, key, value,
+                                "expected 0 (no haze) or a visibility of 1 to 1000 km");
+            }
+            s->present_haze_km = v;
+            return 1;
         }
         if (strcmp(key, "band_edges_ft") == 0) {
             return RANGE(parse_band_edges(value, &s->present_bands),

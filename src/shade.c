@@ -41,6 +41,7 @@ void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s)
     st->relative = s->present_relative;
     st->bands = s->present_bands;
     st->aircraft_alt_m = (float)s->pose.alt_m;
+    st->haze_per_m = s->present_haze_km > 0.0 ? (float)(1.0 / (s->present_haze_km * 1000.0)) : 0.0f;
 }
 
 #if FT_WITH_RELATIVE_COLOURING
@@ -76,8 +77,9 @@ uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
 }
 #endif
 
-static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, float height_m,
-                  const float n[3], uint8_t out[4])
+/* haze: NULL, or (sky r, g, b, fraction) */
+static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, const float *haze,
+                  float height_m, const float n[3], uint8_t out[4])
 {
     float rgb[3];
     int i = 0;
@@ -97,28 +99,38 @@ static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, fl
     float d = (n[0] * FT_SUN_DIR_X + n[1] * FT_SUN_DIR_Y + n[2] * FT_SUN_DIR_Z) / sl;
     float light = FT_SHADE_AMBIENT + FT_SHADE_DIFFUSE * (d > 0.0f ? d : 0.0f);
     for (int c = 0; c < 3; ++c) {
-        out[c] = (uint8_t)(clamp01(rgb[c] * light) * 255.0f + 0.5f);
+        float lit = clamp01(rgb[c] * light);
+        if (haze != NULL) {
+            lit += (haze[c] - lit) * haze[3];
+        }
+        out[c] = (uint8_t)(lit * 255.0f + 0.5f);
     }
     out[3] = 255;
 }
 
 void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
 {
-    shade(ft_ramp_rgb, NULL, height_m, n, out);
+    shade(ft_ramp_rgb, NULL, NULL, height_m, n, out);
 }
 
 void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
-                          uint8_t out[4])
+                          float dist_m, uint8_t out[4])
 {
     float ramp[FT_RAMP_STOPS][3];
     ft_shade_palette_ramp(st->palette, ramp);
+    const float *band = NULL;
 #if FT_WITH_RELATIVE_COLOURING
+    float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
     if (st->relative) {
-        float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
         ft_shade_bands_gpu(st, edge_m, rgba);
-        shade((const float(*)[3])ramp, rgba[ft_shade_band_of(st, height_m)], height_m, n, out);
-        return;
+        band = rgba[ft_shade_band_of(st, height_m)];
     }
 #endif
-    shade((const float(*)[3])ramp, NULL, height_m, n, out);
+    float haze[4];
+    if (st->haze_per_m > 0.0f) {
+        ft_shade_palette_sky(st->palette, haze);
+        haze[3] = FT_HAZE_MAX * (1.0f - expf(-dist_m * st->haze_per_m));
+    }
+    shade((const float(*)[3])ramp, band, st->haze_per_m > 0.0f ? haze : NULL, height_m, n,
+          out);
 }

@@ -46,6 +46,16 @@ void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4]);
 #define FT_NIGHT_SKY_G 0.03f
 #define FT_NIGHT_SKY_B 0.08f
 #define FT_FT_TO_M 0.3048 /* international foot, exact */
+/* Haze (presentation.haze_km = V): the lit colour goes towards the sky
+ * colour by FT_HAZE_MAX (1 - exp(-d / V)) at distance d. The cap keeps a
+ * quarter of the contrast at any distance, so far ridgelines stay readable
+ * against the sky; at d = V the haze is 0.47. */
+#define FT_HAZE_MAX 0.75f
+/* The conformal horizon line (presentation.horizon): thickness and colour
+ * (white by day, grey at night). */
+#define FT_HORIZON_LINE_PX 2.0
+#define FT_HORIZON_DAY_GREY 1.0f
+#define FT_HORIZON_NIGHT_GREY 0.55f
 
 /* Everything the colour depends on besides the fragment: what the scene
  * chose, the palette in force and the aircraft's altitude this frame. */
@@ -54,6 +64,7 @@ typedef struct ft_shade_state {
     int relative;         /* presentation.colouring = relative */
     ft_bands bands;       /* edges in ft, colours before the palette's gain */
     float aircraft_alt_m; /* the pose's altitude, same datum as the heights */
+    float haze_per_m;     /* 1 / visibility, 0 = no haze */
 } ft_shade_state;
 
 void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s);
@@ -67,8 +78,9 @@ void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u
                         float rgba[FT_BANDS_MAX][4]);
 /* The band a height falls in (0 .. bands.edges), as the shader picks it. */
 uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m);
-/* The colour the fragment shader computes for this state (the CPU mirror). */
+/* The colour the fragment shader computes for this state at distance dist_m
+ * from the eye (the CPU mirror). */
 void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
-                          uint8_t out[4]);
+                          float dist_m, uint8_t out[4]);
 
 #endif

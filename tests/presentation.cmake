@@ -15,6 +15,11 @@ else()
     add_test(NAME presentation_stairs_gles2 COMMAND test_presentation stairs egl-gles2 brute)
     set_tests_properties(presentation_stairs_gles2 PROPERTIES
                          ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+    # the conformal horizon over a flat sea on a spherical earth
+    add_test(NAME presentation_horizon_gles3 COMMAND test_presentation horizon egl-gles3)
+    add_test(NAME presentation_horizon_gles2 COMMAND test_presentation horizon egl-gles2)
+    set_tests_properties(presentation_horizon_gles2 PROPERTIES
+                         ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
   endif()
   if(FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_PGRID)
     # the ray-cast pixels colour through their own shader (pgrid_rc.frag.glsl)

@@ -68,6 +68,9 @@ static int run_parse(void)
     CHECK_NEAR(s.present_bands.rgba[2][3], 128.0 / 255.0, 1e-7);
 
     expect_refused("[presentation]\ncolouring = relief\n", "expected absolute or relative");
+    expect_refused("[presentation]\nhaze_km = 0.5\n", "1 to 1000 km");
+    expect_refused("[presentation]\nhaze_km = -1\n", "1 to 1000 km");
+    expect_refused("[presentation]\nhorizon = 2\n", "expected 0 or 1");
     expect_refused("[presentation]\npalette = dusk\n", "expected day or night");
     expect_refused("[presentation]\nband_edges_ft = -100, -1000\n", "strictly increasing");
     expect_refused("[presentation]\nband_edges_ft = -100, -100\n", "strictly increasing");
@@ -99,7 +102,7 @@ static int run_parse(void)
     const float up[3] = {0.0f, 0.0f, 1.0f};
     uint8_t a[4], b[4];
     st.relative = 1;
-    ft_shade_rgba8_state(&st, 200.0f, up, a);
+    ft_shade_rgba8_state(&st, 200.0f, up, 1000.0f, a);
     ft_shade_rgba8(200.0f, up, b);
     CHECK(memcmp(a, b, 4) == 0);
     return ft_test_result("presentation parse");
@@ -133,16 +136,16 @@ static double stairs_height(double x, double y, uint32_t ix, uint32_t iy)
 }
 
 static ft_app g_app;
-static char g_text[2048];
+static char g_text[4096];
 static int8_t g_cls[ST_W * ST_H]; /* per pixel: step 0..3, -1 sky, -2 by a riser */
-static float g_hit_z[ST_W * ST_H];
+static float g_hit_z[ST_W * ST_H], g_hit_d[ST_W * ST_H];
 
 static const char k_stairs_scene[] =
     "[scene]\nname = stairs\nmethod = %s\nbackend = %s\n"
     "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 60\n"
     "[terrain]\ndem = %s\n"
     "[gpu]\ntexture_bytes = 32M\n[metric]\nenabled = 0\n"
-    "[presentation]\ncolouring = %s\npalette = %s\n"
+    "[presentation]\ncolouring = %s\npalette = %s\nhaze_km = %g\n"
     "band_edges_ft = -12000, -10000, -8000\n"
     "band_rgba = 0000FFFF, 00FF00FF, FFFF00FF, FF0000FF\n"
     "[budget]\nheights_bytes = 2M\npyramids_bytes = 8M\ndem_io_bytes = 2M\n"
@@ -164,6 +167,7 @@ static void classify(const ft_terrain *t, const ft_camera *cam)
             }
             const double x = cam->eye_m[0] + dir[0] * th;
             g_hit_z[i] = (float)(cam->eye_m[2] + dir[2] * th);
+            g_hit_d[i] = (float)th; /* dir is a unit vector */
             const double u = (x - t->origin_world_x_m) / t->cell_x_m;
             const double cell = floor(u);
             const uint32_t c = cell < 0.0 ? 0u : (uint32_t)cell;
@@ -199,10 +203,10 @@ static int interior(uint32_t px, uint32_t py)
  * interior pixel against the CPU mirror and every sky pixel against the
  * palette's sky. */
 static void stairs_case(const char *backend, const char *method, const char *dem,
-                        const char *colouring, const char *palette)
+                        const char *colouring, const char *palette, double haze_km)
 {
     (void)snprintf(g_text, sizeof g_text, k_stairs_scene, method, backend, dem, colouring,
-                   palette);
+                   palette, haze_km);
     ft_test_app_init(&g_app, g_text, colouring);
     const ft_terrain *t = &g_app.terrain;
     const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
@@ -247,7 +251,7 @@ static void stairs_case(const char *backend, const char *method, const char *dem
                 continue;
             }
             uint8_t want[4];
-            ft_shade_rgba8_state(&st, g_hit_z[i], up, want);
+            ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], want);
             ++checked[g_cls[i]];
             ++band_px[ft_shade_band_of(&st, g_hit_z[i])];
             int off = 0;
@@ -265,9 +269,9 @@ static void stairs_case(const char *backend, const char *method, const char *dem
             }
         }
     }
-    printf("%s %s %s %s: interior pixels per step %u %u %u %u, per band %u %u %u %u, %u off; "
+    printf("%s %s %s %s haze %g km: interior pixels per step %u %u %u %u, per band %u %u %u %u, %u off; "
            "sky %u checked, %u off\n",
-           backend, method, colouring, palette, checked[0], checked[1], checked[2], checked[3],
+           backend, method, colouring, palette, haze_km, checked[0], checked[1], checked[2], checked[3],
            band_px[0], band_px[1], band_px[2], band_px[3], bad, sky_checked, sky_bad);
     CHECK(bad == 0u);
     CHECK(sky_bad == 0u);
@@ -287,10 +291,169 @@ static int run_stairs(const char *backend, const char *method)
     terrain_make(&t, ST_SIDE, ST_SIDE, ST_CELL_M, ST_CELL_M, ST_X0, ST_Y0, stairs_height);
     terrain_write_ftt(&t, dem);
     terrain_free(&t);
-    stairs_case(backend, method, dem, "relative", "day");
-    stairs_case(backend, method, dem, "relative", "night");
-    stairs_case(backend, method, dem, "absolute", "day");
+    stairs_case(backend, method, dem, "relative", "day", 0.0);
+    stairs_case(backend, method, dem, "relative", "night", 0.0);
+    stairs_case(backend, method, dem, "absolute", "day", 0.0);
+    /* haze over 2000-4500 m at a 4 km visibility: 0.29-0.50 of the sky */
+    stairs_case(backend, method, dem, "relative", "day", 4.0);
     return ft_test_result("presentation stairs");
+}
+#endif
+
+/* ---- the conformal horizon ------------------------------------------------------- */
+
+#if FT_PRESENTATION_GL
+/* A flat sea at 0 m on a spherical earth (terrain.curvature = sphere), 512 x
+ * 520 km, the eye 10 km north of its south edge looking north: the sea's
+ * visible edge lies at the dip sqrt(2 h / R) below the horizontal (357 km
+ * away at h = 10 km, inside the sea). */
+#define SEA_SIDE_X 513u
+#define SEA_SIDE_Y 521u
+#define SEA_CELL_M 1000.0
+#define SEA_EYE_ROW 10.0
+
+static double sea_height(double x, double y, uint32_t ix, uint32_t iy)
+{
+    (void)x;
+    (void)y;
+    (void)ix;
+    (void)iy;
+    return 0.0;
+}
+
+static const char k_sea_scene[] =
+    "[scene]\nname = sea\nmethod = brute\nbackend = %s\n"
+    "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 45\n"
+    "[terrain]\ndem = %s\ncurvature = sphere\n"
+    "[gpu]\ntexture_bytes = 32M\n[metric]\nenabled = 0\n"
+    "[presentation]\nhorizon = %d\n"
+    "[budget]\nheights_bytes = 2M\npyramids_bytes = 8M\ndem_io_bytes = 2M\n"
+    "frame_rgba_bytes = 512K\ngpu_staging_bytes = 2M\nmethod_bytes = 1M\npng_bytes = 512K\n";
+
+static uint8_t g_sea_rgba[ST_W * ST_H * 4u];
+
+static void sea_frame(const char *backend, const char *dem, int horizon, double alt_m,
+                      double pitch_deg, ft_camera *cam)
+{
+    (void)snprintf(g_text, sizeof g_text, k_sea_scene, backend, dem, horizon);
+    ft_test_app_init(&g_app, g_text, "sea");
+    const ft_terrain *t = &g_app.terrain;
+    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double ex = 256.0 * SEA_CELL_M, ey = SEA_EYE_ROW * SEA_CELL_M;
+    ft_pose p = {t->anchor_lat_deg + ey / m_per_deg,
+                 t->anchor_lon_deg + ex / (m_per_deg * cos(t->anchor_lat_deg * PI / 180.0)),
+                 alt_m, 0.0, pitch_deg, 0.0};
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, &p, cam, &fs);
+    memcpy(g_sea_rgba, g_app.renderer.rgba, sizeof g_sea_rgba);
+    ft_app_shutdown(&g_app);
+}
+
+static int is_sky(const uint8_t *px)
+{
+    const int r = (int)(FT_SKY_R * 255.0f + 0.5f), g = (int)(FT_SKY_G * 255.0f + 0.5f),
+              b = (int)(FT_SKY_B * 255.0f + 0.5f);
+    return abs(px[0] - r) <= 2 && abs(px[1] - g) <= 2 && abs(px[2] - b) <= 2;
+}
+
+static int is_line(const uint8_t *px)
+{
+    return px[0] >= 250 && px[1] >= 250 && px[2] >= 250;
+}
+
+/* One altitude: the sea edge (no line) per column against the dip curve,
+ * and the drawn line's centre per column against the zero-pitch line. */
+static void sea_case(const char *backend, const char *dem, double alt_m, double pitch_deg)
+{
+    ft_camera cam;
+    sea_frame(backend, dem, 0, alt_m, pitch_deg, &cam);
+    const double k = (double)ST_H * 0.5 / tan(cam.fovy_rad * 0.5); /* px per unit tangent */
+    const double dip = sqrt(2.0 * alt_m / FT_EARTH_RADIUS_M);
+    const double p = pitch_deg * PI / 180.0;
+    double edge_err_max = 0.0, line_err_max = 0.0, dip_px_mid = 0.0, line_mid = 0.0;
+    uint32_t edge_cols = 0u, line_cols = 0u, missing = 0u;
+    for (uint32_t x = 0; x < ST_W; ++x) {
+        /* the direction of depression delta at azimuth a, through this column,
+         * with the camera pitched up by p: y_cam / z_cam in the camera frame */
+        const double sx = ((x + 0.5) / ST_W * 2.0 - 1.0) * (double)ST_W / (double)ST_H *
+                          tan(cam.fovy_rad * 0.5);
+        /* a horizontal ray at elevation e and azimuth a: camera coords
+         * z = cos e cos a cos p + sin e sin p, y = sin e cos p - cos e cos a sin p,
+         * x = cos e sin a; solve for the column's a at e = -dip */
+        const double e = -dip;
+        double a = atan(sx * cos(p)); /* start; refine by Newton on x/z = sx */
+        for (int it = 0; it < 20; ++it) {
+            const double z = cos(e) * cos(a) * cos(p) + sin(e) * sin(p);
+            const double xx = cos(e) * sin(a);
+            const double f = xx / z - sx;
+            const double dz = -cos(e) * sin(a) * cos(p);
+            const double dx = cos(e) * cos(a);
+            const double df = (dx * z - xx * dz) / (z * z);
+            a -= f / df;
+        }
+        const double z = cos(e) * cos(a) * cos(p) + sin(e) * sin(p);
+        const double y = sin(e) * cos(p) - cos(e) * cos(a) * sin(p);
+        const double edge_y = ST_H * 0.5 - k * (y / z);
+        uint32_t first = ST_H;
+        for (uint32_t r = 0; r < ST_H; ++r) {
+            if (!is_sky(g_sea_rgba + 4u * ((size_t)r * ST_W + x))) {
+                first = r;
+                break;
+            }
+        }
+        if (first == ST_H) {
+            ++missing;
+            continue;
+        }
+        /* the first sea row is the first whose centre lies below the edge */
+        const double err_px = fabs((double)first + 0.5 - edge_y) - 0.5;
+        if (err_px > edge_err_max) edge_err_max = err_px;
+        ++edge_cols;
+        if (x == ST_W / 2u) dip_px_mid = edge_y - (ST_H * 0.5 + k * tan(p));
+    }
+    sea_frame(backend, dem, 1, alt_m, pitch_deg, &cam);
+    const double line_y = ST_H * 0.5 + k * tan(p); /* zero pitch, roll 0: one row */
+    for (uint32_t x = 1; x + 1u < ST_W; ++x) {
+        double sum = 0.0;
+        uint32_t n = 0u;
+        for (uint32_t r = 0; r < ST_H; ++r) {
+            if (is_line(g_sea_rgba + 4u * ((size_t)r * ST_W + x))) {
+                sum += r + 0.5;
+                ++n;
+            }
+        }
+        if (n == 0u) {
+            ++missing;
+            continue;
+        }
+        const double err_px = fabs(sum / n - line_y);
+        if (err_px > line_err_max) line_err_max = err_px;
+        if (x == ST_W / 2u) line_mid = sum / n;
+        ++line_cols;
+    }
+    printf("%s sea at %g m, pitch %g deg: dip %.4f deg = %.2f px below the zero-pitch line "
+           "(centre column); sea edge within %.2f px of it over %u columns; line centre "
+           "%.2f (want %.2f), within %.2f px over %u columns; %u columns missing\n",
+           backend, alt_m, pitch_deg, dip * 180.0 / PI, dip_px_mid, edge_err_max, edge_cols,
+           line_mid, line_y, line_err_max, line_cols, missing);
+    CHECK(missing == 0u && edge_cols == ST_W && line_cols == ST_W - 2u);
+    CHECK(edge_err_max <= 1.0);
+    CHECK(line_err_max <= 1.0);
+}
+
+static int run_horizon(const char *backend)
+{
+    char dem[512];
+    (void)snprintf(dem, sizeof dem, "%s/sea_%s.ftt", FT_TEST_OUT_DIR, backend);
+    ft_terrain t;
+    terrain_make(&t, SEA_SIDE_X, SEA_SIDE_Y, SEA_CELL_M, SEA_CELL_M, 0.0, 0.0, sea_height);
+    terrain_write_ftt(&t, dem);
+    terrain_free(&t);
+    sea_case(backend, dem, 1.0, 0.0);
+    sea_case(backend, dem, 1000.0, 0.0);
+    sea_case(backend, dem, 10000.0, 0.0);
+    sea_case(backend, dem, 10000.0, -4.0);
+    return ft_test_result("presentation horizon");
 }
 #endif
 
@@ -303,7 +466,10 @@ int main(int argc, char **argv)
     if (argc >= 4 && strcmp(argv[1], "stairs") == 0) {
         return run_stairs(argv[2], argv[3]);
     }
+    if (argc >= 3 && strcmp(argv[1], "horizon") == 0) {
+        return run_horizon(argv[2]);
+    }
 #endif
-    fprintf(stderr, "usage: test_presentation parse | stairs BACKEND METHOD\n");
+    fprintf(stderr, "usage: test_presentation parse | stairs BACKEND METHOD | horizon BACKEND\n");
     return 2;
 }

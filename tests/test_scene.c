@@ -75,6 +75,7 @@ int main(void)
     CHECK(a.build_inputs == b.build_inputs && a.build_png == b.build_png);
     CHECK(a.present_relative == b.present_relative && a.present_palette == b.present_palette);
     CHECK(memcmp(&a.present_bands, &b.present_bands, sizeof a.present_bands) == 0);
+    CHECK(a.present_horizon == b.present_horizon && a.present_haze_km == b.present_haze_km);
     CHECK(a.pyramid_textures == b.pyramid_textures);
     CHECK(a.height_format == b.height_format);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {

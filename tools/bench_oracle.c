@@ -57,9 +57,9 @@ ft_status bench_oracle_init(bench_oracle *o, ft_renderer *r, ft_error *err)
     }
     free(scratch);
     if (st == FT_OK) {
-        st = ft_renderer_build_terrain_program_attribs(gl, r->terrain, &r->gt, "oracle.vert.glsl",
-                                                       "terrain.frag.glsl", k_oracle_attribs,
-                                                       &o->prog, err);
+        st = ft_renderer_build_terrain_program_attribs(
+            gl, r->terrain, &r->gt, "oracle.vert.glsl", "terrain.frag.glsl",
+            ft_renderer_shade_defines(r->scene), k_oracle_attribs, &o->prog, err);
     }
     if (st != FT_OK) {
         bench_oracle_shutdown(o);
@@ -178,6 +178,9 @@ ft_status bench_oracle_frame(bench_oracle *o, ft_renderer *r, const ft_camera *c
     gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl->UseProgram(o->prog.program);
     gl->UniformMatrix4fv(o->prog.u_view_proj, 1, GL_FALSE, cam->view_proj);
+    ft_shade_state shade = r->shade; /* the renderer's colours at this frame's altitude */
+    shade.aircraft_alt_m = (float)cam->eye_m[2];
+    ft_renderer_shade_uniforms(gl, &o->prog.shade, &shade);
     bind_oracle_vao(o);
     gl->BindBuffer(GL_ARRAY_BUFFER, o->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, o->ibo);

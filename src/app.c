@@ -77,12 +77,23 @@ ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *e
     return st;
 }
 
+/* A .hgt says how many samples it fills only when read; a .ftt says it in
+ * its header; a synthetic terrain has none. */
+static int may_have_voids(const ft_app *app)
+{
+    return app->dem_kind == FT_DEM_HGT ||
+           (app->dem_kind == FT_DEM_FTT && app->terrain.void_count > 0u);
+}
+
 static void plan(ft_app *app)
 {
     const ft_scene *s = &app->scene;
     const ft_terrain *t = &app->terrain;
     ft_arena *a = &app->arena;
     ft_arena_plan(a, FT_POOL_HEIGHTS, (size_t)t->width * t->height * sizeof(float));
+    if (may_have_voids(app)) {
+        ft_arena_plan(a, FT_POOL_HEIGHTS, ft_terrain_void_bits_bytes(t->width, t->height));
+    }
     ft_arena_plan(a, FT_POOL_PYRAMIDS, ft_pyramid_bytes(t->width, t->height));
     if (app->dem_kind == FT_DEM_HGT) {
         ft_arena_plan(a, FT_POOL_DEM_IO, ft_hgt_scratch_bytes(t->width, t->height));
@@ -114,6 +125,13 @@ static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
     }
     if (st == FT_OK) {
         st = ft_pyramid_layout(t, pyr, pyr_bytes, err);
+    }
+    if (st == FT_OK && may_have_voids(app)) {
+        const size_t bits_bytes = ft_terrain_void_bits_bytes(t->width, t->height);
+        st = ft_arena_take(a, FT_POOL_HEIGHTS, bits_bytes, (void **)&t->void_bits, err);
+        if (st == FT_OK) {
+            memset(t->void_bits, 0, bits_bytes);
+        }
     }
     if (st != FT_OK) {
         return st;

@@ -254,6 +254,9 @@ ft_status ft_hgt_load(const ft_reader *r, ft_terrain *t, void *scratch, size_t s
                        voids);
     }
     t->void_count = voids;
+    if (t->void_bits != NULL) {
+        (void)ft_terrain_pack_void_bits(mask, w, h, t->void_bits);
+    }
     float lo = t->heights_m[0], hi = t->heights_m[0];
     size_t n = (size_t)w * h;
     for (size_t k = 1u; k < n; ++k) {

@@ -1,6 +1,7 @@
 #include "terrain.h"
 
 #include <math.h>
+#include <string.h>
 
 #define FT_PI 3.14159265358979323846
 
@@ -259,4 +260,49 @@ double ft_terrain_curvature_drop(ft_curvature mode, ft_spacing_unit unit)
 {
     int sphere = (mode == FT_CURVATURE_SPHERE) || (mode == FT_CURVATURE_AUTO && unit == FT_UNIT_DEGREE);
     return sphere ? 1.0 / (2.0 * FT_EARTH_RADIUS_M) : 0.0;
+}
+
+size_t ft_terrain_void_bits_bytes(uint32_t w, uint32_t h)
+{
+    return ((size_t)w * h + 7u) / 8u;
+}
+
+int ft_terrain_sample_filled(const ft_terrain *t, size_t i)
+{
+    return t->void_bits != NULL && ((t->void_bits[i >> 3] >> (i & 7u)) & 1u) != 0u;
+}
+
+uint32_t ft_terrain_pack_void_bits(const uint8_t *mask, uint32_t w, uint32_t h, uint8_t *bits)
+{
+    const size_t n = (size_t)w * h;
+    memset(bits, 0, ft_terrain_void_bits_bytes(w, h));
+    uint32_t set = 0u;
+    for (size_t i = 0; i < n; ++i) {
+        if (mask[i] != 0u) {
+            bits[i >> 3] = (uint8_t)(bits[i >> 3] | (1u << (i & 7u)));
+            ++set;
+        }
+    }
+    return set;
+}
+
+ft_status ft_terrain_check_void_bits(const uint8_t *bits, uint32_t w, uint32_t h,
+                                     uint32_t void_count, const char *what, ft_error *err)
+{
+    const size_t n = (size_t)w * h, bytes = ft_terrain_void_bits_bytes(w, h);
+    uint64_t set = 0u;
+    for (size_t b = 0; b < bytes; ++b) {
+        unsigned v = bits[b];
+        if (b == bytes - 1u && (n & 7u) != 0u && (v >> (n & 7u)) != 0u) {
+            return ft_fail(err, FT_ERR_FORMAT, "%s: void bits set past the last sample", what);
+        }
+        for (; v != 0u; v &= v - 1u) {
+            ++set;
+        }
+    }
+    if (set != void_count) {
+        return ft_fail(err, FT_ERR_FORMAT, "%s: %llu samples marked void-filled, the header says %u",
+                       what, (unsigned long long)set, void_count);
+    }
+    return FT_OK;
 }

@@ -94,6 +94,12 @@ typedef struct ft_terrain {
 
     float *heights_m; /* width*height, in FT_POOL_HEIGHTS */
     ft_pyramid pyr;   /* levels in FT_POOL_PYRAMIDS */
+    /* Which samples were void in the source and filled (invented by
+     * src/void_fill.h, never measured): one bit per sample, row-major from
+     * row 0, bit (i & 7) of byte i >> 3, set = filled; the bits past the
+     * last sample are 0 and exactly void_count bits are set. NULL when the
+     * terrain has no filled sample (in FT_POOL_HEIGHTS otherwise). */
+    uint8_t *void_bits;
 } ft_terrain;
 
 /* Ranges every terrain must keep, whatever its source (.ftt, .hgt, synth,
@@ -163,5 +169,17 @@ double ft_terrain_curvature_drop(ft_curvature mode, ft_spacing_unit unit);
 
 /* 1 if world (x, y) lies inside the grid's extent. */
 int ft_terrain_contains(const ft_terrain *t, double x_m, double y_m);
+
+/* Bytes of ft_terrain.void_bits for a w x h grid. */
+size_t ft_terrain_void_bits_bytes(uint32_t w, uint32_t h);
+/* 1 when sample i (row-major) was void-filled. */
+int ft_terrain_sample_filled(const ft_terrain *t, size_t i);
+/* Packs a byte mask (1 = void) of w x h samples into bits (zeroed first);
+ * returns the number of set bits. */
+uint32_t ft_terrain_pack_void_bits(const uint8_t *mask, uint32_t w, uint32_t h, uint8_t *bits);
+/* Checks bits against void_count: exactly that many set, none past the
+ * last sample (FT_ERR_FORMAT naming `what` otherwise). */
+ft_status ft_terrain_check_void_bits(const uint8_t *bits, uint32_t w, uint32_t h,
+                                     uint32_t void_count, const char *what, ft_error *err);
 
 #endif

@@ -199,10 +199,34 @@ static ft_status collect_arrays(const ft_terrain *t, const char *name, tfile_arr
     return FT_OK;
 }
 
-/* Payload size from the dimensions alone (never from the file). */
-static uint64_t payload_bytes_for(uint32_t w, uint32_t h)
+/* Payload size from the dimensions and the void count alone (never from
+ * the file): version 2 appends the void bits when samples were filled. */
+static uint64_t payload_bytes_for(uint32_t w, uint32_t h, uint32_t void_count)
 {
-    return (uint64_t)w * h * sizeof(float) + (uint64_t)ft_pyramid_bytes(w, h);
+    return (uint64_t)w * h * sizeof(float) + (uint64_t)ft_pyramid_bytes(w, h) +
+           (void_count > 0u ? (uint64_t)ft_terrain_void_bits_bytes(w, h) : 0u);
+}
+
+/* Streams bytes in chunks into the writer and/or the crc. */
+static ft_status emit_bytes(const uint8_t *src, size_t left, const ft_writer *w, uint32_t *crc,
+                            ft_error *err)
+{
+    const char *name = (w != NULL && w->name != NULL) ? w->name : "(unnamed)";
+    for (size_t guard = 0u; left > 0u && guard < ((size_t)-1 / 2u); ++guard) {
+        size_t n = left < FT_TFILE_CHUNK_BYTES ? left : FT_TFILE_CHUNK_BYTES;
+        if (crc != NULL) {
+            *crc = crc_bytes(*crc, src, n);
+        }
+        if (w != NULL) {
+            ft_status st = w->write(w->ctx, src, n);
+            if (st != FT_OK) {
+                return ft_fail(err, st, "%s: writing %zu payload bytes failed", name, n);
+            }
+        }
+        src += n;
+        left -= n;
+    }
+    return FT_OK;
 }
 
 static void swap_floats(float *f, size_t n)
@@ -257,9 +281,9 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
                        name, got, FT_TFILE_HEADER_BYTES);
     }
     uint32_t version = get_u32(hdr + OFF_VERSION);
-    if (version != FT_TFILE_VERSION) {
-        return ft_fail(err, FT_ERR_VERSION, "%s: file version %u, this build reads version %u",
-                       name, version, FT_TFILE_VERSION);
+    if (version != FT_TFILE_VERSION && version != FT_TFILE_VERSION_NO_VOID_BITS) {
+        return ft_fail(err, FT_ERR_VERSION, "%s: file version %u, this build reads versions %u and %u",
+                       name, version, FT_TFILE_VERSION_NO_VOID_BITS, FT_TFILE_VERSION);
     }
     uint32_t header_bytes = get_u32(hdr + OFF_HEADER_BYTES);
     if (header_bytes != FT_TFILE_HEADER_BYTES) {
@@ -296,6 +320,14 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
         return ft_fail(err, FT_ERR_FORMAT, "%s: void_count %u exceeds the %llu samples", name,
                        void_count, (unsigned long long)((uint64_t)w * h));
     }
+    if (version == FT_TFILE_VERSION_NO_VOID_BITS && void_count > 0u) {
+        /* the renderer must show invented terrain as such; without the
+         * bits it cannot say where */
+        return ft_fail(err, FT_ERR_VERSION,
+                       "%s: a version 1 file: %u void-filled samples recorded but not which; "
+                       "import the DEM again (version 2 records them)",
+                       name, void_count);
+    }
     double sx = get_f64(hdr + OFF_SPACING_X), sy = get_f64(hdr + OFF_SPACING_Y);
     double ox = get_f64(hdr + OFF_ORIGIN_X), oy = get_f64(hdr + OFF_ORIGIN_Y);
     double alat = get_f64(hdr + OFF_ANCHOR_LAT), alon = get_f64(hdr + OFF_ANCHOR_LON);
@@ -328,7 +360,7 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
                        (double)hmin, (double)hmax, FT_HEIGHT_MIN_M, FT_HEIGHT_MAX_M);
     }
     uint64_t payload = get_u64(hdr + OFF_PAYLOAD_BYTES);
-    uint64_t payload_want = payload_bytes_for(w, h);
+    uint64_t payload_want = payload_bytes_for(w, h, void_count);
     if (payload != payload_want) {
         return ft_fail(err, FT_ERR_FORMAT,
                        "%s: payload_bytes %llu, a %ux%u grid with pyramids needs %llu", name,
@@ -383,6 +415,7 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
     hdr_out->vertical_offset = voffset;
     hdr_out->header_min_m = hmin;
     hdr_out->header_max_m = hmax;
+    hdr_out->void_bits_bytes = void_count > 0u ? ft_terrain_void_bits_bytes(w, h) : 0u;
     hdr_out->valid = 1;
     return FT_OK;
 }
@@ -414,10 +447,18 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
     if (st != FT_OK) {
         return st;
     }
+    if (pend.void_bits_bytes > 0u && t->void_bits == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "%s: %u void-filled samples but no void_bits storage",
+                       name, t->void_count);
+    }
     uint32_t crc = (uint32_t)crc32(0L, Z_NULL, 0);
-    for (uint32_t a = 0u; a < n_arr; ++a) {
-        uint8_t *dst = (uint8_t *)arr[a].data;
-        size_t left = arr[a].count * sizeof(float);
+    for (uint32_t a = 0u; a <= n_arr; ++a) {
+        if (a == n_arr && pend.void_bits_bytes == 0u) {
+            break;
+        }
+        /* the arrays, then (version 2, voids filled) the void bits */
+        uint8_t *dst = a < n_arr ? (uint8_t *)arr[a].data : t->void_bits;
+        size_t left = a < n_arr ? arr[a].count * sizeof(float) : pend.void_bits_bytes;
         for (size_t guard = 0u; left > 0u && guard < ((size_t)-1 / 2u); ++guard) {
             size_t n = left < FT_TFILE_CHUNK_BYTES ? left : FT_TFILE_CHUNK_BYTES;
             st = ft_read_exact(r, dst, n, err);
@@ -445,6 +486,13 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
         return ft_fail(err, FT_ERR_CHECKSUM,
                        "%s: payload crc32 is 0x%08x, the header says 0x%08x", name, crc,
                        pend.payload_crc32);
+    }
+    if (pend.void_bits_bytes > 0u) {
+        st = ft_terrain_check_void_bits(t->void_bits, t->width, t->height, t->void_count, name,
+                                        err);
+        if (st != FT_OK) {
+            return st;
+        }
     }
     const int identity = (pend.vertical_scale == 1.0f && pend.vertical_offset == 0.0f);
     const int swap = !host_is_little_endian();
@@ -508,23 +556,7 @@ static ft_status emit_array(const tfile_array *a, const ft_writer *w, uint32_t *
 {
     const char *name = (w != NULL && w->name != NULL) ? w->name : "(unnamed)";
     if (host_is_little_endian()) {
-        const uint8_t *src = (const uint8_t *)a->data;
-        size_t left = a->count * sizeof(float);
-        for (size_t guard = 0u; left > 0u && guard < ((size_t)-1 / 2u); ++guard) {
-            size_t n = left < FT_TFILE_CHUNK_BYTES ? left : FT_TFILE_CHUNK_BYTES;
-            if (crc != NULL) {
-                *crc = crc_bytes(*crc, src, n);
-            }
-            if (w != NULL) {
-                ft_status st = w->write(w->ctx, src, n);
-                if (st != FT_OK) {
-                    return ft_fail(err, st, "%s: writing %zu payload bytes failed", name, n);
-                }
-            }
-            src += n;
-            left -= n;
-        }
-        return FT_OK;
+        return emit_bytes((const uint8_t *)a->data, a->count * sizeof(float), w, crc, err);
     }
     float buf[FT_TFILE_SWAP_FLOATS];
     for (size_t k = 0u; k < a->count; k += FT_TFILE_SWAP_FLOATS) {
@@ -594,6 +626,20 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
         lo = v < lo ? v : lo;
         hi = v > hi ? v : hi;
     }
+    const size_t bits_bytes =
+        t->void_count > 0u ? ft_terrain_void_bits_bytes(t->width, t->height) : 0u;
+    if (t->void_count > 0u) {
+        if (t->void_bits == NULL) {
+            return ft_fail(err, FT_ERR_ARG,
+                           "%s: %u void-filled samples but no void bits to say which", name,
+                           t->void_count);
+        }
+        st = ft_terrain_check_void_bits(t->void_bits, t->width, t->height, t->void_count, name,
+                                        err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
     /* First pass: the payload crc, so the header can go out first. */
     uint32_t crc = (uint32_t)crc32(0L, Z_NULL, 0);
     for (uint32_t a = 0u; a < n_arr; ++a) {
@@ -601,6 +647,10 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
         if (st != FT_OK) {
             return st;
         }
+    }
+    st = emit_bytes(t->void_bits, bits_bytes, NULL, &crc, err);
+    if (st != FT_OK) {
+        return st;
     }
     uint8_t hdr[FT_TFILE_HEADER_BYTES];
     memset(hdr, 0, sizeof hdr);
@@ -625,7 +675,7 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
     put_u32(hdr + OFF_FILL_RULE, FT_VOID_FILL_RULE_IDW8);
     put_f32(hdr + OFF_MIN_H, lo);
     put_f32(hdr + OFF_MAX_H, hi);
-    put_u64(hdr + OFF_PAYLOAD_BYTES, payload_bytes_for(t->width, t->height));
+    put_u64(hdr + OFF_PAYLOAD_BYTES, payload_bytes_for(t->width, t->height, t->void_count));
     put_u32(hdr + OFF_PAYLOAD_CRC, crc);
     memcpy(hdr + OFF_CRS, t->crs, crs_len);
     put_u32(hdr + OFF_HEADER_CRC, header_crc(hdr));
@@ -640,5 +690,5 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
             return st;
         }
     }
-    return FT_OK;
+    return emit_bytes(t->void_bits, bits_bytes, w, NULL, err);
 }

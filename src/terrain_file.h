@@ -24,8 +24,13 @@
  *   payload: float32 heights (width*height, row 0 = south), then the pyramid
  *   arrays in the exact order of ft_pyramid_layout(): avg levels 1.., then per
  *   min/max level: min, max. So init reads it straight into the pools.
+ *   Version 2, when void_count > 0: then the void bits (ft_terrain.void_bits:
+ *   one bit per sample, set = void in the source and filled), so the
+ *   renderer can show invented terrain as such; exactly void_count bits set,
+ *   none past the last sample. Version 1 files are read when they filled no
+ *   sample; one that did is refused (it cannot say which).
  *
- * Loading checks: magic, version, header size, header crc, dimensions within
+ * Loading checks: magic, version (1 or 2), header size, header crc, dimensions within
  * FT_GRID_SIDE_MIN..MAX, level counts, finite spacing/origin, file size ==
  * header + payload (truncated -> FT_ERR_TRUNCATED, longer -> FT_ERR_OVERSIZED),
  * payload crc, every height finite. Never trusts a size before checking it.
@@ -43,7 +48,9 @@
 #include "terrain.h"
 
 #define FT_TFILE_MAGIC "FXTERR\r\n"
-#define FT_TFILE_VERSION 1u
+#define FT_TFILE_VERSION 2u
+/* Version 1 had no void bits: read only when it filled no sample. */
+#define FT_TFILE_VERSION_NO_VOID_BITS 1u
 #define FT_TFILE_HEADER_BYTES 256u
 
 /* What the probe read that the payload load needs and ft_terrain does not
@@ -52,6 +59,7 @@ typedef struct ft_tfile_header {
     uint32_t payload_crc32;
     float vertical_scale, vertical_offset;
     float header_min_m, header_max_m;
+    size_t void_bits_bytes; /* 0: the payload has no void bits */
     int valid; /* set by a successful probe, cleared by the load (one load per probe) */
 } ft_tfile_header;
 

@@ -119,9 +119,10 @@ static int load_real(const char *file, uint32_t want_voids, float lo, float hi, 
     CHECK_NEAR(t.spacing_x, 1.0 / 1200.0, 1e-15);
     CHECK(strcmp(t.crs, "EPSG:4326") == 0);
     t.heights_m = (float *)malloc(1201u * 1201u * sizeof(float));
+    t.void_bits = (uint8_t *)calloc(ft_terrain_void_bits_bytes(1201u, 1201u), 1);
     size_t sb = ft_hgt_scratch_bytes(1201u, 1201u);
     void *scratch = malloc(sb);
-    REQUIRE(t.heights_m && scratch);
+    REQUIRE(t.heights_m && t.void_bits && scratch);
     double t0 = now_s();
     st = ft_hgt_load(&r, &t, scratch, sb, &err);
     double t1 = now_s();
@@ -136,15 +137,20 @@ static int load_real(const char *file, uint32_t want_voids, float lo, float hi, 
         rewind(fp);
         uint8_t b[2];
         int16_t mn = INT16_MAX, mx = INT16_MIN;
+        uint32_t marked_wrong = 0u;
         for (size_t k = 0; k < 1201u * 1201u; ++k) {
             REQUIRE(fread(b, 1, 2, fp) == 2);
             int16_t v = (int16_t)(uint16_t)((b[0] << 8) | b[1]);
+            /* file rows run north to south, grid rows south to north */
+            const size_t gi = (1200u - k / 1201u) * 1201u + k % 1201u;
+            marked_wrong += (uint32_t)(ft_terrain_sample_filled(&t, gi) != (v == -32768));
             if (v == -32768) continue;
             mn = v < mn ? v : mn;
             mx = v > mx ? v : mx;
         }
         *raw_min = mn;
         *raw_max = mx;
+        CHECK(marked_wrong == 0u); /* exactly the voids are recorded as filled */
         CHECK(t.min_height_m == (float)mn && t.max_height_m == (float)mx);
         /* north-west corner of the file = grid (0, 1200) */
         rewind(fp);
@@ -160,6 +166,7 @@ static int load_real(const char *file, uint32_t want_voids, float lo, float hi, 
     }
     fclose(fp);
     free(scratch);
+    free(t.void_bits);
     free(t.heights_m);
     return 1;
 }

@@ -55,10 +55,15 @@ static void alloc_terrain(ft_terrain *t)
     void *pyr = aligned_alloc(64, (pb + 63u) & ~(size_t)63u);
     REQUIRE(t->heights_m != NULL && pyr != NULL);
     REQUIRE(ft_pyramid_layout(t, pyr, pb, NULL) == FT_OK);
+    /* where the voids were (a .hgt says how many only when read) */
+    t->void_bits = calloc(ft_terrain_void_bits_bytes(t->width, t->height), 1);
+    REQUIRE(t->void_bits != NULL);
 }
 
 static void free_terrain(ft_terrain *t)
 {
+    free(t->void_bits);
+    t->void_bits = NULL;
     free(t->heights_m);
     if (t->pyr.avg_levels > 1u) {
         free(t->pyr.avg[1].avg_m); /* start of the pyramid block */
@@ -159,6 +164,10 @@ static void generated_inputs(void)
         load_ftt(out, &t);
         CHECK(t.width == 4u && t.height == 3u && t.void_count == 1u);
         CHECK(t.max_height_m == 8999.0f);
+        /* the file says which sample was invented: row 0 (south) col 2 */
+        for (size_t i = 0; i < 12u; ++i) {
+            CHECK(ft_terrain_sample_filled(&t, i) == (i == 2u));
+        }
         free_terrain(&t);
     }
 
@@ -329,6 +338,8 @@ int main(void)
     CHECK_NEAR(g.origin_x, nat.origin_x, 1e-9);
     CHECK_NEAR(g.origin_y, nat.origin_y, 1e-9);
     CHECK(memcmp(g.heights_m, nat.heights_m, (size_t)1201 * 1201 * sizeof(float)) == 0);
+    /* the same samples recorded as void-filled, by the import and the reader */
+    CHECK(memcmp(g.void_bits, nat.void_bits, ft_terrain_void_bits_bytes(1201u, 1201u)) == 0);
     free(scratch);
     free_terrain(&nat);
     free_terrain(&g);

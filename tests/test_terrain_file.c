@@ -91,6 +91,13 @@ static void make_terrain(ft_terrain *t)
     t->anchor_lon_deg = 8.0;
     strcpy(t->crs, "EPSG:32632");
     t->void_count = 3;
+    /* the three void-filled samples: the first row's 6th, one inside, the last */
+    static const size_t k_filled[3] = {5u, W * 7u + 11u, W * H - 1u};
+    t->void_bits = (uint8_t *)calloc(ft_terrain_void_bits_bytes(W, H), 1);
+    REQUIRE(t->void_bits != NULL);
+    for (int i = 0; i < 3; ++i) {
+        t->void_bits[k_filled[i] >> 3] |= (uint8_t)(1u << (k_filled[i] & 7u));
+    }
     t->heights_m = (float *)malloc(W * H * sizeof(float));
     REQUIRE(t->heights_m != NULL);
     for (uint32_t y = 0; y < H; ++y)
@@ -123,6 +130,9 @@ static ft_status load_bytes(const uint8_t *data, size_t bytes, uint64_t declared
     if (st != FT_OK) return st;
     *failed_in_probe = 0;
     out->heights_m = (float *)malloc((size_t)out->width * out->height * sizeof(float));
+    out->void_bits = out->void_count > 0u
+                         ? (uint8_t *)calloc(ft_terrain_void_bits_bytes(out->width, out->height), 1)
+                         : NULL;
     size_t pb = ft_pyramid_bytes(out->width, out->height);
     void *pyr = malloc(pb);
     REQUIRE(out->heights_m != NULL && pyr != NULL);
@@ -139,6 +149,8 @@ static ft_status load_bytes(const uint8_t *data, size_t bytes, uint64_t declared
 
 static void free_terrain(ft_terrain *t)
 {
+    free(t->void_bits);
+    t->void_bits = NULL;
     free(t->heights_m);
     if (t->pyr.avg_levels > 1u) free(t->pyr.avg[1].avg_m); /* start of the pyramid block */
     t->heights_m = NULL;
@@ -192,7 +204,8 @@ int main(void)
     make_terrain(&src);
 
     /* ---- write ---- */
-    size_t cap = 256u + W * H * 4u + ft_pyramid_bytes(W, H);
+    const size_t bits_bytes = ft_terrain_void_bits_bytes(W, H);
+    size_t cap = 256u + W * H * 4u + ft_pyramid_bytes(W, H) + bits_bytes;
     g_file = (uint8_t *)malloc(cap + 64u);
     REQUIRE(g_file != NULL);
     {
@@ -208,7 +221,7 @@ int main(void)
         g_file_bytes = mw.pos;
     }
     CHECK(memcmp(g_file, "FXTERR\r\n", 8) == 0);
-    CHECK(get32(g_file + 8) == 1u);
+    CHECK(get32(g_file + 8) == 2u);
     CHECK(get32(g_file + 16) == W && get32(g_file + 20) == H);
 
     save_case("ftt_good.ftt", g_file, g_file_bytes);
@@ -226,6 +239,7 @@ int main(void)
         CHECK(t.anchor_lat_deg == src.anchor_lat_deg && t.anchor_lon_deg == src.anchor_lon_deg);
         CHECK(strcmp(t.crs, "EPSG:32632") == 0);
         CHECK(t.void_count == 3u);
+        CHECK(memcmp(t.void_bits, src.void_bits, bits_bytes) == 0);
         CHECK(t.min_height_m == src.min_height_m && t.max_height_m == src.max_height_m);
         CHECK(t.cell_x_m == src.cell_x_m && t.origin_world_y_m == src.origin_world_y_m);
         CHECK(memcmp(t.heights_m, src.heights_m, W * H * sizeof(float)) == 0);
@@ -267,9 +281,45 @@ int main(void)
     free(f);
 
     f = copy_file();
-    put32(f + 8, 2u);
-    expect_fail("wrong version", f, g_file_bytes, g_file_bytes, FT_ERR_VERSION, 1, "version 2");
+    put32(f + 8, 3u);
+    expect_fail("wrong version", f, g_file_bytes, g_file_bytes, FT_ERR_VERSION, 1, "version 3");
     free(f);
+
+    /* version 1 had no void bits: one that filled samples cannot say which */
+    f = copy_file();
+    put32(f + 8, 1u);
+    fix_header_crc(f);
+    expect_fail("v1 with voids", f, g_file_bytes, g_file_bytes, FT_ERR_VERSION, 1,
+                "3 void-filled samples recorded but not which");
+    free(f);
+
+    /* the bits must agree with void_count, crc or not */
+    f = copy_file();
+    f[g_file_bytes - bits_bytes] ^= 0x01u; /* sample 0 marked too */
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("void bits count", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "4 samples marked void-filled, the header says 3");
+    free(f);
+    f = copy_file();
+    f[g_file_bytes - 1u] |= 0x80u; /* past the last of 851 samples */
+    fix_payload_crc(f, g_file_bytes);
+    expect_fail("void bit past the grid", f, g_file_bytes, g_file_bytes, FT_ERR_FORMAT, 0,
+                "past the last sample");
+    free(f);
+
+    /* a writer asked to record voids it cannot place refuses */
+    {
+        ft_terrain nobits = src;
+        nobits.void_bits = NULL;
+        uint8_t *spare = (uint8_t *)malloc(cap + 64u);
+        REQUIRE(spare != NULL);
+        ft_writer w;
+        ft_mem_writer mw;
+        ft_mem_writer_init(&w, &mw, spare, cap + 64u, "nobits.ftt");
+        CHECK(ft_tfile_write(&nobits, -32768.0f, &w, &err) == FT_ERR_ARG);
+        CHECK(strstr(err.text, "no void bits") != NULL);
+        free(spare);
+    }
 
     f = copy_file();
     f[45] ^= 0x10; /* inside spacing_x */

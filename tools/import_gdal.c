@@ -126,6 +126,7 @@ int ft_cmd_import(int argc, char **argv)
     int rc = FT_EXIT_ERROR;
     float *heights = NULL;
     uint8_t *voids = NULL;
+    uint8_t *void_bits = NULL;
     void *pyr = NULL;
     void *fill_scratch = NULL;
     ft_terrain t;
@@ -256,6 +257,14 @@ int ft_cmd_import(int argc, char **argv)
     }
     t.void_count = void_count;
     t.heights_m = heights;
+    /* the file records which samples were invented (format version 2) */
+    void_bits = malloc(ft_terrain_void_bits_bytes(t.width, t.height));
+    if (void_bits == NULL) {
+        fprintf(stderr, "fixterrain import: %s: out of memory for the void bits\n", in);
+        goto free_buffers;
+    }
+    (void)ft_terrain_pack_void_bits(voids, t.width, t.height, void_bits);
+    t.void_bits = void_count > 0u ? void_bits : NULL;
     if (ft_pyramid_layout(&t, pyr, pyr_bytes, &err) != FT_OK) {
         fprintf(stderr, "fixterrain import: %s\n", err.text);
         goto free_buffers;
@@ -281,6 +290,7 @@ int ft_cmd_import(int argc, char **argv)
     rc = FT_EXIT_OK;
 
 free_buffers:
+    free(void_bits);
     free(fill_scratch);
     free(pyr);
     free(voids);

@@ -65,6 +65,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK_TEXT(err.text);
     float *heights = NULL;
     void *pyr = NULL;
+    uint8_t *bits = NULL;
     if (st == FT_OK) {
         FUZZ_CHECK(hdr.valid);
         /* every derived quantity of an accepted header is finite and in range */
@@ -78,11 +79,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FUZZ_CHECK(t.height >= FT_GRID_SIDE_MIN && t.height <= FT_GRID_SIDE_MAX);
         size_t hb = (size_t)t.width * t.height * sizeof(float);
         size_t pb = ft_pyramid_bytes(t.width, t.height);
-        FUZZ_CHECK(hb + pb + HDR == size); /* the probe matched the size to the grid */
+        /* the probe matched the size to the grid (and the void bits) */
+        FUZZ_CHECK(hb + pb + hdr.void_bits_bytes + HDR == size);
+        FUZZ_CHECK((hdr.void_bits_bytes > 0u) == (t.void_count > 0u));
         heights = (float *)malloc(hb);
         pyr = malloc(pb);
         FUZZ_CHECK(heights != NULL && pyr != NULL);
         t.heights_m = heights;
+        if (hdr.void_bits_bytes > 0u) {
+            bits = (uint8_t *)malloc(hdr.void_bits_bytes);
+            FUZZ_CHECK(bits != NULL);
+            t.void_bits = bits;
+        }
         FUZZ_CHECK(ft_pyramid_layout(&t, pyr, pb, &err) == FT_OK);
         st = ft_tfile_load_payload(&r, &t, &hdr, &err);
         FUZZ_CHECK_TEXT(err.text);
@@ -94,6 +102,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 FUZZ_CHECK(isfinite(heights[k]));
                 FUZZ_CHECK(heights[k] >= t.min_height_m && heights[k] <= t.max_height_m);
             }
+            /* exactly void_count samples are marked void-filled */
+            uint64_t marked = 0u;
+            for (size_t k = 0u; k < n; ++k) {
+                marked += (uint64_t)ft_terrain_sample_filled(&t, k);
+            }
+            FUZZ_CHECK(marked == t.void_count);
             /* a second load without a probe is refused */
             FUZZ_CHECK(ft_tfile_load_payload(&r, &t, &hdr, &err) == FT_ERR_ARG);
         }
@@ -101,6 +115,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (st != FT_OK) {
         FUZZ_CHECK(err.text[0] != '\0');
     }
+    free(bits);
     free(pyr);
     free(heights);
     free(copy);

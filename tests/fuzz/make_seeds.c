@@ -33,8 +33,9 @@ static void put(const char *sub, const char *name, const void *data, size_t n)
 
 /* ---- .ftt --------------------------------------------------------------- */
 
+/* voids: that many samples (every third from sample 1) recorded as void-filled */
 static size_t ftt_bytes(uint8_t *out, uint32_t w, uint32_t h, ft_spacing_unit unit, double sx,
-                        double ox, double oy)
+                        double ox, double oy, uint32_t voids)
 {
     ft_terrain t;
     memset(&t, 0, sizeof t);
@@ -61,6 +62,13 @@ static size_t ftt_bytes(uint8_t *out, uint32_t w, uint32_t h, ft_spacing_unit un
         }
     }
     t.heights_m = hm;
+    uint8_t bits[64] = {0};
+    for (uint32_t v = 0u; v < voids && 1u + 3u * v < w * h && 1u + 3u * v < 8u * sizeof bits; ++v) {
+        const uint32_t i = 1u + 3u * v;
+        bits[i >> 3] = (uint8_t)(bits[i >> 3] | (1u << (i & 7u)));
+        t.void_count += 1u;
+    }
+    t.void_bits = t.void_count > 0u ? bits : NULL;
     if (ft_terrain_derive_frame(&t, &err) != FT_OK || ft_pyramid_layout(&t, pyr, pb, &err) != FT_OK) {
         fprintf(stderr, "make_seeds: %s\n", err.text);
         exit(1);
@@ -81,11 +89,13 @@ static size_t ftt_bytes(uint8_t *out, uint32_t w, uint32_t h, ft_spacing_unit un
 static void make_ftt(void)
 {
     static uint8_t b[SEED_MAX_BYTES];
-    size_t n = ftt_bytes(b, 2u, 2u, FT_UNIT_METRE, 30.0, 600000.0, 5000000.0);
+    size_t n = ftt_bytes(b, 2u, 2u, FT_UNIT_METRE, 30.0, 600000.0, 5000000.0, 0u);
     put("ftt", "valid_2x2_m.ftt", b, n);
-    n = ftt_bytes(b, 3u, 3u, FT_UNIT_DEGREE, 0.5, 8.0, 46.0);
+    n = ftt_bytes(b, 3u, 3u, FT_UNIT_DEGREE, 0.5, 8.0, 46.0, 0u);
     put("ftt", "valid_3x3_deg.ftt", b, n);
-    n = ftt_bytes(b, 5u, 4u, FT_UNIT_METRE, 10.0, 0.0, 0.0);
+    n = ftt_bytes(b, 6u, 5u, FT_UNIT_METRE, 20.0, 0.0, 0.0, 3u);
+    put("ftt", "valid_6x5_voids.ftt", b, n);
+    n = ftt_bytes(b, 5u, 4u, FT_UNIT_METRE, 10.0, 0.0, 0.0, 0u);
     put("ftt", "valid_5x4_m.ftt", b, n);
     put("ftt", "truncated_payload.ftt", b, n - 4u);
     put("ftt", "header_only.ftt", b, FT_TFILE_HEADER_BYTES);

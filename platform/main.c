@@ -167,7 +167,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"eye_m\": [%.3f, %.3f, %.3f],\n"
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
-        " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu,"
+        " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu, \"unmeasured_px\": %llu,"
         " \"tau_achieved_px\": %s, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
@@ -179,7 +179,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
-        (unsigned long long)last->terrain_px, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
+        (unsigned long long)last->terrain_px, (unsigned long long)last->unmeasured_px, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
@@ -510,6 +510,15 @@ static int cmd_render(int argc, char **argv)
                    "previous frame's), error bound %.3f px%s\n",
                    (unsigned long long)st.raycast_px, (unsigned long long)st.terrain_px,
                    st.tau_achieved_px, st.budget_hit ? " (ray-casting budget hit)" : "");
+        }
+        if (g_app.terrain.void_count > 0u) {
+            const double frame_px = (double)scene.width_px * (double)scene.height_px;
+            printf("unmeasured terrain: %u void-filled samples (%.2f%% of the terrain), shown "
+                   "marked on %llu pixels (%.2f%% of the frame)\n",
+                   g_app.terrain.void_count,
+                   100.0 * g_app.terrain.void_count /
+                       ((double)g_app.terrain.width * g_app.terrain.height),
+                   (unsigned long long)st.unmeasured_px, 100.0 * (double)st.unmeasured_px / frame_px);
         }
         if (FT_WITH_PNG) {
             printf("wrote %s\n", out_path);
@@ -988,7 +997,7 @@ static void print_defines(const char *defines)
 }
 
 /* The shader variants this scene compiles: only the code it uses. */
-static void print_shader_variants(const ft_scene *s, int es3)
+static void print_shader_variants(const ft_scene *s, const ft_terrain *t, int es3)
 {
     printf("shader variants: %s [", ft_method_vertex_shader(s->method));
     print_defines(ft_method_vertex_defines(s, es3));
@@ -998,7 +1007,7 @@ static void print_shader_variants(const ft_scene *s, int es3)
         print_defines(coarse);
     }
     printf("], colour fragment shaders [");
-    print_defines(ft_renderer_shade_defines(s));
+    print_defines(ft_renderer_shade_defines(s, t));
     printf("]\n");
 }
 
@@ -1048,7 +1057,7 @@ static int cmd_budget(int argc, char **argv)
     printf("GPU memory: %llu of %llu bytes (gpu.texture_bytes)\n",
            (unsigned long long)g_app.renderer.gpu_bytes,
            (unsigned long long)scene.gpu_texture_bytes);
-    print_shader_variants(&scene, g_app.gpu.gl.api == FT_GL_API_ES3);
+    print_shader_variants(&scene, &g_app.terrain, g_app.gpu.gl.api == FT_GL_API_ES3);
     const char *rule = "";
     const uint64_t tris = worst_triangles(&g_app, &rule);
     printf("worst-case triangles per frame: %llu (%s)\n", (unsigned long long)tris, rule);

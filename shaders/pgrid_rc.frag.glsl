@@ -265,10 +265,17 @@ void main()
     float dhy = mix(h01 - h00, h11 - h10, f.x) / u_cell_m.y;
     float h = mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
     vec3 rgb = ft_shade(h, vec3(-dhx, -dhy, 1.0));
+    float alpha = 1.0;
+#ifdef FT_SHADE_VOID
+    if (ft_unmeasured(rel.xy) > 0.5) {
+        rgb = ft_mark_unmeasured(rgb);
+        alpha = 0.5;
+    }
+#endif
 #ifdef FT_SHADE_HAZE
     rgb = ft_haze(rgb, length(rel));
 #endif
-    o_color = vec4(rgb, 1.0);
+    o_color = vec4(rgb, alpha);
 }
 #else
 /* GLSL ES 1.00 has no gl_FragDepth or texelFetch: pgrid never ray casts on

@@ -12,5 +12,6 @@ uniform sampler2D u_frame;
 FT_IN_FS vec2 v_uv;
 void main()
 {
-    FT_FRAG_COLOR = FT_TEXTURE(u_frame, v_uv);
+    /* opaque: the colour target's alpha marks unmeasured terrain */
+    FT_FRAG_COLOR = vec4(FT_TEXTURE(u_frame, v_uv).rgb, 1.0);
 }

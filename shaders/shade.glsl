@@ -29,6 +29,30 @@ vec3 ft_shade(float h, vec3 n)
     return clamp(rgb * light, 0.0, 1.0);
 }
 
+#ifdef FT_SHADE_VOID
+/* Unmeasured terrain (src/shade.h): where the bilinear surface depends on a
+ * void-filled sample (a cell with such a corner) the lit colour turns grey
+ * and carries a magenta diagonal hatch in screen space, and the fragment's
+ * alpha says so (counted at the readback, then set back to opaque). */
+uniform sampler2D u_void_cells;  /* one texel per cell: 1 = a corner was filled */
+uniform highp vec4 u_void_map;   /* (origin rel. eye x, y m, 1 / cell x, 1 / cell y) */
+uniform highp vec2 u_void_size;  /* cells */
+float ft_unmeasured(highp vec2 rel_eye_xy_m)
+{
+    highp vec2 c = floor((rel_eye_xy_m - u_void_map.xy) * u_void_map.zw);
+#if FT_ES3
+    return texture(u_void_cells, (c + 0.5) / u_void_size).r > 0.5 ? 1.0 : 0.0;
+#else
+    return texture2D(u_void_cells, (c + 0.5) / u_void_size).r > 0.5 ? 1.0 : 0.0;
+#endif
+}
+vec3 ft_mark_unmeasured(vec3 rgb)
+{
+    float m = mod(floor(gl_FragCoord.x) + floor(gl_FragCoord.y), 8.0);
+    return m < 2.0 ? vec3(0.8, 0.0, 0.8) : vec3(dot(rgb, vec3(0.299, 0.587, 0.114)));
+}
+#endif
+
 #ifdef FT_SHADE_HAZE
 /* Distance haze (presentation.haze_km): towards the sky colour, capped so
  * far ridgelines keep a quarter of their contrast (src/shade.h). */

@@ -93,6 +93,7 @@ static void plan(ft_app *app)
     ft_arena_plan(a, FT_POOL_HEIGHTS, (size_t)t->width * t->height * sizeof(float));
     if (may_have_voids(app)) {
         ft_arena_plan(a, FT_POOL_HEIGHTS, ft_terrain_void_bits_bytes(t->width, t->height));
+        ft_arena_plan(a, FT_POOL_GPU_STAGING, ft_renderer_void_staging_bytes(t->width));
     }
     ft_arena_plan(a, FT_POOL_PYRAMIDS, ft_pyramid_bytes(t->width, t->height));
     if (app->dem_kind == FT_DEM_HGT) {
@@ -273,6 +274,7 @@ ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char
         return s;
     }
     s = ft_renderer_read_rgba(&app->renderer, err); /* waits for the GPU */
+    st->unmeasured_px = app->renderer.unmeasured_px;
     uint64_t t2 = ft_plat_monotonic_ns();
     st->gpu_timer_ms = (s == FT_OK) ? ft_renderer_gpu_timer_ms(&app->renderer) : -1.0;
     if (st->gpu_timer_ms > (double)(t2 - t0) * 1e-6 + 0.05) {

@@ -210,12 +210,18 @@ static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, co
 
 /* ---- colour: shaders/shade.glsl ---------------------------------------------- */
 
-const char *ft_renderer_shade_defines(const ft_scene *s)
+const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t)
 {
-    static const char *const k_variants[4] = {
-        "", "#define FT_SHADE_RELATIVE 1\n", "#define FT_SHADE_HAZE 1\n",
-        "#define FT_SHADE_RELATIVE 1\n#define FT_SHADE_HAZE 1\n"};
-    return k_variants[(s->present_relative ? 1 : 0) + (s->present_haze_km > 0.0 ? 2 : 0)];
+#define R "#define FT_SHADE_RELATIVE 1\n"
+#define H "#define FT_SHADE_HAZE 1\n"
+#define V "#define FT_SHADE_VOID 1\n"
+    static const char *const k_variants[8] = {"", R, H, R H, V, R V, H V, R H V};
+#undef R
+#undef H
+#undef V
+    const int unmeasured = t != NULL && t->void_count > 0u && t->void_bits != NULL;
+    return k_variants[(s->present_relative ? 1 : 0) + (s->present_haze_km > 0.0 ? 2 : 0) +
+                      (unmeasured ? 4 : 0)];
 }
 
 void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
@@ -232,6 +238,9 @@ void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
     u->band_edge = u->band_rgba = u->aircraft_alt = -1;
 #endif
     u->haze = gl->GetUniformLocation(prog, "u_haze");
+    u->void_cells = gl->GetUniformLocation(prog, "u_void_cells");
+    u->void_map = gl->GetUniformLocation(prog, "u_void_map");
+    u->void_size = gl->GetUniformLocation(prog, "u_void_size");
 }
 
 /* Program must be current. A few dozen floats: set every frame, so a
@@ -250,6 +259,12 @@ void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
                           FT_SUN_DIR_Z * FT_SUN_DIR_Z);
     gl->Uniform3f(u->sun, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
     gl->Uniform2f(u->light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
+    if (u->void_cells >= 0) {
+        gl->Uniform1i(u->void_cells, FT_TEX_UNIT_VOID);
+        gl->Uniform4f(u->void_map, st->void_map[0], st->void_map[1], st->void_map[2],
+                      st->void_map[3]);
+        gl->Uniform2f(u->void_size, st->void_size[0], st->void_size[1]);
+    }
     if (u->haze >= 0) {
         float sky[3];
         ft_shade_palette_sky(st->palette, sky);
@@ -280,6 +295,68 @@ static ft_status upload_array(ft_renderer *r, ft_arena *a, const float *data, ui
     const ft_scalar_format f = {r->gt.format, r->gt.pack_min_m, r->gt.pack_range_m};
     return ft_gpu_upload_scalar(r->gl, &f, data, w_px, h_px, GL_TEXTURE0, a, tex, &r->gt.bytes,
                                 err);
+}
+
+size_t ft_renderer_void_staging_bytes(uint32_t width)
+{
+    return (size_t)(width > 1u ? width - 1u : 1u) * FT_VOID_STRIP_ROWS;
+}
+
+/* One byte per cell, 255 where a corner sample was void-filled: what the
+ * FT_SHADE_VOID fragment variant looks up. Built strip by strip from the
+ * terrain's void bits through FT_POOL_GPU_STAGING. */
+static ft_status upload_void_cells(ft_renderer *r, ft_arena *a, ft_error *err)
+{
+    const ft_gl *gl = r->gl;
+    const ft_terrain *t = r->terrain;
+    const uint32_t cw = t->width - 1u, ch = t->height - 1u;
+    GLint units = 0;
+    gl->GetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+    if (units <= FT_TEX_UNIT_VOID) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "the terrain has %u void-filled samples and marking them needs texture "
+                       "unit %d; this device has %d units",
+                       t->void_count, FT_TEX_UNIT_VOID, units);
+    }
+    uint8_t *strip = NULL;
+    const size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
+    ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING, ft_renderer_void_staging_bytes(t->width),
+                                 (void **)&strip, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    /* ES 2 has LUMINANCE, a core profile (OSMesa) and ES 3 have R8 */
+    const int r8 = gl->api == FT_GL_API_ES3 || gl->caps.desktop_core;
+    const GLenum fmt = r8 ? GL_RED : GL_LUMINANCE;
+    gl->GenTextures(1, &r->void_tex);
+    gl->ActiveTexture(GL_TEXTURE0 + FT_TEX_UNIT_VOID);
+    gl->BindTexture(GL_TEXTURE_2D, r->void_tex);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, r8 ? GL_R8 : GL_LUMINANCE, (GLsizei)cw, (GLsizei)ch, 0, fmt,
+                   GL_UNSIGNED_BYTE, NULL);
+    for (uint32_t y0 = 0; y0 < ch; y0 += FT_VOID_STRIP_ROWS) {
+        const uint32_t rows = (ch - y0 < FT_VOID_STRIP_ROWS) ? ch - y0 : FT_VOID_STRIP_ROWS;
+        for (uint32_t y = 0; y < rows; ++y) {
+            const size_t s0 = (size_t)(y0 + y) * t->width, s1 = s0 + t->width;
+            for (uint32_t x = 0; x < cw; ++x) {
+                const int filled =
+                    ft_terrain_sample_filled(t, s0 + x) || ft_terrain_sample_filled(t, s0 + x + 1u) ||
+                    ft_terrain_sample_filled(t, s1 + x) || ft_terrain_sample_filled(t, s1 + x + 1u);
+                strip[(size_t)y * cw + x] = filled ? 255u : 0u;
+            }
+        }
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)y0, (GLsizei)cw, (GLsizei)rows, fmt,
+                          GL_UNSIGNED_BYTE, strip);
+    }
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
+    r->gpu_bytes += (uint64_t)cw * ch;
+    return ft_gl_check(gl, "unmeasured-cell texture upload", err);
 }
 
 static ft_status upload_terrain(ft_renderer *r, const ft_scene *s, ft_arena *a, ft_error *err)
@@ -452,6 +529,10 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     r->terrain = t;
     r->scene = s;
     ft_shade_state_from_scene(&r->shade, s);
+    r->shade.void_map[2] = (float)(1.0 / t->cell_x_m);
+    r->shade.void_map[3] = (float)(1.0 / t->cell_y_m);
+    r->shade.void_size[0] = (float)(t->width - 1u);
+    r->shade.void_size[1] = (float)(t->height - 1u);
     ft_renderer_set_palette(r, s->present_palette);
     r->width_px = s->width_px;
     r->height_px = s->height_px;
@@ -483,9 +564,15 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return st;
     }
     r->gpu_bytes += r->gt.bytes;
+    if (t->void_count > 0u && t->void_bits != NULL) {
+        st = upload_void_cells(r, a, err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
     const char *vert = ft_method_vertex_shader(s->method);
     const char *vert_defines = ft_method_vertex_defines(s, gl->api == FT_GL_API_ES3);
-    const char *frag_defines = ft_renderer_shade_defines(s);
+    const char *frag_defines = ft_renderer_shade_defines(s, t);
     st = build_program(gl, vert, vert_defines, "terrain.frag.glsl", frag_defines,
                        k_terrain_attribs, &r->prog_color, err);
     if (st != FT_OK) {
@@ -751,6 +838,8 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
         gl->BeginQuery(GL_TIME_ELAPSED_EXT, r->timer_query);
     }
     r->shade.aircraft_alt_m = (float)cam->eye_m[2]; /* the pose's altitude */
+    r->shade.void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
+    r->shade.void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
     draw_pass(r, &r->prog_color, cam, &ms);
     if (r->scene->present_horizon) {
         const ft_status hs = draw_horizon(r, cam, err);
@@ -777,6 +866,21 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
         ft_camera_depth_step_m(cam->near_m, cam->far_m, r->depth_bits, r->depth_float, cam->far_m);
     r->frames += 1u;
     return FT_OK; /* GL errors, when checked, are read once at the readback */
+}
+
+/* Fragments over unmeasured terrain wrote alpha 0.5 (shaders/shade.glsl):
+ * count them, then make the frame opaque for the PNG and the display. */
+static void count_unmeasured(ft_renderer *r)
+{
+    uint64_t n = 0u;
+    if (r->void_tex != 0u) {
+        const size_t px = (size_t)r->width_px * r->height_px;
+        for (size_t i = 0; i < px; ++i) {
+            n += (uint64_t)(r->rgba[4u * i + 3u] != 255u);
+            r->rgba[4u * i + 3u] = 255u;
+        }
+    }
+    r->unmeasured_px = n;
 }
 
 /* GL rows run bottom-up; ours run top-down. Swap rows in place (no buffer). */
@@ -828,6 +932,7 @@ ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err)
     gl->ReadPixels(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px, GL_RGBA, GL_UNSIGNED_BYTE,
                    r->rgba);
     flip_rows(r->rgba, (size_t)r->width_px * 4u, r->height_px);
+    count_unmeasured(r);
     ft_status st = frame_error_check(r, "frame (draw, overlay, colour readback)", err);
     if (r->frame_done != NULL) {
         r->frame_done(r->frame_done_ctx, r);

@@ -28,7 +28,13 @@ typedef struct ft_shade_locs {
     GLint ramp_h, ramp_rgb, sun, light;
     GLint band_edge, band_rgba, aircraft_alt;
     GLint haze; /* FT_SHADE_HAZE variant */
+    GLint void_cells, void_map, void_size; /* FT_SHADE_VOID variant */
 } ft_shade_locs;
+
+/* The unmeasured-cell texture's unit: above every unit a method uses (0-7),
+ * so it stays bound from init on. */
+#define FT_TEX_UNIT_VOID 8
+#define FT_VOID_STRIP_ROWS 16u /* rows of cells built and uploaded at a time */
 
 typedef struct ft_terrain_program {
     GLuint program;
@@ -80,6 +86,7 @@ typedef struct ft_frame_stats {
     uint32_t draw_calls;
     uint32_t tiles;         /* bintree: tiles drawn (0 for other methods) */
     uint64_t raycast_px;    /* pgrid: pixels ray cast this frame */
+    uint64_t unmeasured_px; /* pixels showing void-filled (invented) terrain */
     uint64_t terrain_px;    /* pgrid: terrain pixels of the error buffer (its mesh
                                and envelopes): raycast_px's denominator */
     double tau_achieved_px; /* bintree: screen-space bound the selection meets */
@@ -121,6 +128,8 @@ typedef struct ft_renderer {
     GLuint timer_query; /* GL_TIME_ELAPSED around the frame's draw (0: none) */
     float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
     ft_shade_state shade; /* palette, bands, aircraft altitude (set each frame) */
+    GLuint void_tex;        /* unmeasured cells (0: the terrain has no filled sample) */
+    uint64_t unmeasured_px; /* pixels of the last readback showing unmeasured terrain */
     uint64_t gpu_bytes;
     uint64_t frames;
     /* glGetError in the frame path. 0: none (the safety-critical frame loop
@@ -203,9 +212,14 @@ ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
                                         const char *attr0, GLuint *out, ft_error *err);
 
 /* The colour variant a scene needs: "#define FT_SHADE_RELATIVE 1\n" with
- * relative colouring, "#define FT_SHADE_HAZE 1\n" with haze, else "" (the
- * code of a part the scene does not use is not compiled at all). */
-const char *ft_renderer_shade_defines(const ft_scene *s);
+ * relative colouring, "#define FT_SHADE_HAZE 1\n" with haze,
+ * "#define FT_SHADE_VOID 1\n" when the terrain has void-filled samples (the
+ * marking is not optional there), else "" (the code of a part the scene
+ * does not use is not compiled at all). */
+const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t);
+/* Staging bytes the unmeasured-cell texture's upload takes (a terrain that
+ * may have void-filled samples: planned by the app). */
+size_t ft_renderer_void_staging_bytes(uint32_t width);
 /* shade.glsl's uniform locations of a program, and their values for a
  * colour state (palette ramp, sun, light; bands and aircraft altitude in the
  * relative variant). */

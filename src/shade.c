@@ -77,9 +77,10 @@ uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
 }
 #endif
 
-/* haze: NULL, or (sky r, g, b, fraction) */
+/* haze: NULL, or (sky r, g, b, fraction); frag_xy: NULL, or the window
+ * coordinates of an unmeasured fragment */
 static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, const float *haze,
-                  float height_m, const float n[3], uint8_t out[4])
+                  const float *frag_xy, float height_m, const float n[3], uint8_t out[4])
 {
     float rgb[3];
     int i = 0;
@@ -98,23 +99,35 @@ static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, co
                      FT_SUN_DIR_Z * FT_SUN_DIR_Z);
     float d = (n[0] * FT_SUN_DIR_X + n[1] * FT_SUN_DIR_Y + n[2] * FT_SUN_DIR_Z) / sl;
     float light = FT_SHADE_AMBIENT + FT_SHADE_DIFFUSE * (d > 0.0f ? d : 0.0f);
+    float lit[3];
     for (int c = 0; c < 3; ++c) {
-        float lit = clamp01(rgb[c] * light);
-        if (haze != NULL) {
-            lit += (haze[c] - lit) * haze[3];
+        lit[c] = clamp01(rgb[c] * light);
+    }
+    if (frag_xy != NULL) {
+        const float m = fmodf(floorf(frag_xy[0]) + floorf(frag_xy[1]), FT_HATCH_PERIOD_PX);
+        const float grey = 0.299f * lit[0] + 0.587f * lit[1] + 0.114f * lit[2];
+        const float hatch[3] = {FT_HATCH_R, FT_HATCH_G, FT_HATCH_B};
+        for (int c = 0; c < 3; ++c) {
+            lit[c] = m < FT_HATCH_WIDTH_PX ? hatch[c] : grey;
         }
-        out[c] = (uint8_t)(lit * 255.0f + 0.5f);
+    }
+    for (int c = 0; c < 3; ++c) {
+        float v = lit[c];
+        if (haze != NULL) {
+            v += (haze[c] - v) * haze[3];
+        }
+        out[c] = (uint8_t)(v * 255.0f + 0.5f);
     }
     out[3] = 255;
 }
 
 void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
 {
-    shade(ft_ramp_rgb, NULL, NULL, height_m, n, out);
+    shade(ft_ramp_rgb, NULL, NULL, NULL, height_m, n, out);
 }
 
 void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
-                          float dist_m, uint8_t out[4])
+                          float dist_m, const float *frag_xy, uint8_t out[4])
 {
     float ramp[FT_RAMP_STOPS][3];
     ft_shade_palette_ramp(st->palette, ramp);
@@ -131,6 +144,6 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
         ft_shade_palette_sky(st->palette, haze);
         haze[3] = FT_HAZE_MAX * (1.0f - expf(-dist_m * st->haze_per_m));
     }
-    shade((const float(*)[3])ramp, band, st->haze_per_m > 0.0f ? haze : NULL, height_m, n,
-          out);
+    shade((const float(*)[3])ramp, band, st->haze_per_m > 0.0f ? haze : NULL, frag_xy, height_m,
+          n, out);
 }

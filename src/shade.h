@@ -65,6 +65,10 @@ typedef struct ft_shade_state {
     ft_bands bands;       /* edges in ft, colours before the palette's gain */
     float aircraft_alt_m; /* the pose's altitude, same datum as the heights */
     float haze_per_m;     /* 1 / visibility, 0 = no haze */
+    /* unmeasured-terrain lookup for this frame (FT_SHADE_VOID variant):
+     * the grid's origin relative to the eye and 1 / cell size, and cells */
+    float void_map[4];
+    float void_size[2];
 } ft_shade_state;
 
 void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s);
@@ -79,8 +83,19 @@ void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u
 /* The band a height falls in (0 .. bands.edges), as the shader picks it. */
 uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m);
 /* The colour the fragment shader computes for this state at distance dist_m
- * from the eye (the CPU mirror). */
+ * from the eye (the CPU mirror). frag_xy: NULL over measured terrain; over
+ * unmeasured terrain the fragment's window coordinates (gl_FragCoord.xy:
+ * pixel centres, origin bottom-left), for the hatch. */
 void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
-                          float dist_m, uint8_t out[4]);
+                          float dist_m, const float *frag_xy, uint8_t out[4]);
+
+/* Unmeasured terrain (a cell with a void-filled corner): the lit colour
+ * becomes its grey (Rec. 601 luma), crossed by a magenta hatch: window
+ * pixels whose (x + y) mod FT_HATCH_PERIOD_PX < FT_HATCH_WIDTH_PX. */
+#define FT_HATCH_PERIOD_PX 8.0f
+#define FT_HATCH_WIDTH_PX 2.0f
+#define FT_HATCH_R 0.8f
+#define FT_HATCH_G 0.0f
+#define FT_HATCH_B 0.8f
 
 #endif

@@ -36,7 +36,7 @@ static const char k_scene_common[] =
     "[brute]\npatch_cells = 64\nmax_vertices = 2000000\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 2M\nmetric_bytes = 2M\n"
-    "gpu_staging_bytes = 0\nmethod_bytes = 128K\npng_bytes = 512K\n";
+    "gpu_staging_bytes = 32K\nmethod_bytes = 128K\npng_bytes = 512K\n";
 
 static char g_text[4096];
 

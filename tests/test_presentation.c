@@ -102,7 +102,7 @@ static int run_parse(void)
     const float up[3] = {0.0f, 0.0f, 1.0f};
     uint8_t a[4], b[4];
     st.relative = 1;
-    ft_shade_rgba8_state(&st, 200.0f, up, 1000.0f, a);
+    ft_shade_rgba8_state(&st, 200.0f, up, 1000.0f, NULL, a);
     ft_shade_rgba8(200.0f, up, b);
     CHECK(memcmp(a, b, 4) == 0);
     return ft_test_result("presentation parse");
@@ -251,7 +251,7 @@ static void stairs_case(const char *backend, const char *method, const char *dem
                 continue;
             }
             uint8_t want[4];
-            ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], want);
+            ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], NULL, want);
             ++checked[g_cls[i]];
             ++band_px[ft_shade_band_of(&st, g_hit_z[i])];
             int off = 0;
@@ -457,6 +457,185 @@ static int run_horizon(const char *backend)
 }
 #endif
 
+/* ---- unmeasured terrain ----------------------------------------------------------- */
+
+#if FT_PRESENTATION_GL
+/* A flat tile at 500 m (metres CRS), every sample of the east half
+ * (columns >= VOID_COL0) void-filled: over 50% of the tile. */
+#define VOID_SIDE 129u
+#define VOID_COL0 64u
+#define VOID_CELL_M 30.0
+
+static double flat_height(double x, double y, uint32_t ix, uint32_t iy)
+{
+    (void)x;
+    (void)y;
+    (void)ix;
+    (void)iy;
+    return 500.0;
+}
+
+static const char k_void_scene[] =
+    "[scene]\nname = voids\nmethod = %s\nbackend = %s\n"
+    "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 60\n"
+    "[terrain]\ndem = %s\n"
+    "[gpu]\ntexture_bytes = 32M\n[metric]\nenabled = 0\n"
+    "[budget]\nheights_bytes = 8M\npyramids_bytes = 24M\ndem_io_bytes = 2M\n"
+    "frame_rgba_bytes = 512K\ngpu_staging_bytes = 8M\nmethod_bytes = 12M\npng_bytes = 512K\n";
+
+static uint8_t g_plain_rgba[ST_W * ST_H * 4u];
+
+/* Marked (grey or hatch) by colour alone: no ramp colour is grey. */
+static int looks_marked(const uint8_t *p)
+{
+    const int grey = abs(p[0] - p[1]) <= 1 && abs(p[1] - p[2]) <= 1;
+    const int hatch = p[0] == (uint8_t)(FT_HATCH_R * 255.0f + 0.5f) && p[1] == 0u &&
+                      p[2] == (uint8_t)(FT_HATCH_B * 255.0f + 0.5f);
+    return grey || hatch;
+}
+
+/* Renders the pose; classifies every pixel by the reference ray caster: -1
+ * sky, 0 a cell of measured samples only, 1 a cell with a filled corner.
+ * Checks: every pixel whose 3 x 3 neighbourhood is one class shows the
+ * marking exactly where the class says (hatch on the hatch pixels; with
+ * `exact`, the CPU mirror's colour within 2 levels); the readback's count
+ * equals the pixels that look marked. plain: the same view of the same
+ * terrain without voids, which the measured pixels must equal (NULL: skip). */
+static void void_case(const char *backend, const char *method, const char *dem,
+                      const ft_pose *p, int exact, const uint8_t *plain, uint32_t *marked_out)
+{
+    (void)snprintf(g_text, sizeof g_text, k_void_scene, method, backend, dem);
+    ft_test_app_init(&g_app, g_text, dem);
+    const ft_terrain *t = &g_app.terrain;
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, p, &cam, &fs);
+    const uint8_t *rgba = g_app.renderer.rgba;
+    for (uint32_t py = 0; py < ST_H; ++py) {
+        for (uint32_t px = 0; px < ST_W; ++px) {
+            const size_t i = (size_t)py * ST_W + px;
+            double dir[3], th = 0.0;
+            ft_camera_pixel_ray(&cam, px + 0.5, py + 0.5, dir);
+            if (!ft_reference_ray(t, cam.eye_m, dir, &th)) {
+                g_cls[i] = -1;
+                continue;
+            }
+            const double gx = (cam.eye_m[0] + dir[0] * th - t->origin_world_x_m) / t->cell_x_m;
+            const double gy = (cam.eye_m[1] + dir[1] * th - t->origin_world_y_m) / t->cell_y_m;
+            uint32_t cx = gx <= 0.0 ? 0u : (uint32_t)gx, cy = gy <= 0.0 ? 0u : (uint32_t)gy;
+            cx = cx > t->width - 2u ? t->width - 2u : cx;
+            cy = cy > t->height - 2u ? t->height - 2u : cy;
+            const size_t s0 = (size_t)cy * t->width + cx, s1 = s0 + t->width;
+            g_cls[i] = (int8_t)(ft_terrain_sample_filled(t, s0) || ft_terrain_sample_filled(t, s0 + 1u) ||
+                                ft_terrain_sample_filled(t, s1) || ft_terrain_sample_filled(t, s1 + 1u));
+            g_hit_z[i] = (float)(cam.eye_m[2] + dir[2] * th);
+            g_hit_d[i] = (float)th;
+        }
+    }
+    ft_shade_state st;
+    ft_shade_state_from_scene(&st, &g_app.scene);
+    st.aircraft_alt_m = (float)cam.eye_m[2];
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    uint32_t checked[2] = {0u, 0u}, wrong[2] = {0u, 0u}, looks = 0u, changed = 0u;
+    for (uint32_t py = 0; py < ST_H; ++py) {
+        for (uint32_t px = 0; px < ST_W; ++px) {
+            const size_t i = (size_t)py * ST_W + px;
+            const uint8_t *got = rgba + 4u * i;
+            looks += (uint32_t)(g_cls[i] >= 0 && looks_marked(got));
+            if (!interior(px, py)) {
+                continue;
+            }
+            const int marked = g_cls[i] == 1;
+            ++checked[marked];
+            int bad = looks_marked(got) != marked;
+            /* window coordinates of the pixel centre, origin bottom-left */
+            const float frag[2] = {(float)px + 0.5f, (float)(ST_H - 1u - py) + 0.5f};
+            if (exact) {
+                uint8_t want[4];
+                ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], marked ? frag : NULL, want);
+                for (int c = 0; c < 3; ++c) bad |= abs((int)got[c] - (int)want[c]) > 2;
+            }
+            if (!marked && plain != NULL) {
+                changed += (uint32_t)(memcmp(got, plain + 4u * i, 3u) != 0);
+            }
+            if (bad && wrong[marked] < 3u) {
+                fprintf(stderr, "  pixel (%u, %u) %s: got %u %u %u\n", px, py,
+                        marked ? "over a filled cell" : "over measured cells", got[0], got[1],
+                        got[2]);
+            }
+            wrong[marked] += (uint32_t)bad;
+        }
+    }
+    printf("%s %s %s: interior pixels over filled cells %u (%u wrong), over measured cells %u "
+           "(%u wrong, %u differ from the tile without voids); unmeasured_px %llu, pixels that "
+           "look marked %u\n",
+           backend, method, dem, checked[1], wrong[1], checked[0], wrong[0], changed,
+           (unsigned long long)fs.unmeasured_px, looks);
+    CHECK(checked[0] >= 200u && (t->void_count == 0u || checked[1] >= 200u));
+    CHECK(wrong[0] == 0u && wrong[1] == 0u && changed == 0u);
+    CHECK(fs.unmeasured_px == looks);
+    if (marked_out != NULL) {
+        *marked_out = (uint32_t)fs.unmeasured_px;
+    }
+    if (plain == NULL) {
+        memcpy(g_plain_rgba, rgba, sizeof g_plain_rgba);
+    }
+    ft_app_shutdown(&g_app);
+}
+
+static int run_voids(const char *backend, const char *method)
+{
+    /* the synthetic half-void tile, and the same tile measured everywhere */
+    char dem[512], dem_plain[512];
+    (void)snprintf(dem, sizeof dem, "%s/halfvoid_%s_%s.ftt", FT_TEST_OUT_DIR, backend, method);
+    (void)snprintf(dem_plain, sizeof dem_plain, "%s/nohole_%s_%s.ftt", FT_TEST_OUT_DIR, backend,
+                   method);
+    ft_terrain t;
+    terrain_make(&t, VOID_SIDE, VOID_SIDE, VOID_CELL_M, VOID_CELL_M, ST_X0, ST_Y0, flat_height);
+    terrain_write_ftt(&t, dem_plain);
+    static uint8_t mask[VOID_SIDE * VOID_SIDE];
+    for (uint32_t k = 0; k < VOID_SIDE * VOID_SIDE; ++k) mask[k] = (uint8_t)(k % VOID_SIDE >= VOID_COL0);
+    static uint8_t bits[(VOID_SIDE * VOID_SIDE + 7u) / 8u];
+    t.void_count = ft_terrain_pack_void_bits(mask, VOID_SIDE, VOID_SIDE, bits);
+    t.void_bits = bits;
+    terrain_write_ftt(&t, dem);
+    printf("half-void tile: %u of %u samples void-filled (%.1f%%)\n", t.void_count,
+           VOID_SIDE * VOID_SIDE, 100.0 * t.void_count / (VOID_SIDE * VOID_SIDE));
+    terrain_free(&t);
+    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double ex = 60.0 * VOID_CELL_M, ey = 64.0 * VOID_CELL_M; /* just west of the edge */
+    const ft_pose p = {45.0 + ey / m_per_deg, 9.0 + ex / (m_per_deg * cos(45.0 * PI / 180.0)),
+                       2500.0, 0.0, -89.5, 0.0};
+    void_case(backend, method, dem_plain, &p, 1, NULL, NULL); /* fills g_plain_rgba */
+    CHECK(g_app.renderer.void_tex == 0u); /* no voids: no texture, no variant */
+    uint32_t marked = 0u;
+    void_case(backend, method, dem, &p, 1, g_plain_rgba, &marked);
+    CHECK(marked > 0u);
+
+    /* N52E008 (SRTM3): its 3 filled samples seen from 600 m above the first */
+    const char *hgt = FT_SHARED_DATA_DIR "/N52E008.hgt";
+    if (!ft_test_have_data(hgt)) {
+        return ft_test_result("presentation voids");
+    }
+    (void)snprintf(g_text, sizeof g_text, k_void_scene, method, backend, hgt);
+    ft_test_app_init(&g_app, g_text, hgt);
+    const ft_terrain *n52 = &g_app.terrain;
+    CHECK(n52->void_count == 3u);
+    size_t first = 0u;
+    for (size_t k = (size_t)n52->width * n52->height; k-- > 0u;) {
+        if (ft_terrain_sample_filled(n52, k)) first = k;
+    }
+    const uint32_t fx = (uint32_t)(first % n52->width), fy = (uint32_t)(first / n52->width);
+    const ft_pose q = {n52->origin_y + fy * n52->spacing_y, n52->origin_x + fx * n52->spacing_x,
+                       (double)n52->heights_m[first] + 600.0, 0.0, -89.5, 0.0};
+    printf("N52E008: first filled sample at grid (%u, %u), %.1f m\n", fx, fy,
+           (double)n52->heights_m[first]);
+    ft_app_shutdown(&g_app);
+    void_case(backend, method, hgt, &q, 0, NULL, NULL);
+    return ft_test_result("presentation voids");
+}
+#endif
+
 int main(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "parse") == 0) {
@@ -469,7 +648,11 @@ int main(int argc, char **argv)
     if (argc >= 3 && strcmp(argv[1], "horizon") == 0) {
         return run_horizon(argv[2]);
     }
+    if (argc >= 4 && strcmp(argv[1], "voids") == 0) {
+        return run_voids(argv[2], argv[3]);
+    }
 #endif
-    fprintf(stderr, "usage: test_presentation parse | stairs BACKEND METHOD | horizon BACKEND\n");
+    fprintf(stderr, "usage: test_presentation parse | stairs BACKEND METHOD | horizon BACKEND | "
+                    "voids BACKEND METHOD\n");
     return 2;
 }

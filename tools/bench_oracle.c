@@ -59,7 +59,7 @@ ft_status bench_oracle_init(bench_oracle *o, ft_renderer *r, ft_error *err)
     if (st == FT_OK) {
         st = ft_renderer_build_terrain_program_attribs(
             gl, r->terrain, &r->gt, "oracle.vert.glsl", "terrain.frag.glsl",
-            ft_renderer_shade_defines(r->scene), k_oracle_attribs, &o->prog, err);
+            ft_renderer_shade_defines(r->scene, r->terrain), k_oracle_attribs, &o->prog, err);
     }
     if (st != FT_OK) {
         bench_oracle_shutdown(o);

@@ -424,7 +424,7 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
         st = ft_renderer_link_program_frag(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
-                                           ft_renderer_shade_defines(s), "a_corner",
+                                           ft_renderer_shade_defines(s, t), "a_corner",
                                            &m->rc_prog, err);
         if (st != FT_OK) {
             return st;

@@ -1007,7 +1007,8 @@ static void print_shader_variants(const ft_scene *s, const ft_terrain *t, int es
         print_defines(coarse);
     }
     printf("], colour fragment shaders [");
-    print_defines(ft_renderer_shade_defines(s, t));
+    char buf[FT_SHADE_DEFINES_MAX];
+    print_defines(ft_renderer_shade_defines(s, t, buf));
     printf("]\n");
 }
 

@@ -266,6 +266,9 @@ void main()
     float h = mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
     vec3 rgb = ft_shade(h, vec3(-dhx, -dhy, 1.0));
     float alpha = 1.0;
+#ifdef FT_SHADE_GRID
+    rgb = ft_ground_grid(rgb, rel.xy, length(rel));
+#endif
 #ifdef FT_SHADE_VOID
     if (ft_unmeasured(rel.xy) > 0.5) {
         rgb = ft_mark_unmeasured(rgb);

@@ -29,6 +29,22 @@ vec3 ft_shade(float h, vec3 n)
     return clamp(rgb * light, 0.0, 1.0);
 }
 
+#ifdef FT_SHADE_GRID
+/* Ground grid (presentation.grid_m; src/shade.h FT_GRID_*): lines every
+ * spacing metres along the terrain's x and y, about a pixel wide at any
+ * distance, darkening the lit colour, fading out by 40 spacings. */
+uniform highp vec4 u_grid; /* (terrain origin rel. eye x, y m, spacing m, K px per rad) */
+vec3 ft_ground_grid(vec3 rgb, highp vec2 rel_eye_xy_m, float dist_m)
+{
+    highp vec2 g = (rel_eye_xy_m - u_grid.xy) / u_grid.z;
+    highp vec2 d = abs(g - floor(g + 0.5)) * u_grid.z;
+    float half_w = 0.5 * max(u_grid.z * 0.02, dist_m / u_grid.w);
+    float fade = clamp(1.0 - dist_m / (40.0 * u_grid.z), 0.0, 1.0);
+    float on = min(d.x, d.y) < half_w ? fade : 0.0;
+    return rgb * (1.0 - 0.45 * on);
+}
+#endif
+
 #ifdef FT_SHADE_VOID
 /* Unmeasured terrain (src/shade.h): where the bilinear surface depends on a
  * void-filled sample (a cell with such a corner) the lit colour turns grey

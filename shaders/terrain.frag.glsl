@@ -24,6 +24,9 @@ void main()
 {
     vec3 rgb = ft_shade(v_height_m, v_normal);
     float alpha = 1.0;
+#ifdef FT_SHADE_GRID
+    rgb = ft_ground_grid(rgb, v_pos_rel_eye_m.xy, length(v_pos_rel_eye_m));
+#endif
 #ifdef FT_SHADE_VOID
     if (ft_unmeasured(v_pos_rel_eye_m.xy) > 0.5) {
         rgb = ft_mark_unmeasured(rgb);

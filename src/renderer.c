@@ -210,18 +210,17 @@ static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, co
 
 /* ---- colour: shaders/shade.glsl ---------------------------------------------- */
 
-const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t)
+const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t,
+                                      char buf[FT_SHADE_DEFINES_MAX])
 {
-#define R "#define FT_SHADE_RELATIVE 1\n"
-#define H "#define FT_SHADE_HAZE 1\n"
-#define V "#define FT_SHADE_VOID 1\n"
-    static const char *const k_variants[8] = {"", R, H, R H, V, R V, H V, R H V};
-#undef R
-#undef H
-#undef V
     const int unmeasured = t != NULL && t->void_count > 0u && t->void_bits != NULL;
-    return k_variants[(s->present_relative ? 1 : 0) + (s->present_haze_km > 0.0 ? 2 : 0) +
-                      (unmeasured ? 4 : 0)];
+    /* at most 4 lines of 28 characters: always fits */
+    (void)snprintf(buf, FT_SHADE_DEFINES_MAX, "%s%s%s%s",
+                   s->present_relative ? "#define FT_SHADE_RELATIVE 1\n" : "",
+                   s->present_haze_km > 0.0 ? "#define FT_SHADE_HAZE 1\n" : "",
+                   s->present_grid_m > 0.0 ? "#define FT_SHADE_GRID 1\n" : "",
+                   unmeasured ? "#define FT_SHADE_VOID 1\n" : "");
+    return buf;
 }
 
 void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
@@ -241,6 +240,7 @@ void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
     u->void_cells = gl->GetUniformLocation(prog, "u_void_cells");
     u->void_map = gl->GetUniformLocation(prog, "u_void_map");
     u->void_size = gl->GetUniformLocation(prog, "u_void_size");
+    u->grid = gl->GetUniformLocation(prog, "u_grid");
 }
 
 /* Program must be current. A few dozen floats: set every frame, so a
@@ -264,6 +264,9 @@ void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
         gl->Uniform4f(u->void_map, st->void_map[0], st->void_map[1], st->void_map[2],
                       st->void_map[3]);
         gl->Uniform2f(u->void_size, st->void_size[0], st->void_size[1]);
+    }
+    if (u->grid >= 0) {
+        gl->Uniform4f(u->grid, st->void_map[0], st->void_map[1], st->grid_m, st->px_per_rad);
     }
     if (u->haze >= 0) {
         float sky[3];
@@ -572,7 +575,8 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     }
     const char *vert = ft_method_vertex_shader(s->method);
     const char *vert_defines = ft_method_vertex_defines(s, gl->api == FT_GL_API_ES3);
-    const char *frag_defines = ft_renderer_shade_defines(s, t);
+    char frag_buf[FT_SHADE_DEFINES_MAX];
+    const char *frag_defines = ft_renderer_shade_defines(s, t, frag_buf);
     st = build_program(gl, vert, vert_defines, "terrain.frag.glsl", frag_defines,
                        k_terrain_attribs, &r->prog_color, err);
     if (st != FT_OK) {
@@ -840,6 +844,7 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     r->shade.aircraft_alt_m = (float)cam->eye_m[2]; /* the pose's altitude */
     r->shade.void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
     r->shade.void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
+    r->shade.px_per_rad = (float)cam->px_per_rad_k;
     draw_pass(r, &r->prog_color, cam, &ms);
     if (r->scene->present_horizon) {
         const ft_status hs = draw_horizon(r, cam, err);

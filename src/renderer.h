@@ -29,6 +29,7 @@ typedef struct ft_shade_locs {
     GLint band_edge, band_rgba, aircraft_alt;
     GLint haze; /* FT_SHADE_HAZE variant */
     GLint void_cells, void_map, void_size; /* FT_SHADE_VOID variant */
+    GLint grid;                            /* FT_SHADE_GRID variant */
 } ft_shade_locs;
 
 /* The unmeasured-cell texture's unit: above every unit a method uses (0-7),
@@ -211,12 +212,15 @@ ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
                                         const char *frag_name, const char *frag_defines,
                                         const char *attr0, GLuint *out, ft_error *err);
 
-/* The colour variant a scene needs: "#define FT_SHADE_RELATIVE 1\n" with
- * relative colouring, "#define FT_SHADE_HAZE 1\n" with haze,
+/* The colour variant a scene needs, written into buf and returned: one
+ * "#define FT_SHADE_<PART> 1\n" line per part it uses: RELATIVE (relative
+ * colouring), HAZE, GRID (ground grid),
  * "#define FT_SHADE_VOID 1\n" when the terrain has void-filled samples (the
  * marking is not optional there), else "" (the code of a part the scene
  * does not use is not compiled at all). */
-const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t);
+#define FT_SHADE_DEFINES_MAX 160u
+const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t,
+                                      char buf[FT_SHADE_DEFINES_MAX]);
 /* Staging bytes the unmeasured-cell texture's upload takes (a terrain that
  * may have void-filled samples: planned by the app). */
 size_t ft_renderer_void_staging_bytes(uint32_t width);

@@ -187,6 +187,7 @@ void ft_scene_defaults(ft_scene *s)
     ft_scene_default_bands(&s->present_bands);
     s->present_horizon = 0;
     s->present_haze_km = 0.0;
+    s->present_grid_m = 0.0;
     s->metric_enabled = 0;
     s->frame_period_ms = 16.667;
     s->frame_budget_ms = 0.0;
@@ -797,6 +798,15 @@ static int on_key(void *user, const char *section, const char *key, const char *
                                 "expected 0 (no haze) or a visibility of 1 to 1000 km");
             }
             s->present_haze_km = v;
+            return 1;
+        }
+        if (strcmp(key, "grid_m") == 0) {
+            double v;
+            if (!parse_f64(value, 0.0, FT_GRID_M_MAX, &v) || (v > 0.0 && v < FT_GRID_M_MIN)) {
+                return fail_key(c, section, key, value,
+                                "expected 0 (no grid) or a spacing of 10 to 10000 m");
+            }
+            s->present_grid_m = v;
             return 1;
         }
         if (strcmp(key, "band_edges_ft") == 0) {

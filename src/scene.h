@@ -177,6 +177,8 @@ int ft_method_from_name(const char *name, ft_method_kind *out);
 #define FT_BAND_EDGE_LIMIT_FT 60000.0
 #define FT_HAZE_KM_MIN 1.0    /* presentation.haze_km: 0 (none) or this .. max */
 #define FT_HAZE_KM_MAX 1000.0
+#define FT_GRID_M_MIN 10.0   /* presentation.grid_m: 0 (none) or this .. max */
+#define FT_GRID_M_MAX 10000.0
 typedef enum ft_palette { FT_PALETTE_DAY = 0, FT_PALETTE_NIGHT, FT_PALETTE_COUNT } ft_palette;
 typedef struct ft_bands {
     uint32_t edges;                      /* presentation.band_edges_ft: 1..FT_BANDS_MAX-1 */
@@ -226,6 +228,7 @@ typedef struct ft_scene {
     ft_bands present_bands; /* presentation.band_edges_ft, band_rgba */
     int present_horizon;    /* presentation.horizon: the conformal zero-pitch line */
     double present_haze_km; /* presentation.haze_km: haze visibility, 0 = none */
+    double present_grid_m;  /* presentation.grid_m: ground grid spacing, 0 = none */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
     double frame_period_ms;   /* frame.period_ms */
     double frame_budget_ms;   /* frame.budget_ms, 0 = the period */

@@ -42,6 +42,7 @@ void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s)
     st->bands = s->present_bands;
     st->aircraft_alt_m = (float)s->pose.alt_m;
     st->haze_per_m = s->present_haze_km > 0.0 ? (float)(1.0 / (s->present_haze_km * 1000.0)) : 0.0f;
+    st->grid_m = (float)s->present_grid_m;
 }
 
 #if FT_WITH_RELATIVE_COLOURING
@@ -77,10 +78,29 @@ uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
 }
 #endif
 
+float ft_shade_grid_weight(const ft_shade_state *st, const float rel_xy_m[2], float dist_m)
+{
+    if (!(st->grid_m > 0.0f) || !(st->px_per_rad > 0.0f)) {
+        return 0.0f;
+    }
+    float dmin = INFINITY;
+    for (int k = 0; k < 2; ++k) {
+        const float g = (rel_xy_m[k] - st->void_map[k]) / st->grid_m;
+        const float d = fabsf(g - floorf(g + 0.5f)) * st->grid_m;
+        dmin = d < dmin ? d : dmin;
+    }
+    const float w = st->grid_m * FT_GRID_WIDTH_FRAC;
+    const float px = dist_m / st->px_per_rad;
+    const float half_w = 0.5f * (w > px ? w : px);
+    const float fade = clamp01(1.0f - dist_m / (FT_GRID_FADE_SPACINGS * st->grid_m));
+    return dmin < half_w ? fade : 0.0f;
+}
+
 /* haze: NULL, or (sky r, g, b, fraction); frag_xy: NULL, or the window
  * coordinates of an unmeasured fragment */
 static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, const float *haze,
-                  const float *frag_xy, float height_m, const float n[3], uint8_t out[4])
+                  float grid_weight, const float *frag_xy, float height_m, const float n[3],
+                  uint8_t out[4])
 {
     float rgb[3];
     int i = 0;
@@ -101,7 +121,7 @@ static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, co
     float light = FT_SHADE_AMBIENT + FT_SHADE_DIFFUSE * (d > 0.0f ? d : 0.0f);
     float lit[3];
     for (int c = 0; c < 3; ++c) {
-        lit[c] = clamp01(rgb[c] * light);
+        lit[c] = clamp01(rgb[c] * light) * (1.0f - FT_GRID_DARKEN * grid_weight);
     }
     if (frag_xy != NULL) {
         const float m = fmodf(floorf(frag_xy[0]) + floorf(frag_xy[1]), FT_HATCH_PERIOD_PX);
@@ -123,11 +143,12 @@ static void shade(const float ramp[FT_RAMP_STOPS][3], const float *band_rgba, co
 
 void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4])
 {
-    shade(ft_ramp_rgb, NULL, NULL, NULL, height_m, n, out);
+    shade(ft_ramp_rgb, NULL, NULL, 0.0f, NULL, height_m, n, out);
 }
 
 void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
-                          float dist_m, const float *frag_xy, uint8_t out[4])
+                          float dist_m, const float *rel_xy_m, const float *frag_xy,
+                          uint8_t out[4])
 {
     float ramp[FT_RAMP_STOPS][3];
     ft_shade_palette_ramp(st->palette, ramp);
@@ -144,6 +165,7 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
         ft_shade_palette_sky(st->palette, haze);
         haze[3] = FT_HAZE_MAX * (1.0f - expf(-dist_m * st->haze_per_m));
     }
-    shade((const float(*)[3])ramp, band, st->haze_per_m > 0.0f ? haze : NULL, frag_xy, height_m,
-          n, out);
+    const float grid = rel_xy_m != NULL ? ft_shade_grid_weight(st, rel_xy_m, dist_m) : 0.0f;
+    shade((const float(*)[3])ramp, band, st->haze_per_m > 0.0f ? haze : NULL, grid, frag_xy,
+          height_m, n, out);
 }

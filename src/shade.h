@@ -69,6 +69,8 @@ typedef struct ft_shade_state {
      * the grid's origin relative to the eye and 1 / cell size, and cells */
     float void_map[4];
     float void_size[2];
+    float grid_m;         /* presentation.grid_m, 0 = no ground grid */
+    float px_per_rad;     /* the camera's K (pixels per radian), for the grid's width */
 } ft_shade_state;
 
 void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s);
@@ -83,11 +85,13 @@ void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u
 /* The band a height falls in (0 .. bands.edges), as the shader picks it. */
 uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m);
 /* The colour the fragment shader computes for this state at distance dist_m
- * from the eye (the CPU mirror). frag_xy: NULL over measured terrain; over
- * unmeasured terrain the fragment's window coordinates (gl_FragCoord.xy:
- * pixel centres, origin bottom-left), for the hatch. */
+ * from the eye (the CPU mirror). rel_xy_m: the point relative to the eye
+ * (world axes; NULL: no ground grid there). frag_xy: NULL over measured
+ * terrain; over unmeasured terrain the fragment's window coordinates
+ * (gl_FragCoord.xy: pixel centres, origin bottom-left), for the hatch. */
 void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float n[3],
-                          float dist_m, const float *frag_xy, uint8_t out[4]);
+                          float dist_m, const float *rel_xy_m, const float *frag_xy,
+                          uint8_t out[4]);
 
 /* Unmeasured terrain (a cell with a void-filled corner): the lit colour
  * becomes its grey (Rec. 601 luma), crossed by a magenta hatch: window
@@ -97,5 +101,17 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
 #define FT_HATCH_R 0.8f
 #define FT_HATCH_G 0.0f
 #define FT_HATCH_B 0.8f
+
+/* Ground grid (presentation.grid_m = s), a motion cue at low level: lines
+ * every s metres along the terrain's x and y, about a pixel wide at any
+ * distance d (half-width 0.5 max(s FT_GRID_WIDTH_FRAC, d / K) m), darkening
+ * the lit colour by FT_GRID_DARKEN, fading out linearly by FT_GRID_FADE_SPACINGS
+ * spacings from the eye. */
+#define FT_GRID_WIDTH_FRAC 0.02f
+#define FT_GRID_DARKEN 0.45f
+#define FT_GRID_FADE_SPACINGS 40.0f
+/* The grid's line weight (0..1, before the darkening) at a point rel_xy_m
+ * (metres from the eye, world axes) at distance dist_m. */
+float ft_shade_grid_weight(const ft_shade_state *st, const float rel_xy_m[2], float dist_m);
 
 #endif

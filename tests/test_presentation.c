@@ -71,6 +71,8 @@ static int run_parse(void)
     expect_refused("[presentation]\nhaze_km = 0.5\n", "1 to 1000 km");
     expect_refused("[presentation]\nhaze_km = -1\n", "1 to 1000 km");
     expect_refused("[presentation]\nhorizon = 2\n", "expected 0 or 1");
+    expect_refused("[presentation]\ngrid_m = 5\n", "10 to 10000 m");
+    expect_refused("[presentation]\ngrid_m = 20000\n", "10 to 10000 m");
     expect_refused("[presentation]\npalette = dusk\n", "expected day or night");
     expect_refused("[presentation]\nband_edges_ft = -100, -1000\n", "strictly increasing");
     expect_refused("[presentation]\nband_edges_ft = -100, -100\n", "strictly increasing");
@@ -102,7 +104,7 @@ static int run_parse(void)
     const float up[3] = {0.0f, 0.0f, 1.0f};
     uint8_t a[4], b[4];
     st.relative = 1;
-    ft_shade_rgba8_state(&st, 200.0f, up, 1000.0f, NULL, a);
+    ft_shade_rgba8_state(&st, 200.0f, up, 1000.0f, NULL, NULL, a);
     ft_shade_rgba8(200.0f, up, b);
     CHECK(memcmp(a, b, 4) == 0);
     return ft_test_result("presentation parse");
@@ -251,7 +253,7 @@ static void stairs_case(const char *backend, const char *method, const char *dem
                 continue;
             }
             uint8_t want[4];
-            ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], NULL, want);
+            ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], NULL, NULL, want);
             ++checked[g_cls[i]];
             ++band_px[ft_shade_band_of(&st, g_hit_z[i])];
             int off = 0;
@@ -552,7 +554,8 @@ static void void_case(const char *backend, const char *method, const char *dem,
             const float frag[2] = {(float)px + 0.5f, (float)(ST_H - 1u - py) + 0.5f};
             if (exact) {
                 uint8_t want[4];
-                ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], marked ? frag : NULL, want);
+                ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], NULL, marked ? frag : NULL,
+                                     want);
                 for (int c = 0; c < 3; ++c) bad |= abs((int)got[c] - (int)want[c]) > 2;
             }
             if (!marked && plain != NULL) {
@@ -636,6 +639,88 @@ static int run_voids(const char *backend, const char *method)
 }
 #endif
 
+/* ---- ground grid -------------------------------------------------------------------- */
+
+#if FT_PRESENTATION_GL
+/* The flat tile of the void test, measured everywhere (500 m), seen
+ * straight down from 800 m with a 1000 m grid: lines 20 m wide (s / 50),
+ * about 14 px there (a pixel is 1.4 m). Every pixel whose 3 x 3
+ * neighbourhood is all on or all off a line (by the CPU mirror at the
+ * reference ray's hit) has the mirror's colour. */
+static int run_grid(const char *backend, const char *method)
+{
+    char dem[512];
+    (void)snprintf(dem, sizeof dem, "%s/grid_%s_%s.ftt", FT_TEST_OUT_DIR, backend, method);
+    ft_terrain tt;
+    terrain_make(&tt, VOID_SIDE, VOID_SIDE, VOID_CELL_M, VOID_CELL_M, ST_X0, ST_Y0, flat_height);
+    terrain_write_ftt(&tt, dem);
+    terrain_free(&tt);
+    (void)snprintf(g_text, sizeof g_text, k_void_scene, method, backend, dem);
+    const size_t used = strlen(g_text);
+    (void)snprintf(g_text + used, sizeof g_text - used, "[presentation]\ngrid_m = 1000\n");
+    ft_test_app_init(&g_app, g_text, dem);
+    const ft_terrain *t = &g_app.terrain;
+    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    /* above the crossing of the lines x = 2000 m and y = 2000 m, off centre */
+    const double ex = 2031.0, ey = 1987.0;
+    const ft_pose p = {45.0 + ey / m_per_deg, 9.0 + ex / (m_per_deg * cos(45.0 * PI / 180.0)),
+                       800.0, 0.0, -89.5, 0.0};
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, &p, &cam, &fs);
+    ft_shade_state st;
+    ft_shade_state_from_scene(&st, &g_app.scene);
+    st.aircraft_alt_m = (float)cam.eye_m[2];
+    st.px_per_rad = (float)cam.px_per_rad_k;
+    st.void_map[0] = (float)(t->origin_world_x_m - cam.eye_m[0]);
+    st.void_map[1] = (float)(t->origin_world_y_m - cam.eye_m[1]);
+    static float rel[ST_W * ST_H][2];
+    for (uint32_t py = 0; py < ST_H; ++py) {
+        for (uint32_t px = 0; px < ST_W; ++px) {
+            const size_t i = (size_t)py * ST_W + px;
+            double dir[3], th = 0.0;
+            ft_camera_pixel_ray(&cam, px + 0.5, py + 0.5, dir);
+            if (!ft_reference_ray(t, cam.eye_m, dir, &th)) {
+                g_cls[i] = -1;
+                continue;
+            }
+            rel[i][0] = (float)(dir[0] * th);
+            rel[i][1] = (float)(dir[1] * th);
+            g_hit_z[i] = (float)(cam.eye_m[2] + dir[2] * th);
+            g_hit_d[i] = (float)th;
+            g_cls[i] = (int8_t)(ft_shade_grid_weight(&st, rel[i], g_hit_d[i]) > 0.0f);
+        }
+    }
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    uint32_t checked[2] = {0u, 0u}, wrong = 0u;
+    for (uint32_t py = 0; py < ST_H; ++py) {
+        for (uint32_t px = 0; px < ST_W; ++px) {
+            const size_t i = (size_t)py * ST_W + px;
+            if (!interior(px, py)) {
+                continue;
+            }
+            uint8_t want[4];
+            ft_shade_rgba8_state(&st, g_hit_z[i], up, g_hit_d[i], rel[i], NULL, want);
+            const uint8_t *got = g_app.renderer.rgba + 4u * i;
+            int bad = 0;
+            for (int c = 0; c < 3; ++c) bad |= abs((int)got[c] - (int)want[c]) > 2;
+            if (bad && wrong < 3u) {
+                fprintf(stderr, "  pixel (%u, %u) %s a line: got %u %u %u, want %u %u %u\n", px,
+                        py, g_cls[i] ? "on" : "off", got[0], got[1], got[2], want[0], want[1],
+                        want[2]);
+            }
+            wrong += (uint32_t)bad;
+            ++checked[g_cls[i]];
+        }
+    }
+    printf("%s %s grid 1000 m from 300 m above: interior pixels on lines %u, off lines %u, %u wrong\n",
+           backend, method, checked[1], checked[0], wrong);
+    CHECK(wrong == 0u && checked[1] >= 100u && checked[0] >= 10000u);
+    ft_app_shutdown(&g_app);
+    return ft_test_result("presentation grid");
+}
+#endif
+
 int main(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "parse") == 0) {
@@ -651,8 +736,11 @@ int main(int argc, char **argv)
     if (argc >= 4 && strcmp(argv[1], "voids") == 0) {
         return run_voids(argv[2], argv[3]);
     }
+    if (argc >= 4 && strcmp(argv[1], "grid") == 0) {
+        return run_grid(argv[2], argv[3]);
+    }
 #endif
     fprintf(stderr, "usage: test_presentation parse | stairs BACKEND METHOD | horizon BACKEND | "
-                    "voids BACKEND METHOD\n");
+                    "voids BACKEND METHOD | grid BACKEND METHOD\n");
     return 2;
 }

@@ -76,6 +76,7 @@ int main(void)
     CHECK(a.present_relative == b.present_relative && a.present_palette == b.present_palette);
     CHECK(memcmp(&a.present_bands, &b.present_bands, sizeof a.present_bands) == 0);
     CHECK(a.present_horizon == b.present_horizon && a.present_haze_km == b.present_haze_km);
+    CHECK(a.present_grid_m == b.present_grid_m);
     CHECK(a.pyramid_textures == b.pyramid_textures);
     CHECK(a.height_format == b.height_format);
     for (int i = 0; i < FT_POOL_COUNT; ++i) {

@@ -56,10 +56,12 @@ ft_status bench_oracle_init(bench_oracle *o, ft_renderer *r, ft_error *err)
         st = ft_bt_template_build(k, o->tmpl_uv, o->tmpl_idx, scratch, err);
     }
     free(scratch);
+    char frag_buf[FT_SHADE_DEFINES_MAX];
     if (st == FT_OK) {
         st = ft_renderer_build_terrain_program_attribs(
             gl, r->terrain, &r->gt, "oracle.vert.glsl", "terrain.frag.glsl",
-            ft_renderer_shade_defines(r->scene, r->terrain), k_oracle_attribs, &o->prog, err);
+            ft_renderer_shade_defines(r->scene, r->terrain, frag_buf), k_oracle_attribs,
+            &o->prog, err);
     }
     if (st != FT_OK) {
         bench_oracle_shutdown(o);
@@ -180,6 +182,9 @@ ft_status bench_oracle_frame(bench_oracle *o, ft_renderer *r, const ft_camera *c
     gl->UniformMatrix4fv(o->prog.u_view_proj, 1, GL_FALSE, cam->view_proj);
     ft_shade_state shade = r->shade; /* the renderer's colours at this frame's altitude */
     shade.aircraft_alt_m = (float)cam->eye_m[2];
+    shade.px_per_rad = (float)cam->px_per_rad_k;
+    shade.void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
+    shade.void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
     ft_renderer_shade_uniforms(gl, &o->prog.shade, &shade);
     bind_oracle_vao(o);
     gl->BindBuffer(GL_ARRAY_BUFFER, o->vbo);

@@ -421,10 +421,11 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     m->u_err_k_gamma = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_err");
     m->u_err_fwd = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_fwd");
     m->u_err_envelope = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_envelope");
+    char frag_buf[FT_SHADE_DEFINES_MAX];
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
         st = ft_renderer_link_program_frag(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
-                                           ft_renderer_shade_defines(s, t), "a_corner",
+                                           ft_renderer_shade_defines(s, t, frag_buf), "a_corner",
                                            &m->rc_prog, err);
         if (st != FT_OK) {
             return st;

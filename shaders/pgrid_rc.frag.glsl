@@ -264,21 +264,7 @@ void main()
     float dhx = mix(h10 - h00, h11 - h01, f.y) / u_cell_m.x;
     float dhy = mix(h01 - h00, h11 - h10, f.x) / u_cell_m.y;
     float h = mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
-    vec3 rgb = ft_shade(h, vec3(-dhx, -dhy, 1.0));
-    float alpha = 1.0;
-#ifdef FT_SHADE_GRID
-    rgb = ft_ground_grid(rgb, rel.xy, length(rel));
-#endif
-#ifdef FT_SHADE_VOID
-    if (ft_unmeasured(rel.xy) > 0.5) {
-        rgb = ft_mark_unmeasured(rgb);
-        alpha = 0.5;
-    }
-#endif
-#ifdef FT_SHADE_HAZE
-    rgb = ft_haze(rgb, length(rel));
-#endif
-    o_color = vec4(rgb, alpha);
+    o_color = ft_colour(h, vec3(-dhx, -dhy, 1.0), rel);
 }
 #else
 /* GLSL ES 1.00 has no gl_FragDepth or texelFetch: pgrid never ray casts on

@@ -78,3 +78,25 @@ vec3 ft_haze(vec3 rgb, float dist_m)
     return mix(rgb, u_haze.rgb, 0.75 * (1.0 - exp(-dist_m * u_haze.w)));
 }
 #endif
+
+/* The fragment's colour and alpha at height h, normal n, position rel_eye_m
+ * (world axes, relative to the eye): shade, then each part the variant has,
+ * in the order src/shade.c applies them (grid, unmeasured, haze). */
+vec4 ft_colour(float h, vec3 n, highp vec3 rel_eye_m)
+{
+    vec3 rgb = ft_shade(h, n);
+    float alpha = 1.0;
+#ifdef FT_SHADE_GRID
+    rgb = ft_ground_grid(rgb, rel_eye_m.xy, length(rel_eye_m));
+#endif
+#ifdef FT_SHADE_VOID
+    if (ft_unmeasured(rel_eye_m.xy) > 0.5) {
+        rgb = ft_mark_unmeasured(rgb);
+        alpha = 0.5;
+    }
+#endif
+#ifdef FT_SHADE_HAZE
+    rgb = ft_haze(rgb, length(rel_eye_m));
+#endif
+    return vec4(rgb, alpha);
+}

@@ -254,6 +254,17 @@ static int parse_f64(const char *v, double lo, double hi, double *out)
     return 1;
 }
 
+/* 0 (the part is off) or a number in [lo, hi]. */
+static int parse_off_or_f64(const char *v, double lo, double hi, double *out)
+{
+    double d;
+    if (!parse_f64(v, 0.0, hi, &d) || (d > 0.0 && d < lo)) {
+        return 0;
+    }
+    *out = d;
+    return 1;
+}
+
 static int parse_u64(const char *v, uint64_t lo, uint64_t hi, uint64_t *out)
 {
     char *end = NULL;
@@ -792,22 +803,14 @@ static int on_key(void *user, const char *section, const char *key, const char *
             return RANGE(parse_flag(value, &s->present_horizon), "expected 0 or 1");
         }
         if (strcmp(key, "haze_km") == 0) {
-            double v;
-            if (!parse_f64(value, 0.0, FT_HAZE_KM_MAX, &v) || (v > 0.0 && v < FT_HAZE_KM_MIN)) {
-                return fail_key(c, section, key, value,
-                                "expected 0 (no haze) or a visibility of 1 to 1000 km");
-            }
-            s->present_haze_km = v;
-            return 1;
+            return RANGE(parse_off_or_f64(value, FT_HAZE_KM_MIN, FT_HAZE_KM_MAX,
+                                          &s->present_haze_km),
+                         "expected 0 (no haze) or a visibility of 1 to 1000 km");
         }
         if (strcmp(key, "grid_m") == 0) {
-            double v;
-            if (!parse_f64(value, 0.0, FT_GRID_M_MAX, &v) || (v > 0.0 && v < FT_GRID_M_MIN)) {
-                return fail_key(c, section, key, value,
-                                "expected 0 (no grid) or a spacing of 10 to 10000 m");
-            }
-            s->present_grid_m = v;
-            return 1;
+            return RANGE(parse_off_or_f64(value, FT_GRID_M_MIN, FT_GRID_M_MAX,
+                                          &s->present_grid_m),
+                         "expected 0 (no grid) or a spacing of 10 to 10000 m");
         }
         if (strcmp(key, "band_edges_ft") == 0) {
             return RANGE(parse_band_edges(value, &s->present_bands),

@@ -63,18 +63,23 @@ void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u
     }
 }
 
-uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
+/* The shader's rule: the count of edges at or below the relative height. */
+static uint32_t band_index(const float edge_m[FT_BANDS_MAX - 1u], float rel_m)
 {
-    float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
-    ft_shade_bands_gpu(st, edge_m, rgba);
-    const float rel = height_m - st->aircraft_alt_m;
     uint32_t band = 0u;
     for (uint32_t i = 0; i < FT_BANDS_MAX - 1u; ++i) {
-        if (rel >= edge_m[i]) {
+        if (rel_m >= edge_m[i]) {
             band = i + 1u;
         }
     }
     return band;
+}
+
+uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
+{
+    float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
+    ft_shade_bands_gpu(st, edge_m, rgba);
+    return band_index(edge_m, height_m - st->aircraft_alt_m);
 }
 #endif
 
@@ -157,7 +162,7 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
     float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
     if (st->relative) {
         ft_shade_bands_gpu(st, edge_m, rgba);
-        band = rgba[ft_shade_band_of(st, height_m)];
+        band = rgba[band_index(edge_m, height_m - st->aircraft_alt_m)];
     }
 #endif
     float haze[4];

@@ -156,21 +156,35 @@ static const char k_stairs_scene[] =
 /* Classifies every pixel by the reference ray caster: which flat step it
  * sees, the sky, or a riser (the cell between two steps and the cells
  * beside it, whose vertex normals are not the flat step's). */
+/* The reference ray through pixel i = (px, py): on a hit, the hit minus the
+ * eye (world axes), its height and distance (g_hit_z, g_hit_d), 1; on a
+ * miss g_cls[i] = -1 (sky), 0. */
+static int cast_pixel(const ft_terrain *t, const ft_camera *cam, uint32_t px, uint32_t py,
+                      double rel[3])
+{
+    const size_t i = (size_t)py * ST_W + px;
+    double dir[3], th = 0.0;
+    ft_camera_pixel_ray(cam, px + 0.5, py + 0.5, dir);
+    if (!ft_reference_ray(t, cam->eye_m, dir, &th)) {
+        g_cls[i] = -1;
+        return 0;
+    }
+    for (int k = 0; k < 3; ++k) rel[k] = dir[k] * th;
+    g_hit_z[i] = (float)(cam->eye_m[2] + rel[2]);
+    g_hit_d[i] = (float)th; /* dir is a unit vector */
+    return 1;
+}
+
 static void classify(const ft_terrain *t, const ft_camera *cam)
 {
     for (uint32_t py = 0; py < ST_H; ++py) {
         for (uint32_t px = 0; px < ST_W; ++px) {
             const size_t i = (size_t)py * ST_W + px;
-            double dir[3], th = 0.0;
-            ft_camera_pixel_ray(cam, px + 0.5, py + 0.5, dir);
-            if (!ft_reference_ray(t, cam->eye_m, dir, &th)) {
-                g_cls[i] = -1;
+            double rel[3];
+            if (!cast_pixel(t, cam, px, py, rel)) {
                 continue;
             }
-            const double x = cam->eye_m[0] + dir[0] * th;
-            g_hit_z[i] = (float)(cam->eye_m[2] + dir[2] * th);
-            g_hit_d[i] = (float)th; /* dir is a unit vector */
-            const double u = (x - t->origin_world_x_m) / t->cell_x_m;
+            const double u = (cam->eye_m[0] + rel[0] - t->origin_world_x_m) / t->cell_x_m;
             const double cell = floor(u);
             const uint32_t c = cell < 0.0 ? 0u : (uint32_t)cell;
             /* the riser cell, and the cells beside it: a mesh's vertex
@@ -516,22 +530,18 @@ static void void_case(const char *backend, const char *method, const char *dem,
     for (uint32_t py = 0; py < ST_H; ++py) {
         for (uint32_t px = 0; px < ST_W; ++px) {
             const size_t i = (size_t)py * ST_W + px;
-            double dir[3], th = 0.0;
-            ft_camera_pixel_ray(&cam, px + 0.5, py + 0.5, dir);
-            if (!ft_reference_ray(t, cam.eye_m, dir, &th)) {
-                g_cls[i] = -1;
+            double rel[3];
+            if (!cast_pixel(t, &cam, px, py, rel)) {
                 continue;
             }
-            const double gx = (cam.eye_m[0] + dir[0] * th - t->origin_world_x_m) / t->cell_x_m;
-            const double gy = (cam.eye_m[1] + dir[1] * th - t->origin_world_y_m) / t->cell_y_m;
+            const double gx = (cam.eye_m[0] + rel[0] - t->origin_world_x_m) / t->cell_x_m;
+            const double gy = (cam.eye_m[1] + rel[1] - t->origin_world_y_m) / t->cell_y_m;
             uint32_t cx = gx <= 0.0 ? 0u : (uint32_t)gx, cy = gy <= 0.0 ? 0u : (uint32_t)gy;
             cx = cx > t->width - 2u ? t->width - 2u : cx;
             cy = cy > t->height - 2u ? t->height - 2u : cy;
             const size_t s0 = (size_t)cy * t->width + cx, s1 = s0 + t->width;
             g_cls[i] = (int8_t)(ft_terrain_sample_filled(t, s0) || ft_terrain_sample_filled(t, s0 + 1u) ||
                                 ft_terrain_sample_filled(t, s1) || ft_terrain_sample_filled(t, s1 + 1u));
-            g_hit_z[i] = (float)(cam.eye_m[2] + dir[2] * th);
-            g_hit_d[i] = (float)th;
         }
     }
     ft_shade_state st;
@@ -678,16 +688,12 @@ static int run_grid(const char *backend, const char *method)
     for (uint32_t py = 0; py < ST_H; ++py) {
         for (uint32_t px = 0; px < ST_W; ++px) {
             const size_t i = (size_t)py * ST_W + px;
-            double dir[3], th = 0.0;
-            ft_camera_pixel_ray(&cam, px + 0.5, py + 0.5, dir);
-            if (!ft_reference_ray(t, cam.eye_m, dir, &th)) {
-                g_cls[i] = -1;
+            double hit[3];
+            if (!cast_pixel(t, &cam, px, py, hit)) {
                 continue;
             }
-            rel[i][0] = (float)(dir[0] * th);
-            rel[i][1] = (float)(dir[1] * th);
-            g_hit_z[i] = (float)(cam.eye_m[2] + dir[2] * th);
-            g_hit_d[i] = (float)th;
+            rel[i][0] = (float)hit[0];
+            rel[i][1] = (float)hit[1];
             g_cls[i] = (int8_t)(ft_shade_grid_weight(&st, rel[i], g_hit_d[i]) > 0.0f);
         }
     }

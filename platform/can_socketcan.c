@@ -71,7 +71,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "platform_api.h"
+#include "core/platform_api.h"
 
 #define FT_CAN_RCVBUF_BYTES (2 * 1024 * 1024) /* about 2700 frames */
 

@@ -3,7 +3,7 @@
 #include <errno.h>
 #include <time.h>
 
-#include "platform_api.h"
+#include "core/platform_api.h"
 
 uint64_t ft_plat_monotonic_ns(void)
 {

@@ -48,8 +48,8 @@
 #include <xf86drmMode.h>
 
 #include "display_kms.h"
-#include "gpu.h"
-#include "platform_api.h"
+#include "core/platform_api.h"
+#include "gpu/gpu.h"
 
 #ifndef EGL_PLATFORM_GBM_KHR
 #define EGL_PLATFORM_GBM_KHR 0x31D7

@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "ft_status.h"
+#include "core/ft_status.h"
 
 ft_status ft_x11_open(uint32_t width_px, uint32_t height_px, void **native_display,
                       void **native_window, ft_error *err);

@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "platform_api.h"
+#include "core/platform_api.h"
 
 /* Bounded retry count for EINTR so no loop can spin forever. */
 #define FT_IO_RETRY_MAX 64

@@ -52,7 +52,7 @@
 #include <sys/utsname.h>
 #include <time.h>
 
-#include "platform_api.h"
+#include "core/platform_api.h"
 
 #define FT_GPIO_CONSUMER "fixterrain"
 #define FT_GPIO_READ_BATCH 16u  /* libgpiod 1.6 reads at most 16 events per call */

@@ -10,7 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "gpu.h"
+#include "gpu/gpu.h"
 
 typedef struct osmesa_context *OSMesaContext;
 typedef void (*OSMESAproc)(void);

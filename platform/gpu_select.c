@@ -1,6 +1,6 @@
 /* gpu_select.c - one dispatch point from ft_backend to the backend that
  * this build contains. */
-#include "gpu.h"
+#include "gpu/gpu.h"
 
 ft_status ft_plat_egl_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err);
 ft_status ft_plat_egl_present(ft_gpu_context *ctx, ft_error *err);

@@ -9,16 +9,16 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "app.h"
-#include "default_view.h"
-#include "platform_api.h"
-#include "replay.h"
+#include "app/app.h"
+#include "app/replay.h"
+#include "core/platform_api.h"
+#include "terrain/default_view.h"
 #if FT_WITH_CAN && FT_WITH_GPIO
 #include <signal.h>
 
-#include "live.h"
+#include "app/live.h"
 #endif
-#include "scene.h"
+#include "core/scene.h"
 
 #define FT_EXIT_OK 0
 #define FT_EXIT_ERROR 1
@@ -501,7 +501,7 @@ static int cmd_render(int argc, char **argv)
                        : "",
                    st.select_ms);
         } else if (scene.method == FT_METHOD_PGRID && st.terrain_px == 0u) {
-            /* with ray casting the counts are the previous frame's (src/pgrid.h 5) */
+            /* with ray casting the counts are the previous frame's (src/lod/pgrid.h 5) */
             printf("pgrid: error bound %.3f px (ray-cast pixels are counted a frame late: "
                    "render 2 or more frames to see them)\n",
                    st.tau_achieved_px);

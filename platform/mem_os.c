@@ -5,7 +5,7 @@
 #include <string.h>
 #include <sys/mman.h>
 
-#include "platform_api.h"
+#include "core/platform_api.h"
 
 ft_status ft_plat_mem_reserve(size_t bytes, void **out, ft_error *err)
 {

@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "platform_api.h"
+#include "core/platform_api.h"
 
 typedef struct png_io {
     ft_arena *arena;

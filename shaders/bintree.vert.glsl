@@ -8,7 +8,7 @@
  * sends only the three corner grid coordinates per tile (instanced on GLES 3,
  * as uniforms per draw on GLES 2).
  *
- * Geomorphing is a function of the grid vertex alone (src/bintree.c,
+ * Geomorphing is a function of the grid vertex alone (src/lod/bintree.c,
  * ft_bt_vertex_morph, is the same rule on the CPU): the vertex is the
  * midpoint of a coarse edge e0-e1 and enters the mesh when one diamond c
  * splits; its height slides from (h(e0) + h(e1)) / 2 to h(g) as
@@ -25,11 +25,11 @@
  * ft_bt_height_fine on the CPU, exact for integer heights). Its morph
  * endpoints lie in the same cell, its normal is the cell's gradient there,
  * and the error of the diamond that inserts it is the closed form of
- * src/bintree.c (sub_q x the largest twist over the diamond's closure, from
+ * src/lod/bintree.c (sub_q x the largest twist over the diamond's closure, from
  * <= 4 texels of the twist atlas).
  *
  * GLES 3: a vertex on a sample does one fetch, its texel of the vertex table
- * (src/bintree.h, ft_bt_sample_texel: height, the morph's coarse height,
+ * (src/lod/bintree.h, ft_bt_sample_texel: height, the morph's coarse height,
  * the inserting diamond's error, a 12+12-bit hemi-octahedral normal), and no search; the
  * lowest set bit of a coordinate is integer arithmetic. GLES 2 (and GLES 3
  * with bintree.vertex_table = 0) reads the samples, the error table and the
@@ -41,7 +41,7 @@
 
 precision highp float;
 
-/* Compile-time variants (src/method.c, ft_method_vertex_defines): the code a
+/* Compile-time variants (src/lod/method.c, ft_method_vertex_defines): the code a
  * scene does not use is not in its shader. A branch costs its time on a SIMD
  * rasteriser even when no vertex takes it, so this is also speed. */
 #ifndef FT_BT_SUB
@@ -71,7 +71,7 @@ uniform sampler2D u_bt_twist; /* twist atlas (S > 0) */
 uniform vec4 u_bt_twist_pack; /* (pack like u_pack, atlas width, height) */
 uniform vec2 u_bt_twist_off[9]; /* atlas origin of each twist level */
 #if FT_ES3 && FT_BT_VTX
-uniform highp sampler2D u_bt_vtx; /* the one-fetch vertex table (src/bintree.h) */
+uniform highp sampler2D u_bt_vtx; /* the one-fetch vertex table (src/lod/bintree.h) */
 #endif
 
 FT_IN_VS vec2 a_uv;
@@ -123,7 +123,7 @@ float ft_twist_texel(vec2 p)
     return ft_decode(t, u_bt_twist_pack.xy);
 }
 
-/* Closed-form error of a diamond below the samples (src/bintree.c,
+/* Closed-form error of a diamond below the samples (src/lod/bintree.c,
  * ft_bt_sub_error): split vertex c, square side sd (fine units), even
  * level when c is a square's centre. */
 float ft_sub_error(vec2 c, float sd, bool even_level)

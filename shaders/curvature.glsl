@@ -1,4 +1,4 @@
-/* curvature.glsl - earth curvature as every method draws it (src/terrain.h):
+/* curvature.glsl - earth curvature as every method draws it (src/terrain/terrain.h):
  * a point at horizontal distance r from the eye is lowered by k r^2,
  * k = 1 / (2 R) on a sphere, 0 on a flat earth. Positions are relative to
  * the eye, so r^2 = dot(xy, xy). */

@@ -1,4 +1,4 @@
-/* decode.glsl - a height from a texel (src/gpu_texture.h): float textures
+/* decode.glsl - a height from a texel (src/gpu/gpu_texture.h): float textures
  * hold metres in R; packed RGBA8 textures hold 24-bit fixed point over
  * [pack.x, pack.x + pack.y] (pack.y = 0 means float). Included by every
  * shader that reads heights or height bounds. */

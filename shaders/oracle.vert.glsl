@@ -1,6 +1,6 @@
 /* oracle.vert.glsl - the bench's oracle (tools/bench_oracle.h): a static,
  * pre-transformed mesh. Positions relative to the eye, normals and drawn
- * heights were computed on the CPU (src/bintree_mesh.h, the mirror of
+ * heights were computed on the CPU (src/lod/bintree_mesh.h, the mirror of
  * bintree.vert.glsl); this shader only passes them to the varyings
  * terrain.frag.glsl reads and projects the position. */
 precision highp float;

@@ -1,6 +1,6 @@
 /* pgm.vert.glsl - persistent grid mapping (method 'pgm'): one vertex of the
  * persistent grid, rows uniform on the sampling image plane. The placement
- * is shaders/pgm_grid.glsl (src/pgm.h). */
+ * is shaders/pgm_grid.glsl (src/lod/pgm.h). */
 #include "curvature.glsl"
 #include "pgm_grid.glsl"
 

@@ -4,7 +4,7 @@
  * include line of a body that names it, at build time (GLSL ES has no
  * include directive, so a body that was not expanded fails to compile).
  *
- * The math (and why) is in src/pgm.h; src/pgm.c is the same arithmetic in
+ * The math (and why) is in src/lod/pgm.h; src/lod/pgm.c is the same arithmetic in
  * double, and tests/test_pgm_gl.c holds the shader to it. In short:
  *  - grid vertex (i, j) -> point of the sampling camera's image plane
  *    (rectangle u_pgm_rect, rows placed by the body's ft_row_y, frame

@@ -1,9 +1,9 @@
 /* pgrid.vert.glsl - the error-bounded projective grid (method 'pgrid'): one
- * vertex of the persistent grid, as in pgm.vert.glsl (src/pgm.h), plus
- *  - the row distribution (src/pgrid.h 1): u_pgrid_dist = (mode, s0, s1,
+ * vertex of the persistent grid, as in pgm.vert.glsl (src/lod/pgm.h), plus
+ *  - the row distribution (src/lod/pgrid.h 1): u_pgrid_dist = (mode, s0, s1,
  *    dep_s); mode 1 puts row j at y = tan(dep_s - atan2(1, sinh(mix(s0, s1,
  *    j / (rows - 1))))), mode 0 at mix(y0, y1, j / (rows - 1)) (pgm);
- *  - the object-space error (src/pgrid.h 2): delta = max(hmax - h, h - hmin)
+ *  - the object-space error (src/lod/pgrid.h 2): delta = max(hmax - h, h - hmin)
  *    over the box of the ground points of grid points (i +- 1, j +- 1), from
  *    the min/max atlas (levels >= 2) or the heights (levels 0, 1), passed on
  *    as v_delta_m (interpolated: a convex bound of the mesh's error).
@@ -17,7 +17,7 @@ uniform vec4 u_pgrid_mm_info;    /* (half width, height, pack min, pack range or
 uniform vec4 u_pgrid_mm_level[FT_PGM_LEVELS]; /* origin xy, size zw per min/max level */
 uniform float u_pgrid_mm_levels;
 uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the upper (lower) envelope */
-uniform highp sampler2D u_pgrid_quad; /* tight bound: e_Q per grid quad (m), src/pgrid.h 6 */
+uniform highp sampler2D u_pgrid_quad; /* tight bound: e_Q per grid quad (m), src/lod/pgrid.h 6 */
 uniform highp sampler2D u_pgrid_vtx;  /* the vertex pass: (pc.xy, height, level) */
 uniform highp sampler2D u_pgrid_slope; /* ... and (dh/dgx, dh/dgy) */
 uniform float u_pgrid_tight;     /* 1: delta from u_pgrid_quad; 0: the relief bound (2) */
@@ -44,7 +44,7 @@ float ft_mm_texel(vec2 a)
 #endif
 }
 
-/* min/max of the surface over grid box [a, b] (clamped), src/pgrid.c rule */
+/* min/max of the surface over grid box [a, b] (clamped), src/lod/pgrid.c rule */
 vec2 ft_region_minmax(vec2 a, vec2 b)
 {
     vec2 hi_g = u_grid_size - 1.0;
@@ -93,7 +93,7 @@ vec2 ft_region_minmax(vec2 a, vec2 b)
  * in double: <= 0.006 m at 2000 m). */
 #define FT_PGRID_TIGHT_EPS_M(h_m) (0.005 + 4e-6 * abs(h_m))
 
-/* src/pgrid.h 6: the largest quad bound of the <= 4 quads around ij */
+/* src/lod/pgrid.h 6: the largest quad bound of the <= 4 quads around ij */
 float ft_tight_delta(vec2 ij, float h_m)
 {
     float d = 0.0;
@@ -147,7 +147,7 @@ void main()
         vec2 ext = bmax - bmin;
         float chord_m = 0.25 * u_earth_drop_per_m2 * dot(ext, ext);
         v_delta_m = max(max(mm.y - s.x, s.x - mm.x), 0.0) + chord_m;
-        /* the envelopes (error pass, src/pgrid.h 3): every vertex at the max
+        /* the envelopes (error pass, src/lod/pgrid.h 3): every vertex at the max
          * (u_pgrid_envelope 1) or the min (-1) of its region, which holds all
          * the cells around it, so each triangle lies on or above (below) the
          * surface over its footprint; between them the two hold every pixel

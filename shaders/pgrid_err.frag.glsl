@@ -1,4 +1,4 @@
-/* pgrid_err.frag.glsl - the error buffer of method 'pgrid' (src/pgrid.h 3):
+/* pgrid_err.frag.glsl - the error buffer of method 'pgrid' (src/lod/pgrid.h 3):
  * rho = K * delta / (|P - eye| cos^2 theta) per fragment, theta the angle
  * off the view axis (a perspective image stretches an angle by 1 / cos^2
  * theta radially: 15x at 75 degrees, so at FOV 150 the edges need it); R = normalised error

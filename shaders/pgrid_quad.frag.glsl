@@ -1,5 +1,5 @@
-/* pgrid_quad.frag.glsl - the quad-bound pass of method 'pgrid' (src/pgrid.h
- * 6; src/pgrid.c ft_pgrid_quad_bound is the same rule in double): one
+/* pgrid_quad.frag.glsl - the quad-bound pass of method 'pgrid' (src/lod/pgrid.h
+ * 6; src/lod/pgrid.c ft_pgrid_quad_bound is the same rule in double): one
  * fragment per grid quad (i, j), corners (i..i+1, j..j+1) read from the vertex
  * pass; writes e_Q + the curvature chord (metres) into R: the exact max
  * of |L - H| for a quad inside a window of 4 x 4 cells, else the residual
@@ -39,7 +39,7 @@ vec4 ft_vtx(vec2 ij) { return vec4(0.0); }
 float ft_res(vec2 a) { return 0.0; }
 #endif
 
-/* src/pgrid.h: FT_PGRID_EXACT_CELLS */
+/* src/lod/pgrid.h: FT_PGRID_EXACT_CELLS */
 #define FT_EXACT_CELLS 4
 #define FT_EXACT_SAMPLES 5
 
@@ -126,7 +126,7 @@ void main()
     vec2 ext = max(max(c0.xy, c1.xy), max(c2.xy, c3.xy)) - min(min(c0.xy, c1.xy), min(c2.xy, c3.xy));
     float chord_m = 0.25 * u_earth_drop_per_m2 * dot(ext, ext);
 
-    /* exact when the quad's box fits FT_EXACT_CELLS^2 cells (src/pgrid.h) */
+    /* exact when the quad's box fits FT_EXACT_CELLS^2 cells (src/lod/pgrid.h) */
     float n = float(FT_EXACT_CELLS);
     vec2 o = max(vec2(0.0), min(floor(bmin), hi_g - n));
     if (all(greaterThanEqual(bmin, o)) && all(lessThanEqual(bmax, o + n))) {

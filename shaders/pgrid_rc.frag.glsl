@@ -1,9 +1,9 @@
 /* pgrid_rc.frag.glsl - method 'pgrid': ray casting of the pixels whose
- * (3 x 3 dilated) error code reaches u_rc_thr (src/pgrid.h 4), GLES 3 only.
+ * (3 x 3 dilated) error code reaches u_rc_thr (src/lod/pgrid.h 4), GLES 3 only.
  *
  * The ray through the pixel centre is cast against the bilinear height
  * field in grid coordinates (x, y in cells from sample (0, 0), z metres),
- * the same surface src/reference.c intersects: a max-mip traversal of the
+ * the same surface src/measure/reference.c intersects: a max-mip traversal of the
  * max pyramid (levels >= 2 from the min/max atlas, level 1 = max of 3 x 3
  * samples, level 0 = the cell's 4 samples) skips every texel box the ray
  * passes above; at level 0 the ray's height minus the bilinear patch along
@@ -12,10 +12,10 @@
  * position (xyz rel. eye, w 1) and gl_FragDepth of the hit; a miss writes
  * the sky (u_rc_sky, depth 1). Pixels under the threshold are discarded, so
  * the mesh stays there. Bounded loop (FT_RC_STEPS visits).
- * Earth curvature (src/terrain.h): the terrain r metres from the eye is
+ * Earth curvature (src/terrain/terrain.h): the terrain r metres from the eye is
  * drawn k r^2 lower; the ray is bent up by the same amount instead,
  * z(t) = o.z + d.z t + bend t^2 with bend = k |dw.xy|^2, as
- * src/reference.c does: the cell solve stays a quadratic and the ray's z
+ * src/measure/reference.c does: the cell solve stays a quadratic and the ray's z
  * over a texel is convex (its minimum at an end or at -d.z / (2 bend)). */
 #ifdef GL_FRAGMENT_PRECISION_HIGH
 precision highp float;

@@ -1,4 +1,4 @@
-/* pgrid_rows.glsl - the row distribution of method 'pgrid' (src/pgrid.h 1),
+/* pgrid_rows.glsl - the row distribution of method 'pgrid' (src/lod/pgrid.h 1),
  * shared by the grid's vertex shader and its vertex pass; included after
  * pgm_grid.glsl, whose ft_row_y it defines. */
 uniform vec4 u_pgrid_dist; /* (mode, s0, s1, dep_s) */

@@ -1,4 +1,4 @@
-/* pgrid_vtx.frag.glsl - the vertex pass of method 'pgrid' (src/pgrid.h 6):
+/* pgrid_vtx.frag.glsl - the vertex pass of method 'pgrid' (src/lod/pgrid.h 6):
  * one fragment per grid vertex (i, j) = the fragment's pixel, placed by the
  * same code as the grid's vertex shader (pgm_grid.glsl), written as
  * (ground point relative to the eye xy, drawn height, level) and the slope

@@ -2,7 +2,7 @@
  * n: the palette's height ramp, the relative-altitude band painted over it
  * (only in the FT_SHADE_RELATIVE variant), times one Lambert light; then
  * (FT_SHADE_HAZE variant) ft_haze by the fragment's distance.
- * src/shade.c (ft_shade_rgba8_state) is the same rule on the CPU; the
+ * src/gpu/shade.c (ft_shade_rgba8_state) is the same rule on the CPU; the
  * uniforms come from the same C tables. */
 #define FT_RAMP_STOPS 6
 uniform float u_ramp_height_m[FT_RAMP_STOPS];
@@ -30,7 +30,7 @@ vec3 ft_shade(float h, vec3 n)
 }
 
 #ifdef FT_SHADE_GRID
-/* Ground grid (presentation.grid_m; src/shade.h FT_GRID_*): lines every
+/* Ground grid (presentation.grid_m; src/gpu/shade.h FT_GRID_*): lines every
  * spacing metres along the terrain's x and y, about a pixel wide at any
  * distance, darkening the lit colour, fading out by 40 spacings. */
 uniform highp vec4 u_grid; /* (terrain origin rel. eye x, y m, spacing m, K px per rad) */
@@ -46,7 +46,7 @@ vec3 ft_ground_grid(vec3 rgb, highp vec2 rel_eye_xy_m, float dist_m)
 #endif
 
 #ifdef FT_SHADE_VOID
-/* Unmeasured terrain (src/shade.h): where the bilinear surface depends on a
+/* Unmeasured terrain (src/gpu/shade.h): where the bilinear surface depends on a
  * void-filled sample (a cell with such a corner) the lit colour turns grey
  * and carries a magenta diagonal hatch in screen space, and the fragment's
  * alpha says so (counted at the readback, then set back to opaque). */
@@ -71,7 +71,7 @@ vec3 ft_mark_unmeasured(vec3 rgb)
 
 #ifdef FT_SHADE_HAZE
 /* Distance haze (presentation.haze_km): towards the sky colour, capped so
- * far ridgelines keep a quarter of their contrast (src/shade.h). */
+ * far ridgelines keep a quarter of their contrast (src/gpu/shade.h). */
 uniform vec4 u_haze; /* (sky r, g, b, 1 / visibility m) */
 vec3 ft_haze(vec3 rgb, float dist_m)
 {
@@ -81,7 +81,7 @@ vec3 ft_haze(vec3 rgb, float dist_m)
 
 /* The fragment's colour and alpha at height h, normal n, position rel_eye_m
  * (world axes, relative to the eye): shade, then each part the variant has,
- * in the order src/shade.c applies them (grid, unmeasured, haze). */
+ * in the order src/gpu/shade.c applies them (grid, unmeasured, haze). */
 vec4 ft_colour(float h, vec3 n, highp vec3 rel_eye_m)
 {
     vec3 rgb = ft_shade(h, n);

@@ -1,4 +1,4 @@
-# The CPU mirror of the bintree vertex shader (src/bintree_mesh.h) against the
+# The CPU mirror of the bintree vertex shader (src/lod/bintree_mesh.h) against the
 # real shader's outputs (transform feedback), and the bench's oracle frame
 # (tools/bench_oracle.h) against the real frame, on N42E001
 # (tests/test_bintree_mesh.c; skipped without ../shared/data).

@@ -7,7 +7,7 @@
 
 #include <stdio.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "test_util.h"
 
 static inline ft_pose ft_test_pose(double lat, double lon, double alt, double heading,

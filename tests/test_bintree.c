@@ -19,11 +19,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bintree.h"
-#include "bintree_template.h"
-#include "pyramid.h"
+#include "lod/bintree.h"
+#include "lod/bintree_template.h"
+#include "terrain/pyramid.h"
 #include "test_util.h"
-#include "view_scale.h"
+#include "core/view_scale.h"
 
 static uint32_t g_rng = 777u;
 static double urand(void)

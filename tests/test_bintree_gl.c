@@ -36,11 +36,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
-#include "bintree_template.h"
-#include "metric.h"
+#include "app/app.h"
+#include "lod/bintree_template.h"
+#include "measure/metric.h"
 #include "test_app_util.h"
-#include "view_scale.h"
+#include "core/view_scale.h"
 
 static ft_app g_app;
 static char g_text[4096];

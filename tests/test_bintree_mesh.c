@@ -1,5 +1,5 @@
 /* test_bintree_mesh.c - the CPU mirror of the bintree vertex shader
- * (src/bintree_mesh.h) against the real shader, and the bench's oracle
+ * (src/lod/bintree_mesh.h) against the real shader, and the bench's oracle
  * (tools/bench_oracle.h) against the real frame, on a real DEM (argv[1],
  * N42E001.hgt: 1201 x 1201, so the padding clamp is exercised too).
  *
@@ -47,10 +47,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "bench_oracle.h"
-#include "bintree_mesh.h"
-#include "bintree_template.h"
+#include "lod/bintree_mesh.h"
+#include "lod/bintree_template.h"
 #include "test_app_util.h"
 
 #define POS_REL_TOL 1e-3 /* of the distance from the eye */

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bintree_template.h"
+#include "lod/bintree_template.h"
 #include "test_util.h"
 
 int main(void)

@@ -6,8 +6,8 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "canaero.h"
-#include "pose_state.h"
+#include "input/canaero.h"
+#include "input/pose_state.h"
 #include "test_util.h"
 
 static ft_can_frame frame(uint32_t id, uint8_t dlc, uint8_t type, uint8_t code, uint8_t b4,

@@ -4,7 +4,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "candump.h"
+#include "input/candump.h"
 #include "test_util.h"
 
 static ft_status parse_str(const char *s, ft_candump_record *rec, ft_error *err)

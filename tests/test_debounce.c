@@ -5,7 +5,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "debounce.h"
+#include "input/debounce.h"
 #include "test_util.h"
 
 #define MS 1000000ull

@@ -1,6 +1,6 @@
 /* test_degrade.c - the degradation policy: raise on a heavy frame, lower
  * only after a calm stretch, hold in between (hysteresis), bounded scale. */
-#include "degrade.h"
+#include "lod/degrade.h"
 #include "test_util.h"
 
 int main(void)

@@ -44,15 +44,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "camera.h"
-#include "pyramid.h"
-#include "terrain.h"
-#include "terrain_file.h"
+#include "core/camera.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_file.h"
 #include "test_util.h"
 #include "test_terrain_util.h"
 #if FT_DEPTH_GL
-#include "app.h"
-#include "shade.h"
+#include "app/app.h"
+#include "gpu/shade.h"
 #include "test_app_util.h"
 #endif
 

@@ -33,10 +33,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
-#include "pose_feed.h"
-#include "pyramid.h"
-#include "terrain_file.h"
+#include "app/app.h"
+#include "input/pose_feed.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain_file.h"
 #include "test_util.h"
 
 /* a hang detector, not a timing bound: llvmpipe at 320x240 beside another

@@ -28,11 +28,11 @@
 #include <string.h>
 #include <time.h>
 
-#include "candump.h"
-#include "canaero.h"
+#include "input/canaero.h"
+#include "input/candump.h"
 #include "flight_path.h"
-#include "pose_feed.h"
-#include "pose_state.h"
+#include "input/pose_feed.h"
+#include "input/pose_state.h"
 #include "test_util.h"
 
 #define PI 3.14159265358979323846

@@ -5,7 +5,7 @@
  *                                               osmesa; METHOD as scene.method)
  *
  * Inits the app from a synthetic scene (128x96), then records every GL call
- * through the table's recording layer (ft_gl_trace_start, src/gl_api.h) over
+ * through the table's recording layer (ft_gl_trace_start, src/gpu/gl_api.h) over
  * 120 frames along a moving path (position, heading, pitch, roll and height
  * change every frame, so every LOD method selects anew) and 120 more frames
  * with the failure annunciation over them (the reason text changes every 30
@@ -31,7 +31,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "test_app_util.h"
 
 #define W_PX 128u
@@ -101,7 +101,7 @@ typedef struct exception {
     const char *reason;
 } exception;
 static const exception k_exceptions[] = {
-    /* pgrid's late decision (src/pgrid.h 5): the previous frame's error
+    /* pgrid's late decision (src/lod/pgrid.h 5): the previous frame's error
      * buffer, read into a pixel-pack buffer without a stall, is mapped for
      * reading once a frame; nothing is allocated (the buffers are made at
      * init) */

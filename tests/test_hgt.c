@@ -14,9 +14,9 @@
 #include <string.h>
 #include <time.h>
 
-#include "dem_hgt.h"
+#include "terrain/dem_hgt.h"
 #include "test_util.h"
-#include "void_fill.h"
+#include "terrain/void_fill.h"
 
 static void be16(uint8_t *p, int v)
 {

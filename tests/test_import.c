@@ -3,7 +3,7 @@
  *  - rainier GeoTIFF: size, unit, spacing, SW sample centre, 9033 voids,
  *    heights within the file's 263..4371 m, samples equal GDAL's (row flip),
  *    pyramids equal a fresh build;
- *  - N42E001.hgt through GDAL vs src/dem_hgt.c: identical samples and voids;
+ *  - N42E001.hgt through GDAL vs src/terrain/dem_hgt.c: identical samples and voids;
  *  - errors: missing file, a text file, wrong arguments;
  *  - generated inputs (no shared data needed): an .asc with a 3e38 height
  *    and an all-32767 .hgt are refused with the runtime's range, a .prj whose
@@ -21,9 +21,9 @@
 #include <unistd.h>
 
 #include "../tools/import_gdal.h"
-#include "dem_hgt.h"
-#include "pyramid.h"
-#include "terrain_file.h"
+#include "terrain/dem_hgt.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain_file.h"
 #include "test_util.h"
 
 typedef struct stdio_src {

@@ -1,7 +1,7 @@
 /* test_jobs.c - deferred jobs run in order, only in the time left, none lost. */
 #include <string.h>
 
-#include "jobs.h"
+#include "core/jobs.h"
 #include "test_util.h"
 
 static uint64_t g_now;

@@ -6,8 +6,8 @@
 #include <xf86drm.h>
 
 #include "display_kms.h"
-#include "gpu.h"
-#include "scene.h"
+#include "core/scene.h"
+#include "gpu/gpu.h"
 #include "test_util.h"
 
 static drmModeModeInfo mode(uint16_t w, uint16_t h, uint32_t hz, int preferred)

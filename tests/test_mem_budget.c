@@ -3,7 +3,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "mem_budget.h"
+#include "core/mem_budget.h"
 #include "test_util.h"
 
 static _Alignas(64) uint8_t g_memory[1u << 16];

@@ -15,10 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "camera.h"
-#include "metric.h"
-#include "reference.h"
-#include "terrain.h"
+#include "core/camera.h"
+#include "measure/metric.h"
+#include "measure/reference.h"
+#include "terrain/terrain.h"
 #include "test_util.h"
 
 #define PI 3.14159265358979323846

@@ -19,9 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
-#include "pyramid.h"
-#include "terrain_file.h"
+#include "app/app.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain_file.h"
 #include "test_util.h"
 
 static ft_app g_app;

@@ -23,9 +23,9 @@
 #include <string.h>
 #include <sys/mman.h>
 
-#include "app.h"
-#include "candump.h"
-#include "replay.h"
+#include "app/app.h"
+#include "app/replay.h"
+#include "input/candump.h"
 #include "test_util.h"
 
 /* volatile: GCC knows malloc does not read our globals and would otherwise

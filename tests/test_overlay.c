@@ -23,8 +23,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "font5x7.h"
-#include "overlay.h"
+#include "gpu/font5x7.h"
+#include "gpu/overlay.h"
 #include "test_util.h"
 
 #ifndef FT_OVERLAY_TEST_GL
@@ -32,8 +32,8 @@
 #endif
 
 #if FT_OVERLAY_TEST_GL
-#include "app.h"
-#include "scene.h"
+#include "app/app.h"
+#include "core/scene.h"
 #endif
 
 /* ---- font ------------------------------------------------------------------ */

@@ -1,4 +1,4 @@
-/* test_pgm.c - the persistent grid mapping's math (src/pgm.h), on the CPU:
+/* test_pgm.c - the persistent grid mapping's math (src/lod/pgm.h), on the CPU:
  * closed-form cases on flat ground with known cameras (vertex positions,
  * ground distances, lod, parent weight, gamma, sampling-camera angles), the
  * avg-level sampling on a linear ramp, the max-pyramid bound, the atlas
@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pgm.h"
-#include "pyramid.h"
+#include "lod/pgm.h"
+#include "terrain/pyramid.h"
 #include "test_util.h"
 
 #define DEG (FT_PGM_PI / 180.0)

@@ -5,7 +5,7 @@
  * 1. Shader = mirror: the colour program is relinked with transform feedback
  *    (gl_Position, v_morph = the vertex's continuous level L + w); after a
  *    real frame every grid vertex is captured once (GL_POINTS, band by band)
- *    and compared with src/pgm.c's ft_pgm_vertex_at for the same sampling
+ *    and compared with src/lod/pgm.c's ft_pgm_vertex_at for the same sampling
  *    camera: screen position within FT_MIRROR_PX, L + w within 1e-3. Grids
  *    200 x 800 and 430 x 430, float and packed texels.
  * 2. Sweep: view pitch -90..+90 deg, fov 1..170 deg, camera 1 m .. 100 km
@@ -33,7 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "test_app_util.h"
 
 /* float rounding in the shader: the mirror is double (0.0007 px seen) */

@@ -1,4 +1,4 @@
-/* test_pgrid.c - the CPU pieces of method pgrid (src/pgrid.h): delta, rho,
+/* test_pgrid.c - the CPU pieces of method pgrid (src/lod/pgrid.h): delta, rho,
  * normalised error, error codes, row placement closed forms, region
  * min/max on a known pyramid, the budget threshold and the dilated
  * histogram. */
@@ -6,8 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "pgrid.h"
-#include "pyramid.h"
+#include "lod/pgrid.h"
+#include "terrain/pyramid.h"
 #include "test_util.h"
 
 static void test_error_terms(void)
@@ -113,7 +113,7 @@ static void test_budget(void)
     CHECK(hist[200] == 9u && hist[0] == 48u - 9u);
 }
 
-/* The residual bound (src/pgrid.h 6) on a rough 65 x 65 terrain: the atlas
+/* The residual bound (src/lod/pgrid.h 6) on a rough 65 x 65 terrain: the atlas
  * holds each node's residual; the quad bound is never under the true max
  * of |L - H| (L the quad's two triangles through its drawn corners, H the
  * bilinear surface: dense sampling), for quads from a quarter cell to 24

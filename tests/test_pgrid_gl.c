@@ -1,5 +1,5 @@
 /* test_pgrid_gl.c - the error-bounded projective grid (method 'pgrid',
- * src/pgrid.h) on a real GPU context over a real DEM (argv[2], e.g.
+ * src/lod/pgrid.h) on a real GPU context over a real DEM (argv[2], e.g.
  * ../shared/data/N42E001.hgt). Views are 256 x 192 with a ray-casting budget
  * of every pixel, so the budget is never what limits the bound.
  *
@@ -10,7 +10,7 @@
  *        es.max_px <= gamma_px + TOL_PX
  *    (TOL_PX and its derivation: below), and the coverage mismatch
  *    (only_method_px + only_ref_px) is at most COVER_PX_PER_GAMMA x gamma_px;
- *    with pgrid.error_bound = relief and = residual (src/pgrid.h 6).
+ *    with pgrid.error_bound = relief and = residual (src/lod/pgrid.h 6).
  * 2. Row distribution: ray casting off, the same flight, the same grid
  *    (same vertex count): the view-dependent rows give a lower mean error
  *    than uniform rows (summed over the flight, and on most frames).
@@ -37,7 +37,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "test_app_util.h"
 
 #define W_PX 256u
@@ -65,7 +65,7 @@ typedef struct setup {
     int view_dist, ray_casting;
     double gamma;
     int metric;
-    int residual; /* pgrid.error_bound = residual (src/pgrid.h 6) */
+    int residual; /* pgrid.error_bound = residual (src/lod/pgrid.h 6) */
 } setup;
 
 static void app_init(const setup *c)
@@ -78,7 +78,7 @@ static void app_init(const setup *c)
 }
 
 /* Per-pixel split of the last measured frame (pgrid): the largest metric
- * error over the ray-cast pixels (dilated code >= threshold, src/pgrid.h 4)
+ * error over the ray-cast pixels (dilated code >= threshold, src/lod/pgrid.h 4)
  * and over the mesh pixels, and the largest error / rho_hi(code) ratio of the
  * mesh pixels (how tight the per-pixel bound is). */
 typedef struct split {
@@ -157,7 +157,7 @@ static ft_pose path_pose(int f)
  * double one: measured at <= 0.063 px over these frames (about 1 m along the
  * steepest, nearest rays at the bottom of the view, ~2.7 km away; elsewhere
  * 0.000 px), so 0.05 + 0.05. The mesh pixels (under gamma, not ray cast) are
- * bounded by rho (a convex bound, src/pgrid.h 2) and measured well under it:
+ * bounded by rho (a convex bound, src/lod/pgrid.h 2) and measured well under it:
  * max - gamma <= -0.3 px on every frame. COVER_PX_PER_GAMMA: silhouette pixels the
  * bound allows to differ (a mesh silhouette under gamma may be off by up to
  * gamma px along the skyline, so the allowance grows with gamma: 24 gamma
@@ -276,7 +276,7 @@ static void test_distribution(const char *dem)
 /* ---- 3. sweep ----------------------------------------------------------------- */
 
 /* With ray casting (budget not hit) a pixel left to the mesh has rho <
- * gamma = 1 px in true pixels (src/pgrid.h 3: the cos^2 stretch, the
+ * gamma = 1 px in true pixels (src/lod/pgrid.h 3: the cos^2 stretch, the
  * envelopes), so mesh and reference skylines differ by under a pixel: only
  * pixel centres a skyline or the DEM's edge passes between can differ, a few
  * along a 256-px view (measured <= 10: the whole tile's edge seen from
@@ -311,7 +311,7 @@ static void test_sweep(const char *dem, double lat, double lon)
                     ++frames;
                     const uint32_t ref_hits = es.terrain_px - es.only_method_px + es.only_ref_px;
                     /* the reported bound: never NaN; +inf is the documented "over
-                     * 256 px" without ray casting (src/pgrid.c, saturated code) */
+                     * 256 px" without ray casting (src/lod/pgrid.c, saturated code) */
                     const int bad_bound = isnan(fs.tau_achieved_px) ||
                                           (rc && !fs.budget_hit && !(fs.tau_achieved_px <= 1.0));
                     if (es.nonfinite_px != 0u || bad_bound) {

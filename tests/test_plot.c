@@ -15,7 +15,7 @@
 #include <string.h>
 #include <zlib.h>
 
-#include "font5x7.h"
+#include "gpu/font5x7.h"
 #include "plot.h"
 #include "test_util.h"
 

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
-#include "platform_api.h"
+#include "app/app.h"
+#include "core/platform_api.h"
 #include "test_util.h"
 
 static _Alignas(64) uint8_t g_memory[4u << 20];

@@ -5,8 +5,8 @@
  * velocity is required. */
 #include <string.h>
 
-#include "line_reader.h"
-#include "pose_feed.h"
+#include "core/line_reader.h"
+#include "input/pose_feed.h"
 #include "test_util.h"
 
 static char g_text[20000];

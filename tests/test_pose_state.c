@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "pose_state.h"
+#include "input/pose_state.h"
 #include "test_util.h"
 
 #define PI_D 3.14159265358979323846

@@ -2,7 +2,7 @@
  *
  *   test_presentation parse
  *     the scene keys (defaults, ranges, cross-field check) and the band rule
- *     at its edges (src/shade.c, the CPU mirror of shaders/shade.glsl).
+ *     at its edges (src/gpu/shade.c, the CPU mirror of shaders/shade.glsl).
  *   test_presentation stairs BACKEND METHOD
  *     a staircase terrain (4 flat steps at known heights, metres CRS) seen
  *     from above at a known altitude, relative colouring with 4 opaque
@@ -15,12 +15,12 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene.h"
-#include "shade.h"
+#include "core/scene.h"
+#include "gpu/shade.h"
 #include "test_util.h"
 #if FT_PRESENTATION_GL
-#include "app.h"
-#include "reference.h"
+#include "app/app.h"
+#include "measure/reference.h"
 #include "test_app_util.h"
 #include "test_terrain_util.h"
 #endif

@@ -1,4 +1,4 @@
-/* test_pyramid.c - src/pyramid.c against the footprint rules in terrain.h.
+/* test_pyramid.c - src/terrain/pyramid.c against the footprint rules in terrain.h.
  *
  * min/max: every texel of every level is recomputed by brute force from the
  * samples of its documented footprint, grid x in [i*2^L, min((i+1)*2^L,
@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pyramid.h"
+#include "terrain/pyramid.h"
 #include "test_util.h"
 
 static uint32_t g_rng = 12345u;

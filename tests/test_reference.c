@@ -2,7 +2,7 @@
  * a dense march, and a brute-force scan of every cell.
  *
  * The min/max pyramids are built here, directly from the footprint rule in
- * terrain.h (independent of src/pyramid.c). */
+ * terrain.h (independent of src/terrain/pyramid.c). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -10,11 +10,11 @@
 #include <string.h>
 #include <time.h>
 
-#include "camera.h"
-#include "pyramid.h"
-#include "reference.h"
-#include "shade.h"
-#include "terrain.h"
+#include "core/camera.h"
+#include "gpu/shade.h"
+#include "measure/reference.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain.h"
 #include "test_util.h"
 
 #define PI 3.14159265358979323846
@@ -920,7 +920,7 @@ static void test_render_poses(void)
     grid_free(&t);
 }
 
-/* src/pyramid.c builds the same min/max pyramid as the rule coded above,
+/* src/terrain/pyramid.c builds the same min/max pyramid as the rule coded above,
  * and the caster renders identically with it */
 static void test_with_pyramid_build(void)
 {

@@ -8,8 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "app.h"
-#include "shade.h"
+#include "app/app.h"
+#include "gpu/shade.h"
 #include "test_util.h"
 
 static const char k_scene[] =

@@ -29,10 +29,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
-#include "candump.h"
+#include "app/app.h"
+#include "input/candump.h"
 #include "flight_path.h"
-#include "replay.h"
+#include "app/replay.h"
 #include "test_util.h"
 
 static ft_app g_app;

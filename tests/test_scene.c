@@ -3,7 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "scene.h"
+#include "core/scene.h"
 #include "test_util.h"
 
 static ft_status parse(const char *text, ft_scene *s, ft_error *err)

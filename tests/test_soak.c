@@ -1,5 +1,5 @@
 /* test_soak.c - a long replay: 31 minutes of log time through `fixterrain
- * replay`'s own code path (ft_app_replay, src/replay.h) at 64x48, with
+ * replay`'s own code path (ft_app_replay, src/app/replay.h) at 64x48, with
  * faults every minute, checking that nothing drifts. The scene is small on
  * purpose (a 129^2 synthetic terrain at 60 m, bintree with at most 256 tiles
  * at tau 2 px): the soak is about time, not about detail, and llvmpipe's
@@ -42,8 +42,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "app.h"
-#include "replay.h"
+#include "app/app.h"
+#include "app/replay.h"
 #include "test_app_util.h"
 
 #define MINUTES_MAX 64u

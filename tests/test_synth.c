@@ -10,7 +10,7 @@
 #include <time.h>
 #include <zlib.h>
 
-#include "synth_terrain.h"
+#include "terrain/synth_terrain.h"
 #include "test_util.h"
 
 /* crc32 of the 129x129 seed-1 heights as little-endian float32. Changing the

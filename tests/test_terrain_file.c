@@ -10,9 +10,9 @@
 #include <string.h>
 #include <zlib.h>
 
-#include "io.h"
-#include "pyramid.h"
-#include "terrain_file.h"
+#include "core/io.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain_file.h"
 #include "test_util.h"
 
 #define W 37u

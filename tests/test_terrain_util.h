@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pyramid.h"
-#include "terrain.h"
-#include "terrain_file.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_file.h"
 #include "test_util.h"
 
 typedef double (*height_fn)(double x_m, double y_m, uint32_t ix, uint32_t iy);

@@ -12,7 +12,7 @@
 #include <time.h>
 
 #include "test_util.h"
-#include "void_fill.h"
+#include "terrain/void_fill.h"
 
 /* ft_void_fill with scratch of exactly the documented size. */
 static uint32_t fill(float *hgt, const uint8_t *m, uint32_t w, uint32_t h, int *all_void)

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "test_util.h"
 
 static const char k_scene[] =

@@ -26,9 +26,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "app.h"
+#include "app/app.h"
 #include "bench_oracle.h"
-#include "default_view.h"
+#include "terrain/default_view.h"
 #include "flight_path.h"
 #include "plot.h"
 

@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "app/app.h"
 
 #define BENCH_FRAMES_MAX 1000
 #define BENCH_LIST_MAX 8

@@ -4,9 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bintree_mesh.h"
-#include "bintree_template.h"
-#include "platform_api.h"
+#include "core/platform_api.h"
+#include "lod/bintree_mesh.h"
+#include "lod/bintree_template.h"
 
 #define ORACLE_STRIDE ((GLsizei)(FT_BT_MESH_FLOATS * sizeof(float)))
 

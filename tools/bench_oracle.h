@@ -3,7 +3,7 @@
  * The oracle draws the frame's selected triangles (the same tiles, the same
  * template, the same order) as a static, pre-transformed mesh: positions
  * relative to the eye, normals and drawn heights computed on the CPU by the
- * mirror of the bintree vertex shader (src/bintree_mesh.h), uploaded outside
+ * mirror of the bintree vertex shader (src/lod/bintree_mesh.h), uploaded outside
  * the timed region, drawn with a trivial vertex shader (shaders/
  * oracle.vert.glsl) and the same fragment shader, uniforms, target and
  * readback as the method's frame. Its time is what that triangle set costs
@@ -25,7 +25,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "renderer.h"
+#include "gpu/renderer.h"
 
 typedef struct bench_oracle {
     int ready;

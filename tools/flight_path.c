@@ -6,8 +6,8 @@
 
 #include <math.h>
 
-#include "canaero.h"
-#include "ft_ns.h"
+#include "core/ft_ns.h"
+#include "input/canaero.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -116,9 +116,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "candump.h"
-#include "ft_status.h"
-#include "pose_state.h"
+#include "core/ft_status.h"
+#include "input/candump.h"
+#include "input/pose_state.h"
 
 #define FLIGHT_WAYPOINTS_MAX 1024u
 #define FLIGHT_LINE_MAX 256u               /* waypoint file line, characters */

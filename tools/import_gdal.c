@@ -1,7 +1,7 @@
 /* import_gdal.c - converts any raster DEM GDAL can read (GeoTIFF, SRTM .hgt,
- * DTED, netCDF, ...) into the project's terrain file (src/terrain_file.h).
+ * DTED, netCDF, ...) into the project's terrain file (src/terrain/terrain_file.h).
  *
- * Rules (the runtime's conventions, src/terrain.h):
+ * Rules (the runtime's conventions, src/terrain/terrain.h):
  *  - band 1, read as float32 metres;
  *  - voids: the band's nodata value, -32768 in Int16 sources even without a
  *    nodata tag, and NaN; filled with ft_void_fill (the runtime's own rule)
@@ -25,12 +25,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dem_hgt.h"
-#include "platform_api.h"
-#include "pyramid.h"
-#include "terrain.h"
-#include "terrain_file.h"
-#include "void_fill.h"
+#include "core/platform_api.h"
+#include "terrain/dem_hgt.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_file.h"
+#include "terrain/void_fill.h"
 
 #define FT_EXIT_OK 0
 #define FT_EXIT_ERROR 1

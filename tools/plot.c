@@ -7,7 +7,7 @@
 #include <string.h>
 #include <zlib.h>
 
-#include "font5x7.h"
+#include "gpu/font5x7.h"
 
 /* ---- Pareto front --------------------------------------------------------- */
 

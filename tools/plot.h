@@ -13,7 +13,7 @@
  *     a diamond |dx| + |dy| <= r; a triangle (apex up) rows dy in [-r, r]
  *     with |dx| <= (dy + r) / 2; PLOT_MARKER_RING is the disc minus the
  *     disc of radius r - 2 (a hollow circle);
- *   - plot_text draws src/font5x7.h glyphs, each pixel a scale x scale
+ *   - plot_text draws src/gpu/font5x7.h glyphs, each pixel a scale x scale
  *     block, glyph advance 6 * scale; returns the width drawn;
  *     plot_text_up draws it rotated 90 deg counter-clockwise (reading
  *     bottom to top), the first glyph's bottom-left at (x, y).

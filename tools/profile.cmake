@@ -8,7 +8,7 @@
 # included. Included by CMakeLists.txt before option().
 #
 # One parser: the scene is read by the runtime's own reader and parser
-# (src/scene.c via tools/scene_options.c, compiled for the build host here
+# (src/core/scene.c via tools/scene_options.c, compiled for the build host here
 # and run at once), so a scene the runtime would refuse fails the configure
 # with the runtime's message, keys absent from the file take the runtime's
 # defaults, and every value means what it means at run time (metric.enabled
@@ -26,8 +26,8 @@ if(FIXTERRAIN_PROFILE)
   find_package(PkgConfig REQUIRED)
   pkg_check_modules(FT_PROFILE_INIH REQUIRED inih)
   # the parser and what it links, nothing else (no GL, no driver)
-  set(_p_sources tools/scene_options.c src/scene.c src/gpu.c src/canaero.c src/pose_state.c
-                 src/mem_budget.c src/ft_status.c src/io.c platform/file_posix.c)
+  set(_p_sources tools/scene_options.c src/core/scene.c src/gpu/gpu.c src/input/canaero.c src/input/pose_state.c
+                 src/core/mem_budget.c src/core/ft_status.c src/core/io.c platform/file_posix.c)
   list(TRANSFORM _p_sources PREPEND "${CMAKE_SOURCE_DIR}/")
   set(_p_dir "${CMAKE_BINARY_DIR}/profile")
   set(_p_tool "${_p_dir}/fixterrain-scene-options${CMAKE_EXECUTABLE_SUFFIX}")

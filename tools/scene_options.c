@@ -14,8 +14,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "platform_api.h"
-#include "scene.h"
+#include "core/platform_api.h"
+#include "core/scene.h"
 
 static char g_text[FT_SCENE_TEXT_MAX];
 

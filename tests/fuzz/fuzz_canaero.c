@@ -1,5 +1,5 @@
 /* fuzz_canaero.c - libFuzzer harness: CANaerospace decoding and the pose it
- * feeds (src/canaero.c through src/pose_feed.c, as replay and live input
+ * feeds (src/input/canaero.c through src/input/pose_feed.c, as replay and live input
  * use it).
  *
  * Input: 4 bytes of set-up, then 16-byte frame records.
@@ -22,9 +22,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "canaero.h"
+#include "input/canaero.h"
 #include "fuzz_util.h"
-#include "pose_feed.h"
+#include "input/pose_feed.h"
 
 #define REC_BYTES 16u
 

@@ -1,5 +1,5 @@
 /* fuzz_candump.c - libFuzzer harness: the candump -l line parser
- * (src/candump.c) and the line splitter in front of it (src/line_reader.c).
+ * (src/input/candump.c) and the line splitter in front of it (src/core/line_reader.c).
  *
  * The whole input is parsed once as one line of exactly `size` bytes (the
  * parser must not read past it), then split into lines by ft_line_reader
@@ -10,10 +10,10 @@
  * microseconds). No state survives an input. */
 #include <string.h>
 
-#include "candump.h"
+#include "input/candump.h"
 #include "fuzz_util.h"
-#include "io.h"
-#include "line_reader.h"
+#include "core/io.h"
+#include "core/line_reader.h"
 
 static ft_line_reader g_lr;
 

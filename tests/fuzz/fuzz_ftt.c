@@ -1,5 +1,5 @@
 /* fuzz_ftt.c - libFuzzer harness: the .ftt terrain reader
- * (src/terrain_file.c: ft_tfile_probe, then ft_tfile_load_payload into
+ * (src/terrain/terrain_file.c: ft_tfile_probe, then ft_tfile_load_payload into
  * pyramids laid out by ft_pyramid_layout), over a memory reader.
  *
  * Built twice: as given (FUZZ_FTT_FIX_CRC 0: almost every mutation stops at
@@ -15,10 +15,10 @@
 #include <zlib.h>
 
 #include "fuzz_util.h"
-#include "io.h"
-#include "pyramid.h"
-#include "terrain.h"
-#include "terrain_file.h"
+#include "core/io.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_file.h"
 
 #ifndef FUZZ_FTT_FIX_CRC
 #define FUZZ_FTT_FIX_CRC 0

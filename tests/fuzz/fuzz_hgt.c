@@ -1,4 +1,4 @@
-/* fuzz_hgt.c - libFuzzer harness: the SRTM .hgt reader (src/dem_hgt.c:
+/* fuzz_hgt.c - libFuzzer harness: the SRTM .hgt reader (src/terrain/dem_hgt.c:
  * ft_hgt_probe, ft_hgt_load with its void fill) over a memory reader.
  *
  * The reader takes the SW corner from the file name: an input starting
@@ -11,10 +11,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "dem_hgt.h"
+#include "terrain/dem_hgt.h"
 #include "fuzz_util.h"
-#include "io.h"
-#include "terrain.h"
+#include "core/io.h"
+#include "terrain/terrain.h"
 
 #define NAME_MAX_BYTES 64u
 

@@ -1,4 +1,4 @@
-/* fuzz_scene.c - libFuzzer harness: the scene parser (src/scene.c over
+/* fuzz_scene.c - libFuzzer harness: the scene parser (src/core/scene.c over
  * libinih) on INI text held in memory, as `fixterrain --scene` hands it over.
  *
  * The input is the file's text: like ft_plat_file_read_text, inputs larger
@@ -10,9 +10,9 @@
  * message. */
 #include <string.h>
 
-#include "canaero.h"
+#include "input/canaero.h"
 #include "fuzz_util.h"
-#include "scene.h"
+#include "core/scene.h"
 
 static ft_scene g_scene;
 static ft_canaero g_dec;

@@ -6,12 +6,12 @@
  * The input is the file's text. For an accepted path the harness samples it
  * (start, middle, end: every value finite) and writes the first 0.1 s of
  * its log through flightgen_run, checking that each line it emits parses
- * back (src/candump.c) to the record it was made from. The path lives in a
+ * back (src/input/candump.c) to the record it was made from. The path lives in a
  * static (it is large) that the parser clears per input. */
 #include <math.h>
 #include <string.h>
 
-#include "candump.h"
+#include "input/candump.h"
 #include "flight_path.h"
 #include "fuzz_util.h"
 

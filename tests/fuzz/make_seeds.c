@@ -10,11 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "canaero.h"
-#include "io.h"
-#include "pyramid.h"
-#include "terrain.h"
-#include "terrain_file.h"
+#include "core/io.h"
+#include "input/canaero.h"
+#include "terrain/pyramid.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_file.h"
 
 #define SEED_MAX_BYTES 65536u
 

@@ -34,8 +34,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "debounce.h"
-#include "platform_api.h"
+#include "core/platform_api.h"
+#include "input/debounce.h"
 
 extern char **environ;
 

@@ -1,0 +1,329 @@
+#include "app/app.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "terrain/dem_hgt.h"
+#include "terrain/pyramid.h"
+#include "terrain/synth_terrain.h"
+#include "terrain/terrain_file.h"
+
+/* deflate at level 6, windowBits 15, memLevel 8: (1 << 17) + (1 << 17) bytes,
+ * plus zlib's state and libpng's row, previous-row and filter buffers (about
+ * 6 row copies) and its own structs. Measured in tests/test_png.c. */
+size_t ft_png_scratch_bytes(uint32_t width_px)
+{
+    return 320u * 1024u + 8u * ((size_t)width_px * 4u + 64u);
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    if (n < m) {
+        return 0;
+    }
+    for (size_t i = 0; i < m; ++i) {
+        char c = s[n - m + i];
+        if (c >= 'A' && c <= 'Z') {
+            c = (char)(c - 'A' + 'a');
+        }
+        if (c != suffix[i]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Header only: size, spacing, georeference (and the height range where the
+ * header holds it). `file` is left open for the load that follows. */
+static ft_status probe_terrain_of(const ft_scene *s, ft_file *file, ft_terrain *t,
+                                  ft_dem_kind *kind, ft_tfile_header *hdr, ft_error *err)
+{
+    memset(t, 0, sizeof *t);
+    if (s->dem_path[0] == '\0') {
+        *kind = FT_DEM_SYNTH;
+        return ft_synth_probe(&s->synth, t, err);
+    }
+    ft_status st = ft_plat_file_open_read(file, s->dem_path, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    if (ends_with(s->dem_path, ".hgt")) {
+        *kind = FT_DEM_HGT;
+        return ft_hgt_probe(&file->reader, s->dem_path, t, err);
+    }
+    *kind = FT_DEM_FTT;
+    return ft_tfile_probe(&file->reader, t, hdr, err);
+}
+
+static ft_status probe_terrain(ft_app *app, ft_file *file, ft_error *err)
+{
+    return probe_terrain_of(&app->scene, file, &app->terrain, &app->dem_kind,
+                            &app->tfile_header, err);
+}
+
+ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *err)
+{
+    ft_file file;
+    ft_dem_kind kind;
+    ft_tfile_header hdr;
+    memset(&file, 0, sizeof file);
+    file.fd = -1;
+    ft_status st = probe_terrain_of(scene, &file, t, &kind, &hdr, err);
+    ft_plat_file_close(&file);
+    if (st == FT_OK) {
+        t->curv_drop_per_m2 = ft_terrain_curvature_drop(scene->curvature, t->unit);
+    }
+    return st;
+}
+
+/* A .hgt says how many samples it fills only when read; a .ftt says it in
+ * its header; a synthetic terrain has none. */
+static int may_have_voids(const ft_app *app)
+{
+    return app->dem_kind == FT_DEM_HGT ||
+           (app->dem_kind == FT_DEM_FTT && app->terrain.void_count > 0u);
+}
+
+static void plan(ft_app *app)
+{
+    const ft_scene *s = &app->scene;
+    const ft_terrain *t = &app->terrain;
+    ft_arena *a = &app->arena;
+    ft_arena_plan(a, FT_POOL_HEIGHTS, (size_t)t->width * t->height * sizeof(float));
+    if (may_have_voids(app)) {
+        ft_arena_plan(a, FT_POOL_HEIGHTS, ft_terrain_void_bits_bytes(t->width, t->height));
+        ft_arena_plan(a, FT_POOL_GPU_STAGING, ft_renderer_void_staging_bytes(t->width));
+    }
+    ft_arena_plan(a, FT_POOL_PYRAMIDS, ft_pyramid_bytes(t->width, t->height));
+    if (app->dem_kind == FT_DEM_HGT) {
+        ft_arena_plan(a, FT_POOL_DEM_IO, ft_hgt_scratch_bytes(t->width, t->height));
+    }
+    ft_renderer_plan(s, t, a);
+#if FT_WITH_REFERENCE
+    if (s->metric_enabled) {
+        size_t px = (size_t)s->width_px * s->height_px;
+        ft_arena_plan(a, FT_POOL_REFERENCE, px * sizeof(ft_ref_pixel));
+        ft_arena_plan(a, FT_POOL_METRIC, ft_metric_scratch_bytes(s->width_px, s->height_px));
+    }
+#endif
+#if FT_WITH_PNG
+    ft_arena_plan(a, FT_POOL_PNG, ft_png_scratch_bytes(s->width_px));
+#endif
+}
+
+static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
+{
+    ft_terrain *t = &app->terrain;
+    ft_arena *a = &app->arena;
+    size_t n = (size_t)t->width * t->height;
+    size_t pyr_bytes = ft_pyramid_bytes(t->width, t->height);
+    void *pyr = NULL;
+    ft_status st = ft_arena_take(a, FT_POOL_HEIGHTS, n * sizeof(float), (void **)&t->heights_m,
+                                 err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_PYRAMIDS, pyr_bytes, &pyr, err);
+    }
+    if (st == FT_OK) {
+        st = ft_pyramid_layout(t, pyr, pyr_bytes, err);
+    }
+    if (st == FT_OK && may_have_voids(app)) {
+        const size_t bits_bytes = ft_terrain_void_bits_bytes(t->width, t->height);
+        st = ft_arena_take(a, FT_POOL_HEIGHTS, bits_bytes, (void **)&t->void_bits, err);
+        if (st == FT_OK) {
+            memset(t->void_bits, 0, bits_bytes);
+        }
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    switch (app->dem_kind) {
+    case FT_DEM_SYNTH:
+        ft_synth_generate(&app->scene.synth, t);
+        ft_pyramid_build(t);
+        return FT_OK;
+    case FT_DEM_HGT: {
+        size_t scratch_bytes = ft_hgt_scratch_bytes(t->width, t->height);
+        void *scratch = NULL;
+        st = ft_arena_take(a, FT_POOL_DEM_IO, scratch_bytes, &scratch, err);
+        if (st == FT_OK) {
+            st = ft_hgt_load(&file->reader, t, scratch, scratch_bytes, err);
+        }
+        if (st == FT_OK) {
+            ft_pyramid_build(t);
+        }
+        return st;
+    }
+    case FT_DEM_FTT:
+        return ft_tfile_load_payload(&file->reader, t, &app->tfile_header, err);
+    default:
+        return ft_fail(err, FT_ERR_ARG, "unknown DEM kind");
+    }
+}
+
+ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
+{
+    ft_file file;
+    ft_status st;
+    uint64_t t0 = ft_plat_monotonic_ns();
+    memset(app, 0, sizeof *app);
+    memset(&file, 0, sizeof file);
+    file.fd = -1;
+    app->scene = *scene;
+
+    st = ft_scene_validate(&app->scene, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    st = probe_terrain(app, &file, err);
+    if (st != FT_OK) {
+        goto fail_file;
+    }
+    app->terrain.curv_drop_per_m2 =
+        ft_terrain_curvature_drop(app->scene.curvature, app->terrain.unit);
+    for (int i = 0; i < FT_POOL_COUNT; ++i) {
+        app->arena.pools[i].budget_bytes = (size_t)app->scene.budget_bytes[i];
+    }
+    plan(app);
+    st = ft_arena_check(&app->arena, err);
+    if (st != FT_OK) {
+        goto fail_file;
+    }
+    app->arena_bytes = ft_arena_total_budget(&app->arena);
+    st = ft_plat_mem_reserve(app->arena_bytes, &app->arena_memory, err);
+    if (st != FT_OK) {
+        goto fail_file;
+    }
+    st = ft_arena_bind(&app->arena, app->arena_memory, app->arena_bytes, err);
+    if (st != FT_OK) {
+        goto fail_memory;
+    }
+    st = load_terrain(app, &file, err);
+    ft_plat_file_close(&file);
+    if (st != FT_OK) {
+        goto fail_memory;
+    }
+    const ft_gpu_desc gd = {app->scene.backend,           app->scene.display,
+                            app->scene.width_px,          app->scene.height_px,
+                            app->scene.display_device,    app->scene.display_connector,
+                            app->scene.display_mode};
+    st = ft_plat_gpu_open(&gd, &app->gpu, err);
+    if (st != FT_OK) {
+        goto fail_memory;
+    }
+    st = ft_renderer_init(&app->renderer, &app->gpu, &app->scene, &app->terrain, &app->arena,
+                          err);
+    if (st != FT_OK) {
+        goto fail_renderer;
+    }
+    app->renderer_ready = 1;
+#if FT_WITH_REFERENCE
+    if (app->scene.metric_enabled) {
+        size_t px = (size_t)app->scene.width_px * app->scene.height_px;
+        st = ft_arena_take(&app->arena, FT_POOL_REFERENCE, px * sizeof(ft_ref_pixel),
+                           (void **)&app->ref, err);
+        if (st == FT_OK) {
+            st = ft_arena_take(&app->arena, FT_POOL_METRIC,
+                               ft_metric_scratch_bytes(app->scene.width_px, app->scene.height_px),
+                               &app->metric_scratch, err);
+        }
+        if (st != FT_OK) {
+            goto fail_renderer;
+        }
+    }
+#endif
+    ft_arena_lock(&app->arena);
+    (void)ft_arena_format_table(&app->arena, app->pool_table, sizeof app->pool_table);
+    app->init_ns = ft_plat_monotonic_ns() - t0;
+    return FT_OK;
+
+fail_renderer:
+    ft_renderer_shutdown(&app->renderer);
+    app->renderer_ready = 0;
+    ft_plat_gpu_close(&app->gpu);
+fail_memory:
+    ft_plat_mem_release(app->arena_memory, app->arena_bytes);
+    app->arena_memory = NULL;
+fail_file:
+    ft_plat_file_close(&file);
+    return st;
+}
+
+ft_status ft_app_render(ft_app *app, const ft_pose *pose, ft_camera *cam, ft_frame_stats *st,
+                        ft_error *err)
+{
+    return ft_app_render_annunciated(app, pose, NULL, cam, st, err);
+}
+
+ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char *reason,
+                                    ft_camera *cam, ft_frame_stats *st, ft_error *err)
+{
+    ft_status s = ft_renderer_camera(&app->renderer, pose, cam, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    uint64_t ts = ft_plat_monotonic_ns();
+    ft_renderer_select(&app->renderer, cam); /* CPU LOD selection, its own stage */
+    uint64_t t0 = ft_plat_monotonic_ns();
+    s = ft_renderer_draw(&app->renderer, cam, st, err);
+    if (s == FT_OK && reason != NULL) {
+        s = ft_renderer_draw_annunciation(&app->renderer, reason, err);
+    }
+    uint64_t t1 = ft_plat_monotonic_ns();
+    if (s != FT_OK) {
+        return s;
+    }
+    s = ft_renderer_read_rgba(&app->renderer, err); /* waits for the GPU */
+    st->unmeasured_px = app->renderer.unmeasured_px;
+    uint64_t t2 = ft_plat_monotonic_ns();
+    st->gpu_timer_ms = (s == FT_OK) ? ft_renderer_gpu_timer_ms(&app->renderer) : -1.0;
+    if (st->gpu_timer_ms > (double)(t2 - t0) * 1e-6 + 0.05) {
+        /* the query brackets only the draw, which lies inside [t0, t2]: a
+         * longer time is not a measurement. (llvmpipe answers a context's
+         * first query with a timestamp, ~uptime in ns.) Reported as none. */
+        st->gpu_timer_ms = -1.0;
+    }
+    if (s == FT_OK && app->scene.display != FT_DISPLAY_NONE) {
+        s = ft_renderer_present(&app->renderer, err);
+        if (s == FT_OK) {
+            s = ft_plat_gpu_present(&app->gpu, err);
+        }
+    }
+    st->select_ms = (double)(t0 - ts) * 1e-6;
+    st->cpu_ms = (double)(t1 - t0) * 1e-6;
+    st->gpu_ms = (double)(t2 - t0) * 1e-6;
+    return s;
+}
+
+#if FT_WITH_REFERENCE
+ft_status ft_app_measure(ft_app *app, const ft_camera *cam, ft_error_stats *out, ft_error *err)
+{
+    size_t px = (size_t)app->scene.width_px * app->scene.height_px;
+    if (!app->scene.metric_enabled || app->ref == NULL) {
+        return ft_fail(err, FT_ERR_CONFIG, "error metric needs metric.enabled = 1 in the scene");
+    }
+    ft_status s = ft_renderer_draw_positions(&app->renderer, cam, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    s = ft_reference_render(&app->terrain, cam, app->ref, px, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    return ft_metric_compute(&app->terrain, cam, app->renderer.pos, app->ref, app->metric_scratch,
+                             ft_metric_scratch_bytes(cam->width_px, cam->height_px), out, err);
+}
+#endif
+
+void ft_app_shutdown(ft_app *app)
+{
+    if (app->renderer_ready) {
+        ft_renderer_shutdown(&app->renderer);
+        app->renderer_ready = 0;
+    }
+    ft_plat_gpu_close(&app->gpu);
+    if (app->arena_memory != NULL) {
+        ft_plat_mem_release(app->arena_memory, app->arena_bytes);
+        app->arena_memory = NULL;
+    }
+}

@@ -1,0 +1,248 @@
+/* renderer.h - GPU side of a scene: terrain textures, offscreen targets,
+ * programs, and one frame of the selected method.
+ *
+ * Everything GPU-side is created in ft_renderer_init (inside the GPU budget
+ * gpu.texture_bytes); a frame only sets uniforms and draws. The default
+ * framebuffer is never used (it is incomplete on EGL surfaceless): colour
+ * frames go to an RGBA8 target, position frames (for the error metric) to
+ * an RGBA32F target where the context can render float. */
+#ifndef FT_RENDERER_H
+#define FT_RENDERER_H
+
+#include <stdint.h>
+
+#include "core/camera.h"
+#include "core/mem_budget.h"
+#include "core/scene.h"
+#include "gpu/gpu.h"
+#include "gpu/overlay.h"
+#include "gpu/shade.h"
+#include "lod/method.h"
+#include "terrain/terrain.h"
+
+#define FT_TERRAIN_TEXTURES_MAX (1u + 3u * FT_PYRAMID_LEVELS_MAX)
+
+/* The colour uniforms of shaders/shade.glsl (-1 where a program lacks them:
+ * position passes; the band uniforms outside the relative variant). */
+typedef struct ft_shade_locs {
+    GLint ramp_h, ramp_rgb, sun, light;
+    GLint band_edge, band_rgba, aircraft_alt;
+    GLint haze; /* FT_SHADE_HAZE variant */
+    GLint void_cells, void_map, void_size; /* FT_SHADE_VOID variant */
+    GLint grid;                            /* FT_SHADE_GRID variant */
+} ft_shade_locs;
+
+/* The unmeasured-cell texture's unit: above every unit a method uses (0-7),
+ * so it stays bound from init on. */
+#define FT_TEX_UNIT_VOID 8
+#define FT_VOID_STRIP_ROWS 16u /* rows of cells built and uploaded at a time */
+
+typedef struct ft_terrain_program {
+    GLuint program;
+    GLint u_heights, u_grid_size, u_patch_origin, u_patch_stride, u_cell_m;
+    GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
+    ft_shade_locs shade; /* shade.ramp_h < 0: a position pass */
+    GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
+    GLint u_earth_drop_per_m2; /* curvature (shaders/curvature.glsl) */
+    GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph, u_bt_axis; /* bintree geomorph */
+    GLint u_bt_sub, u_bt_twist, u_bt_twist_pack;       /* ... and its sub-sample levels */
+    GLint u_bt_vtx;                                    /* GLES 3: the vertex table */
+    GLint u_bt_twist_off[FT_BT_TWIST_LEVELS_MAX];
+    /* pgm: avg-pyramid atlas, sampling camera, grid band (shaders/pgm.vert.glsl) */
+    GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
+    GLint u_pgm_fwd, u_pgm_right, u_pgm_up, u_pgm_rect, u_pgm_eye;
+    GLint u_pgm_level[FT_PYRAMID_LEVELS_MAX]; /* one location per element */
+    /* pgrid: min/max atlas and row distribution (shaders/pgrid.vert.glsl) */
+    GLint u_pgrid_dist, u_pgrid_mm, u_pgrid_mm_info, u_pgrid_mm_levels;
+    GLint u_pgrid_quad, u_pgrid_tight; /* the tight bound (src/lod/pgrid.h 6) */
+    GLint u_pgrid_vtx, u_pgrid_slope;  /* ... and the vertex pass it reads */
+    GLint u_pgrid_mm_level[FT_PYRAMID_LEVELS_MAX];
+    /* The same pass compiled for tiles whose every vertex is on a sample
+     * (ft_method_vertex_defines_coarse), or NULL: the bintree draws its
+     * coarse tiles with it, so they run none of the sub-sample code. */
+    const struct ft_terrain_program *coarse;
+    /* The colour state in force (palette, bands, aircraft altitude), for
+     * passes a method draws with programs of its own (pgrid's ray cast). */
+    const struct ft_shade_state *shade_state;
+} ft_terrain_program;
+
+/* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
+ * one single-channel texture per array, all in the same format: R32F (ES3),
+ * LUMINANCE/FLOAT (ES2 + OES_texture_float) or RGBA8 packed 24-bit fixed
+ * point over [pack_min_m, pack_min_m + pack_range_m]. NEAREST sampling. */
+typedef struct ft_gpu_terrain {
+    ft_height_format format; /* resolved: FLOAT or PACKED */
+    float pack_min_m, pack_range_m;
+    GLuint heights_tex;
+    uint32_t pyramid_levels_avg;    /* textures in avg_tex (level 0 = heights_tex) */
+    uint32_t pyramid_levels_minmax; /* textures in min_tex / max_tex */
+    GLuint avg_tex[FT_PYRAMID_LEVELS_MAX];
+    GLuint min_tex[FT_PYRAMID_LEVELS_MAX];
+    GLuint max_tex[FT_PYRAMID_LEVELS_MAX];
+    uint64_t bytes;
+} ft_gpu_terrain;
+
+typedef struct ft_frame_stats {
+    uint64_t triangles;
+    uint32_t draw_calls;
+    uint32_t tiles;         /* bintree: tiles drawn (0 for other methods) */
+    uint64_t raycast_px;    /* pgrid: pixels ray cast this frame */
+    uint64_t unmeasured_px; /* pixels showing void-filled (invented) terrain */
+    uint64_t terrain_px;    /* pgrid: terrain pixels of the error buffer (its mesh
+                               and envelopes): raycast_px's denominator */
+    double tau_achieved_px; /* bintree: screen-space bound the selection meets */
+    double tau_target_px;   /* bintree: the selection's target (method.h) */
+    int budget_hit;         /* bintree: the tile budget forced a coarser tau */
+    double select_ms; /* LOD selection on the CPU (0 when the view did not change) */
+    double cpu_ms;   /* frame submission on the CPU */
+    double gpu_ms;   /* submission + glFinish (measurement mode) */
+    double gpu_timer_ms; /* GPU time of the draw from a timer query; -1 if none */
+    /* depth buffer of the frame: bits, float or fixed point, the camera's
+     * near/far, and the eye-depth span of one depth step at the far plane
+     * (ft_camera_depth_step_m): the worst depth resolution of the frame */
+    uint32_t depth_bits;
+    int depth_float;
+    double near_m, far_m;
+    double depth_res_far_m;
+} ft_frame_stats;
+
+typedef struct ft_renderer {
+    ft_gpu_context *gpu;
+    const ft_gl *gl;
+    const ft_terrain *terrain;
+    const ft_scene *scene;
+    uint32_t width_px, height_px;
+    GLuint vao; /* one VAO when the context has them (core profile needs one) */
+    GLuint fbo_color, rb_color, rb_depth;
+    uint32_t depth_bits; /* the depth buffer the targets got: 32 (float), 24 or 16 */
+    int depth_float;     /* 1: GL_DEPTH_COMPONENT32F */
+    GLuint fbo_pos, rb_pos;
+    int has_pos_target;
+    ft_gpu_terrain gt;
+    ft_terrain_program prog_color, prog_pos;
+    ft_terrain_program prog_color_coarse, prog_pos_coarse; /* see ft_terrain_program.coarse */
+    ft_method method;
+    GLuint present_program, present_vbo; /* display != none only */
+    uint8_t *rgba;  /* FT_POOL_FRAME_RGBA, width*height*4, row 0 = top */
+    float *pos;     /* FT_POOL_FRAME_POS, width*height*4 (NULL if no float target) */
+    ft_overlay overlay; /* the failure annunciation (red cross + reason) */
+    GLuint timer_query; /* GL_TIME_ELAPSED around the frame's draw (0: none) */
+    float clear_rgb[3]; /* colour frames' background (sky); tests may change it */
+    ft_shade_state shade; /* palette, bands, aircraft altitude (set each frame) */
+    GLuint void_tex;        /* unmeasured cells (0: the terrain has no filled sample) */
+    uint64_t unmeasured_px; /* pixels of the last readback showing unmeasured terrain */
+    uint64_t gpu_bytes;
+    uint64_t frames;
+    /* glGetError in the frame path. 0: none (the safety-critical frame loop
+     * never branches on glGetError: after init a frame only sets state,
+     * draws and reads back). 1: one drain at the end of each frame (colour
+     * readback) and of present, each error counted in gl_errors and the
+     * frame failed with FT_ERR_GPU naming the step. Default set by
+     * ft_renderer_init: 1 in Debug and RelWithDebInfo builds (development
+     * and tests), 0 in Release and MinSizeRel (deployment); a test or soak
+     * may set either. */
+    int gl_error_checks;
+    uint64_t gl_errors;
+    /* Optional observer called at the end of every colour readback (the
+     * frame's last GL step), for soak tests and instrumentation; NULL: none. */
+    void (*frame_done)(void *ctx, const struct ft_renderer *r);
+    void *frame_done_ctx;
+} ft_renderer;
+
+/* Adds this scene's CPU pool needs (readback, staging, method) to the plan. */
+void ft_renderer_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+
+ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *s,
+                           const ft_terrain *t, ft_arena *a, ft_error *err);
+
+/* Camera for a pose over this terrain (depth range picked from the terrain). */
+ft_status ft_renderer_camera(const ft_renderer *r, const ft_pose *pose, ft_camera *cam,
+                             ft_error *err);
+ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fovy_deg,
+                             uint32_t width_px, uint32_t height_px, ft_camera *cam,
+                             ft_error *err);
+
+/* The method's per-frame LOD selection for cam (CPU only; ft_renderer_draw
+ * runs it too when it has not run for this view). Separate so the frame
+ * loop can time it as its own stage. */
+void ft_renderer_select(ft_renderer *r, const ft_camera *cam);
+
+/* Test and debugging aid, init time only: relinks the colour program so a
+ * transform feedback draw captures gl_Position (4 floats) and v_morph (1
+ * float) per vertex (GLES 3 only). Rendering is unchanged. */
+#define FT_CAPTURE_FLOATS_PER_VERTEX 5u
+ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err);
+/* The same with the named vertex outputs (1..FT_CAPTURE_VARYINGS_MAX,
+ * interleaved in this order: a vec3 takes 3 floats, a float 1). */
+#define FT_CAPTURE_VARYINGS_MAX 8u
+ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyings,
+                                        uint32_t count, ft_error *err);
+
+/* Draws one colour frame into the RGBA8 target. */
+ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
+                           ft_error *err);
+/* Draws the failure annunciation (red cross, reason text) over the colour
+ * target's current frame. */
+ft_status ft_renderer_draw_annunciation(ft_renderer *r, const char *reason, ft_error *err);
+
+/* GPU time of the last ft_renderer_draw from the timer query, once the GPU
+ * is done (after ft_renderer_read_rgba); -1 when the context has no timer
+ * queries or the measurement was disjoint (GL_GPU_DISJOINT_EXT). */
+double ft_renderer_gpu_timer_ms(ft_renderer *r);
+
+/* Reads the colour target into r->rgba (row 0 = top). */
+ft_status ft_renderer_read_rgba(ft_renderer *r, ft_error *err);
+/* Draws the position pass and reads it into r->pos (row 0 = top).
+ * FT_ERR_UNSUPPORTED when the context cannot render float (GLES 2). */
+ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_error *err);
+
+/* Draws the colour target onto framebuffer 0 (the window surface); the
+ * platform then presents it (ft_plat_gpu_present). Display scenes only. */
+ft_status ft_renderer_present(ft_renderer *r, ft_error *err);
+
+void ft_renderer_shutdown(ft_renderer *r);
+
+/* For methods that build programs of their own at init (pgrid): links
+ * embedded shaders vert + frag (attribute 0 = attr0), and builds a terrain
+ * program (the renderer's uniform set, static uniforms set from gt). */
+ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
+                                   const char *attr0, GLuint *out, ft_error *err);
+/* The same with lines inserted before the fragment body (NULL: none). */
+ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
+                                        const char *frag_name, const char *frag_defines,
+                                        const char *attr0, GLuint *out, ft_error *err);
+
+/* The colour variant a scene needs, written into buf and returned: one
+ * "#define FT_SHADE_<PART> 1\n" line per part it uses: RELATIVE (relative
+ * colouring), HAZE, GRID (ground grid),
+ * "#define FT_SHADE_VOID 1\n" when the terrain has void-filled samples (the
+ * marking is not optional there), else "" (the code of a part the scene
+ * does not use is not compiled at all). */
+#define FT_SHADE_DEFINES_MAX 160u
+const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t,
+                                      char buf[FT_SHADE_DEFINES_MAX]);
+/* Staging bytes the unmeasured-cell texture's upload takes (a terrain that
+ * may have void-filled samples: planned by the app). */
+size_t ft_renderer_void_staging_bytes(uint32_t width);
+/* shade.glsl's uniform locations of a program, and their values for a
+ * colour state (palette ramp, sun, light; bands and aircraft altitude in the
+ * relative variant). */
+void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u);
+void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
+                                const ft_shade_state *st);
+/* Palette for the next frame (presentation.palette, or a GPIO discrete). */
+void ft_renderer_set_palette(ft_renderer *r, ft_palette p);
+ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
+                                            const ft_gpu_terrain *gt, const char *vert_name,
+                                            const char *frag_name, ft_terrain_program *p,
+                                            ft_error *err);
+/* The same with attribute slots 0, 1, 2 bound to attribs[0..2] (the terrain
+ * programs use a_uv, i_tile0, i_tile1; a name a shader lacks is ignored). */
+ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
+                                                    const ft_gpu_terrain *gt,
+                                                    const char *vert_name, const char *frag_name,
+                                                    const char *frag_defines,
+                                                    const char *const attribs[3],
+                                                    ft_terrain_program *p, ft_error *err);
+
+#endif

@@ -1,0 +1,220 @@
+/* bintree.h - the crack-free bintree of triangular tiles: error tables built
+ * at init, per-frame selection with an explicit stack.
+ *
+ * Domain: the grid padded (conceptually) to (2^n + 1)^2 samples, N = 2^n
+ * cells a side, sample (0,0) at the corner. Padding rule: a grid of W x H
+ * samples uses the smallest N = 2^n >= max(W, H) - 1; every grid coordinate
+ * is clamped to [0, W-1] x [0, H-1] before a height is read, in the error
+ * tables and in the vertex shader alike. Triangles wholly in the padding
+ * collapse onto the grid edge (zero area, never drawn, never selected);
+ * triangles across the edge are measured with the clamped geometry they are
+ * drawn with. No padded heights are stored.
+ *
+ * Tree: the square split along its (0,0)-(N,N) diagonal into two root
+ * triangles (level 0); a triangle (apex, left, right) with hypotenuse
+ * left-right splits at m = (left+right)/2 into (m, apex, left) and
+ * (m, right, apex). Every tile is drawn with the 2k-level template
+ * (bintree_template.h), so tile levels run 0..L with L = 2(n - k): a level-L
+ * tile's template is the full-resolution grid.
+ *
+ * Diamonds: the two triangles sharing a hypotenuse split together. A diamond
+ * is named by its split vertex c (the hypotenuse midpoint); for tile levels
+ * < L every c lies on the lattice of step 2^k, so the tables are
+ * (N/2^k + 1)^2 entries:
+ *   err_m[c]  saturated object-space error: max of the exact template error
+ *             of the diamond's triangles and err_m of its child diamonds
+ *             (the midpoints of its triangles' legs).
+ *   box[c]    nested bounds: bbox (grid x, y; heights z) of the diamond's
+ *             samples, united with its child diamonds' boxes.
+ * Level-L (leaf) diamonds have their own table (leaf_err_m, leaf_z,
+ * (N/2^k)^2 entries): nothing refines them, so their error is not a split
+ * criterion but what the frame achieves where one is drawn.
+ * Exact template error of a triangle: max over the triangle of
+ * |bilinear surface - template surface|, the bilinear surface of the
+ * samples being the truth. The template surface is linear on each template
+ * triangle; on the part of a template triangle inside one cell the
+ * difference is linear plus the cell's twist D u v (a saddle), so its
+ * extremes lie on the part's boundary: at the samples inside the triangle,
+ * or along the triangle's edges, where between two cell lines the
+ * difference is a quadratic (ends and one stationary point). Along a cell
+ * diagonal this is the classic |D| / 4 of a cell split into two triangles.
+ * Selection: diamond c is active iff err_m[c] > 0 and
+ *   K * err_m[c] > f * tau * dist(eye, box[c])
+ * (K = px_per_rad_k, f = FT_BT_SPLIT_FRACTION with geomorphing, 1 without).
+ * Because err_m and box are nested, a child diamond is active only if its
+ * parents are, so splitting every triangle of an active diamond gives a
+ * conforming bintree by construction (no forced splits). Frustum culling
+ * drops whole subtrees (their edges are outside the view).
+ *
+ * Budget: at most tiles_max tiles. If tau needs more, tau is multiplied by
+ * FT_BT_COARSEN_FACTOR and the selection redone (at most
+ * FT_BT_COARSEN_STEPS_MAX times, then the two roots).
+ *
+ * Achieved bound: the tau used, or the largest projected error of a leaf
+ * tile drawn if that is larger (near the eye the sample spacing itself can
+ * be coarser than tau). */
+#ifndef FT_BINTREE_H
+#define FT_BINTREE_H
+
+#include <stdint.h>
+
+#include "core/camera.h"
+#include "core/ft_status.h"
+#include "core/mem_budget.h"
+#include "core/scene.h"
+#include "terrain/terrain.h"
+
+#define FT_BT_N_MAX 14u /* N = 2^14: FT_GRID_SIDE_MAX = 16385 */
+/* bintree.subsample_levels: tiles refine to 2^-S of a cell (S <= 4) */
+#define FT_BT_SUB_MAX 4u
+#define FT_BT_LEVELS_MAX (2u * (FT_BT_N_MAX + FT_BT_SUB_MAX))
+#define FT_BT_STACK_MAX (FT_BT_LEVELS_MAX + 4u)
+#define FT_BT_TILES_MIN 2u
+#define FT_BT_TILES_MAX_LIMIT 1048576u
+/* With geomorphing a diamond splits at a fraction f of the target and its
+ * new vertices morph in over the rest of the way, so the drawn surface stays
+ * within tau (bintree.split_fraction, scene.h: FT_BT_SPLIT_FRACTION is the
+ * default and the least, FT_BT_SPLIT_FRACTION_MAX the most). */
+#define FT_BT_COARSEN_FACTOR 1.5
+#define FT_BT_COARSEN_STEPS_MAX 40u
+#define FT_BT_BOX_FLOATS 6u /* x0, x1, y0, y1 (grid), z0, z1 (m) */
+/* Twist pyramid levels: a sub-sample diamond's closure is at most 3 * 2^k
+ * cells wide, so blocks up to 2^(k+2) cells (k <= 6) are enough. */
+#define FT_BT_TWIST_LEVELS_MAX 9u
+
+typedef struct ft_bt_tile {
+    int32_t apex[2], left[2], right[2]; /* grid coordinates */
+    uint32_t level;
+} ft_bt_tile;
+
+typedef struct ft_bt_select_stats {
+    uint32_t tiles;
+    /* tiles [0, tiles_coarse) have every template vertex on a sample; the
+     * rest (S > 0 only) are finer than the samples; DFS order within each */
+    uint32_t tiles_coarse;
+    uint32_t nodes_visited;
+    uint32_t culled;
+    uint32_t attempts;       /* selections run (1 unless the budget was hit) */
+    int budget_hit;          /* tau was raised to fit tiles_max */
+    double tau_target_px;
+    double tau_used_px;      /* the selection's target after any budget coarsening */
+    double leaf_px_max;      /* largest projected error of a leaf tile drawn (0: none) */
+    double tau_achieved_px;  /* the bound the drawn tiles meet: max(tau_used, leaf_px_max) */
+    uint32_t level_min, level_max;
+} ft_bt_select_stats;
+
+typedef struct ft_bt_twist_layout {
+    uint32_t levels;
+    uint32_t w[FT_BT_TWIST_LEVELS_MAX], h[FT_BT_TWIST_LEVELS_MAX];
+    uint32_t ox[FT_BT_TWIST_LEVELS_MAX], oy[FT_BT_TWIST_LEVELS_MAX];
+    uint32_t atlas_w, atlas_h;
+} ft_bt_twist_layout;
+
+typedef struct ft_bintree {
+    uint32_t n, k;
+    uint32_t side_cells;   /* N = 2^n */
+    uint32_t step;         /* 2^k: lattice step of split vertices */
+    uint32_t lattice_side; /* N / 2^k + 1 */
+    uint32_t sub;          /* S = bintree.subsample_levels */
+    uint32_t fine_side;    /* N 2^S: the domain in fine units (tile coordinates) */
+    uint32_t sub_level;    /* L_s = 2(n - k): tiles of this level and finer have
+                              templates finer than the samples (S > 0) */
+    uint32_t leaf_level;   /* L = 2(n + S - k) */
+    uint32_t width, height;
+    float domain_z[2];     /* min / max height of the grid */
+    const float *heights_m;
+    float *err_m; /* lattice_side^2 */
+    float *box;   /* lattice_side^2 * FT_BT_BOX_FLOATS */
+    uint32_t leaf_side;  /* N / 2^k: level-L diamonds a side */
+    float *leaf_err_m;   /* leaf_side^2: error of the level-L diamonds (not refinable) */
+    float *leaf_z;       /* leaf_side^2 * 2: their height range (the box's xy is their square) */
+    /* S > 0: twist pyramid, level m texel = max |D| over the cells of an
+     * aligned 2^m x 2^m block (D = h00 + h11 - h10 - h01 of a cell), all
+     * levels in one atlas (the GPU's texture too): level 0 at (0, 0), level
+     * m >= 1 at (w0, sum of the heights of levels 1..m-1). */
+    ft_bt_twist_layout twist;
+    float *twist_atlas; /* twist.atlas_w * twist.atlas_h */
+    const ft_terrain *terrain; /* its min/max pyramid bounds sub-sample boxes */
+    uint32_t tiles_max;
+    ft_bt_tile *tiles; /* tiles_max */
+    uint32_t flipped_triangles; /* template triangles the padding clamp flipped (must be 0) */
+    double max_err_m;           /* err_m of the root diamond */
+} ft_bintree;
+
+/* The view the selection works with (see ft_bt_view_from_camera). */
+typedef struct ft_bt_view {
+    double eye_m[3];       /* relative to grid sample (0,0) at height 0 */
+    double cell_m[2];
+    double forward[3];
+    double plane_n[4][3];  /* frustum side planes: inside iff dot(n, p - eye) >= 0 */
+    double k_px;
+    double corner_cos;       /* view_scale.h: off-axis gain is capped at the corner's */
+    double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
+    int cull;
+    int morph;
+    double split_fraction; /* with morph: split at this x tau (FT_BT_SPLIT_FRACTION unless set) */
+} ft_bt_view;
+
+/* Smallest n with 2^n >= max(w, h) - 1. */
+uint32_t ft_bt_domain_n(uint32_t w, uint32_t h);
+
+/* Adds the tables and tile list to FT_POOL_METHOD. */
+void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
+                     uint32_t tiles_max);
+
+/* Twist pyramid geometry for a w x h grid and template k. */
+void ft_bt_twist_layout_for(uint32_t w, uint32_t h, uint32_t k, ft_bt_twist_layout *l);
+
+/* Builds the error and bound tables (O(L * N^2)). Fails on k > n, tiles_max
+ * outside FT_BT_TILES_MIN..FT_BT_TILES_MAX_LIMIT, or arena exhaustion. */
+ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t sub,
+                          uint32_t tiles_max, ft_arena *a, ft_error *err);
+
+/* The selection's error (m) and box (grid units) of the diamond with split
+ * vertex c (fine units) at `level`: the tables below sub_level, the leaf
+ * table at the leaf level without sub-sample levels, else the closed form. */
+double ft_bt_diamond_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                           float box[FT_BT_BOX_FLOATS]);
+
+/* Error (m) and box (grid units) of the diamond with split vertex c (fine
+ * units) at a level >= sub_level (S > 0): closed form from the twist
+ * pyramid (see the top). */
+double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
+                       float box[FT_BT_BOX_FLOATS]);
+
+/* The bilinear surface at fine point (x, y): the height every vertex of a
+ * tile takes (a sample when both are multiples of 2^S). Cell = floor of the
+ * point, clamped into the grid; float arithmetic in the shader's order. */
+float ft_bt_height_fine(const ft_bintree *bt, int32_t x, int32_t y);
+
+void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull, int morph,
+                            ft_bt_view *v);
+
+/* Selects tiles into bt->tiles (bounded: explicit stack, no recursion). */
+void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
+                       ft_bt_select_stats *st);
+
+/* Morph endpoints and insertion diamond of grid vertex (x, y), the same rule
+ * the vertex shader uses: the vertex is the midpoint of e0-e1; it appears when
+ * diamond c (lattice) splits. Returns 0 when the vertex never morphs. */
+int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
+                       int32_t c[2]);
+
+/* The one-fetch vertex table (GLES 3): per sample one RGBA32F texel with
+ * what a vertex on that sample needs, so it does one texel fetch and no
+ * search for its diamond:
+ *   x  its height (m),
+ *   y  the morph's coarse height (h(e0) + h(e1)) / 2 in float arithmetic, the
+ *      shader's own expression (its height when it never morphs),
+ *   z  the error (m) of the diamond that inserts it, or -1 when it never
+ *      morphs (ft_bt_vertex_morph),
+ *   w  its unit normal (central differences, one-sided at the grid edge)
+ *      in hemi-octahedral coordinates (u, v) = (x + y, x - y) / (|x| + |y| + z),
+ *      12 bits each: qu * 4096 + qv, an integer below 2^24 (exact in float).
+ * A vertex between samples reads its cell's four heights instead. */
+#define FT_BT_NORMAL_Q 4095.0
+void ft_bt_sample_texel(const ft_bintree *bt, uint32_t gx, uint32_t gy, float out[4]);
+float ft_bt_pack_normal(const double n[3]); /* n unit, n[2] >= 0 */
+void ft_bt_unpack_normal(float packed, double n[3]);
+
+#endif

@@ -1,0 +1,286 @@
+/* bintree_mesh.c - the CPU mirror of shaders/bintree.vert.glsl (see
+ * bintree_mesh.h). Each step below names the shader line it mirrors. */
+#include "lod/bintree_mesh.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/view_scale.h"
+
+void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_target_px,
+                             int morph, double split_fraction, ft_bt_mesh_uniforms *u)
+{
+    memset(u, 0, sizeof *u);
+    /* renderer.c draw_pass: the subtraction in double */
+    u->origin_rel_eye_m[0] = t->origin_world_x_m - cam->eye_m[0];
+    u->origin_rel_eye_m[1] = t->origin_world_y_m - cam->eye_m[1];
+    u->origin_rel_eye_m[2] = 0.0 - cam->eye_m[2];
+    u->cell_m[0] = t->cell_x_m;
+    u->cell_m[1] = t->cell_y_m;
+    u->drop_per_m2 = t->curv_drop_per_m2;
+    /* method_bintree.c ft_bintree_method_draw */
+    const double tau = tau_target_px;
+    const double split = morph ? split_fraction * tau : tau;
+    u->k_px = cam->px_per_rad_k;
+    u->split_px = split;
+    u->band_px = (tau - split > 1e-6) ? tau - split : 1e-6;
+    u->morph = (morph && isfinite(tau)) ? 1 : 0;
+    for (int i = 0; i < 3; ++i) {
+        u->axis[i] = cam->forward[i];
+    }
+    u->corner_cos = ft_view_corner_cos(cam);
+}
+
+/* ft_height: the coordinate (grid units) clamped into the real grid, then
+ * one sample. */
+static double height_at(const ft_bintree *bt, double gx, double gy)
+{
+    const double wx = (double)bt->width - 1.0, hy = (double)bt->height - 1.0;
+    gx = (gx < 0.0) ? 0.0 : ((gx > wx) ? wx : gx);
+    gy = (gy < 0.0) ? 0.0 : ((gy > hy) ? hy : gy);
+    return (double)bt->heights_m[(size_t)gy * bt->width + (size_t)gx];
+}
+
+static double clampd(double v, double lo, double hi)
+{
+    return fmin(fmax(v, lo), hi); /* GLSL clamp */
+}
+
+/* ft_bilinear: the surface of the cell with corner heights h (h00, h10,
+ * h01, h11) and corner cf (fine units) at fine point g; f = 2^S. */
+static double bilinear(const double h[4], const double cf[2], const double g[2], double f)
+{
+    const double uu = (g[0] - cf[0]) / f, vv = (g[1] - cf[1]) / f;
+    return h[0] + (h[1] - h[0]) * uu + (h[2] - h[0]) * vv + ((h[0] + h[3]) - (h[1] + h[2])) * uu * vv;
+}
+
+/* ft_twist_texel: atlas texel p (atlas coordinates). */
+static double twist_texel(const ft_bintree *bt, double px, double py)
+{
+    return (double)bt->twist_atlas[(size_t)py * bt->twist.atlas_w + (size_t)px];
+}
+
+/* ft_sub_error: the closed-form error of a diamond below the samples, split
+ * vertex c, square side sd (fine units); even_level when c is a square's
+ * centre. The same <= 4 texels of the twist atlas as the shader (the
+ * closure spans at most 2 blocks a side at the level it picks). */
+static double sub_error(const ft_bintree *bt, const int32_t c[2], double sd, int even_level)
+{
+    const double f = (double)(1u << bt->sub);
+    const double size[2] = {(double)bt->width, (double)bt->height};
+    const double a = sd / ((double)bt->step * f); /* its template squares' side, cells */
+    const double leg = even_level ? a : 0.5 * a;
+    const double r = even_level ? 1.5 * sd : sd;
+    double c0[2], c1[2];
+    for (int i = 0; i < 2; ++i) {
+        const double lo = clampd(((double)c[i] - r) / f, 0.0, size[i] - 1.0);
+        const double hi = clampd(((double)c[i] + r) / f, 0.0, size[i] - 1.0);
+        c0[i] = clampd(floor(lo), 0.0, size[i] - 2.0);
+        c1[i] = clampd(ceil(hi) - 1.0, c0[i], size[i] - 2.0);
+    }
+    const double span = fmax(c1[0] - c0[0], c1[1] - c0[1]) + 1.0;
+    uint32_t m = 0;
+    double bs = 1.0;
+    for (int i = 0; i < 16; ++i) {
+        if (bs >= span || (double)m >= (double)bt->twist.levels - 1.0) {
+            break;
+        }
+        bs *= 2.0;
+        m += 1u;
+    }
+    const double b0[2] = {floor(c0[0] / bs), floor(c0[1] / bs)};
+    const double b1[2] = {floor(c1[0] / bs), floor(c1[1] / bs)};
+    const double ox = (double)bt->twist.ox[m], oy = (double)bt->twist.oy[m];
+    double d = twist_texel(bt, ox + b0[0], oy + b0[1]);
+    d = fmax(d, twist_texel(bt, ox + b1[0], oy + b0[1]));
+    d = fmax(d, twist_texel(bt, ox + b0[0], oy + b1[1]));
+    d = fmax(d, twist_texel(bt, ox + b1[0], oy + b1[1]));
+    return 0.25 * leg * leg * d;
+}
+
+/* ft_morph_error: the error (m) of the diamond that inserts vertex g_raw
+ * (fine units, integers) and the coarse edge e0-e1 it bisects; negative when
+ * the vertex never morphs (the rule is ft_bt_vertex_morph's, bintree.h).
+ * *closed_form: the error came from sub_error, not the table. */
+static double morph_error(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2],
+                          int32_t e1[2], int *closed_form)
+{
+    int32_t c[2];
+    *closed_form = 0;
+    if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c)) {
+        return -1.0;
+    }
+    const uint32_t sh = bt->k + bt->sub; /* table lattice step 2^(k+S), fine units */
+    const uint32_t cx = (uint32_t)c[0], cy = (uint32_t)c[1];
+    if (((cx | cy) & ((1u << sh) - 1u)) != 0u) {
+        const int32_t s = (x | y) & -(x | y); /* lowest set bit */
+        const int even_level = ((x / s) & 1) != 0 && ((y / s) & 1) != 0;
+        *closed_form = 1;
+        return sub_error(bt, c, 2.0 * (double)s * (double)bt->step, even_level);
+    }
+    const size_t li = (size_t)(cy >> sh) * bt->lattice_side + (cx >> sh);
+    if (li >= (size_t)bt->lattice_side * bt->lattice_side) {
+        return -1.0; /* never: c is a diamond centre of the padded domain */
+    }
+    return (double)bt->err_m[li];
+}
+
+/* ft_earth_curve: lowered by k r^2, r the horizontal distance from the eye. */
+static void earth_curve(const ft_bt_mesh_uniforms *u, const double p[3], double out[3])
+{
+    out[0] = p[0];
+    out[1] = p[1];
+    out[2] = p[2] - u->drop_per_m2 * (p[0] * p[0] + p[1] * p[1]);
+}
+
+/* u_origin_rel_eye_m + vec3(gs * u_cell_m, h), curved; gs in grid units */
+static void position(const ft_bt_mesh_uniforms *u, const double gs[2], double h, double out[3])
+{
+    const double p[3] = {u->origin_rel_eye_m[0] + gs[0] * u->cell_m[0],
+                         u->origin_rel_eye_m[1] + gs[1] * u->cell_m[1],
+                         u->origin_rel_eye_m[2] + h};
+    earth_curve(u, p, out);
+}
+
+void ft_bt_mesh_vertex_of(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
+                          const ft_bt_tile *tile, double a, double b, ft_bt_mesh_vertex *out)
+{
+    const double size[2] = {(double)bt->width, (double)bt->height};
+    const double f = (double)(1u << bt->sub); /* fine units a cell */
+    double g_raw[2], g[2], gs[2];
+    for (int i = 0; i < 2; ++i) {
+        /* exact: a, b are multiples of 2^-k, the legs multiples of 2^k */
+        g_raw[i] = (double)tile->apex[i] + a * (double)(tile->left[i] - tile->apex[i]) +
+                   b * (double)(tile->right[i] - tile->apex[i]);
+        /* padding collapses onto the grid edge */
+        g[i] = (g_raw[i] < (size[i] - 1.0) * f) ? g_raw[i] : (size[i] - 1.0) * f;
+        gs[i] = g[i] / f; /* grid coordinates (exact: f is a power of two) */
+    }
+    const int on_sample = gs[0] == floor(gs[0]) && gs[1] == floor(gs[1]);
+    double h;
+    double cell[4] = {0.0, 0.0, 0.0, 0.0}; /* corner heights of a sub-sample vertex's cell */
+    double cf[2] = {0.0, 0.0};             /* that cell's corner, fine units */
+    double dhx, dhy;
+    if (on_sample) {
+        h = height_at(bt, gs[0], gs[1]);
+        /* central differences, one-sided at the grid edge */
+        double lo[2], hi[2];
+        for (int i = 0; i < 2; ++i) {
+            lo[i] = (gs[i] - 1.0 > 0.0) ? gs[i] - 1.0 : 0.0;
+            hi[i] = (gs[i] + 1.0 < size[i] - 1.0) ? gs[i] + 1.0 : size[i] - 1.0;
+        }
+        dhx = (height_at(bt, hi[0], gs[1]) - height_at(bt, lo[0], gs[1])) /
+              ((hi[0] - lo[0]) * u->cell_m[0]);
+        dhy = (height_at(bt, gs[0], hi[1]) - height_at(bt, gs[0], lo[1])) /
+              ((hi[1] - lo[1]) * u->cell_m[1]);
+    } else {
+        /* the cell: floor of the coordinate, clamped into the grid */
+        double cc[2];
+        for (int i = 0; i < 2; ++i) {
+            cc[i] = clampd(floor(gs[i]), 0.0, size[i] - 2.0);
+            cf[i] = cc[i] * f;
+        }
+        cell[0] = height_at(bt, cc[0], cc[1]);
+        cell[1] = height_at(bt, cc[0] + 1.0, cc[1]);
+        cell[2] = height_at(bt, cc[0], cc[1] + 1.0);
+        cell[3] = height_at(bt, cc[0] + 1.0, cc[1] + 1.0);
+        h = bilinear(cell, cf, g, f);
+        /* the cell's bilinear gradient there */
+        const double uv[2] = {gs[0] - cc[0], gs[1] - cc[1]};
+        const double tw = (cell[0] + cell[3]) - (cell[1] + cell[2]);
+        dhx = ((cell[1] - cell[0]) + tw * uv[1]) / u->cell_m[0];
+        dhy = ((cell[2] - cell[0]) + tw * uv[0]) / u->cell_m[1];
+    }
+    const double nlen = sqrt(dhx * dhx + dhy * dhy + 1.0);
+    out->normal[0] = -dhx / nlen;
+    out->normal[1] = -dhy / nlen;
+    out->normal[2] = 1.0 / nlen;
+    if (on_sample && u->vertex_table) {
+        ft_bt_unpack_normal(ft_bt_pack_normal(out->normal), out->normal);
+    }
+    out->on_sample = on_sample;
+    out->err_m = -1.0;
+    out->err_closed_form = 0;
+
+    double w = 1.0;
+    if (u->morph) {
+        int32_t e0[2], e1[2];
+        int closed_form = 0;
+        const double err_m =
+            morph_error(bt, (int32_t)g_raw[0], (int32_t)g_raw[1], e0, e1, &closed_form);
+        if (err_m >= 0.0) {
+            out->err_m = err_m;
+            out->err_closed_form = closed_form;
+            double p_true[3];
+            position(u, gs, h, p_true);
+            double dist = sqrt(p_true[0] * p_true[0] + p_true[1] * p_true[1] +
+                               p_true[2] * p_true[2]);
+            dist = (dist > 1e-3) ? dist : 1e-3;
+            double cc = (p_true[0] * u->axis[0] + p_true[1] * u->axis[1] +
+                         p_true[2] * u->axis[2]) / dist;
+            cc = (cc > u->corner_cos) ? cc : u->corner_cos;
+            const double rho = u->k_px * err_m / (dist * cc * cc);
+            w = (rho - u->split_px) / u->band_px;
+            w = (w < 0.0) ? 0.0 : ((w > 1.0) ? 1.0 : w);
+            /* a sub-sample vertex's coarse edge lies in its own cell */
+            double h0, h1;
+            if (on_sample) {
+                h0 = height_at(bt, (double)e0[0] / f, (double)e0[1] / f);
+                h1 = height_at(bt, (double)e1[0] / f, (double)e1[1] / f);
+            } else {
+                const double pe0[2] = {(double)e0[0], (double)e0[1]};
+                const double pe1[2] = {(double)e1[0], (double)e1[1]};
+                h0 = bilinear(cell, cf, pe0, f);
+                h1 = bilinear(cell, cf, pe1, f);
+            }
+            const double mid = 0.5 * (h0 + h1);
+            h = mid * (1.0 - w) + h * w; /* mix(mid, h, w) */
+        }
+    }
+    out->morph_w = w;
+    out->height_m = h;
+    position(u, gs, h, out->pos_rel_eye_m);
+}
+
+size_t ft_bt_mesh_build(const ft_bintree *bt, uint32_t tiles, const ft_bt_mesh_uniforms *u,
+                        const float *tmpl_uv, uint32_t tmpl_verts, float *out, size_t out_floats)
+{
+    const size_t verts = (size_t)tiles * tmpl_verts;
+    if (tiles > bt->tiles_max || verts > out_floats / FT_BT_MESH_FLOATS) {
+        return 0u;
+    }
+    for (uint32_t i = 0; i < tiles; ++i) {
+        const ft_bt_tile *tile = &bt->tiles[i];
+        for (uint32_t v = 0; v < tmpl_verts; ++v) {
+            ft_bt_mesh_vertex m;
+            ft_bt_mesh_vertex_of(bt, u, tile, (double)tmpl_uv[2u * v], (double)tmpl_uv[2u * v + 1u],
+                                 &m);
+            float *o = out + ((size_t)i * tmpl_verts + v) * FT_BT_MESH_FLOATS;
+            o[0] = (float)m.pos_rel_eye_m[0];
+            o[1] = (float)m.pos_rel_eye_m[1];
+            o[2] = (float)m.pos_rel_eye_m[2];
+            o[3] = (float)m.normal[0];
+            o[4] = (float)m.normal[1];
+            o[5] = (float)m.normal[2];
+            o[6] = (float)m.height_m;
+        }
+    }
+    return verts;
+}
+
+size_t ft_bt_mesh_indices(uint32_t tiles, const uint16_t *tmpl_idx, uint32_t tmpl_indices,
+                          uint32_t tmpl_verts, uint32_t *out, size_t out_count)
+{
+    const size_t n = (size_t)tiles * tmpl_indices;
+    if (n > out_count || (uint64_t)tiles * tmpl_verts > (uint64_t)UINT32_MAX + 1u) {
+        return 0u;
+    }
+    for (uint32_t i = 0; i < tiles; ++i) {
+        const uint32_t base = i * tmpl_verts;
+        uint32_t *o = out + (size_t)i * tmpl_indices;
+        for (uint32_t j = 0; j < tmpl_indices; ++j) {
+            o[j] = base + tmpl_idx[j];
+        }
+    }
+    return n;
+}

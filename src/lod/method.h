@@ -1,0 +1,231 @@
+/* method.h - the terrain methods behind one small interface. A method owns
+ * its GPU buffers (made at init) and draws with the renderer's terrain
+ * program; per frame it only selects and draws. */
+#ifndef FT_METHOD_H
+#define FT_METHOD_H
+
+#include <stdint.h>
+
+#include "core/camera.h"
+#include "core/mem_budget.h"
+#include "core/scene.h"
+#include "gpu/gl_api.h"
+#include "gpu/gpu_texture.h"
+#include "lod/bintree.h"
+#include "lod/pgm.h"
+#include "lod/pgrid.h"
+#include "terrain/terrain.h"
+
+struct ft_terrain_program;
+
+/* Vertex attribute slots shared by every terrain program. */
+#define FT_ATTRIB_UV 0u
+#define FT_ATTRIB_TILE0 1u
+#define FT_ATTRIB_TILE1 2u
+
+typedef struct ft_method_draw_stats {
+    uint64_t triangles;
+    uint32_t draw_calls;
+    uint32_t tiles;          /* bintree: tiles drawn */
+    uint64_t raycast_px;     /* pgrid: pixels ray cast */
+    uint64_t terrain_px;     /* pgrid: pixels the mesh or an envelope covers */
+    double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet;
+                                pgrid: the bound met (gamma, or raised by the
+                                budget, or the mesh's own without ray casting) */
+    double tau_target_px;    /* bintree: the selection's target (tau, or raised by the
+                                budget); tau_achieved_px is larger where a leaf
+                                tile is itself over it. 0 for other methods */
+    int budget_hit;          /* bintree: tau was raised to fit the tile budget;
+                                pgrid: the ray-casting budget raised gamma */
+} ft_method_draw_stats;
+
+typedef struct ft_brute {
+    GLuint vbo, ibo;
+    uint32_t patch_cells;   /* template side in cells */
+    uint32_t index_count;
+    uint32_t window_side;   /* most samples per side drawn (brute.max_vertices) */
+    uint64_t gpu_bytes;
+} ft_brute;
+
+typedef struct ft_bintree_method {
+    ft_bintree bt;
+    GLuint vbo, ibo, inst_vbo, err_tex;
+    GLuint twist_tex;              /* sub-sample levels: the twist atlas (unit 2) */
+    GLuint vtx_tex;                /* GLES 3: the one-fetch vertex table (unit 3, RGBA32F) */
+    ft_scalar_format twist_fmt;
+    uint32_t index_count, triangles_per_tile;
+    float *inst; /* tiles_max * 6 corner coordinates (FT_POOL_METHOD) */
+    double tau_px;    /* bintree.tau_px */
+    double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
+    int morph, es3;
+    int vertex_table; /* GLES 3 and bintree.vertex_table: vtx_tex is used */
+    double split_fraction; /* bintree.split_fraction */
+    ft_scalar_format err_fmt;
+    uint64_t gpu_bytes;
+    /* the last selection and the view it was made for */
+    int have_selection, uploaded;
+    ft_bt_select_stats sel;
+    double sel_eye_m[3], sel_fwd[3], sel_up[3], sel_fovy;
+    uint32_t sel_w, sel_h;
+} ft_bintree_method;
+
+/* Persistent grid mapping (src/lod/pgm.h, shaders/pgm.vert.glsl). The grid is
+ * drawn in bands of band_rows cell rows with one 16-bit template band (vbo:
+ * (column, row in band) per vertex; ibo: the band's triangles row by row,
+ * so the last, shorter band draws a prefix), the same on every context. */
+typedef struct ft_pgm_method {
+    GLuint vbo, ibo, atlas_tex;
+    uint32_t cols, rows;      /* grid vertices */
+    uint32_t band_rows;       /* cell rows per band (vertex rows - 1) */
+    uint32_t band_count;
+    uint32_t atlas_w, atlas_h;
+    uint32_t levels;          /* avg pyramid levels (level 0 = heights texture) */
+    float level_px[FT_PYRAMID_LEVELS_MAX][4]; /* atlas origin xy, size zw per level */
+    ft_scalar_format atlas_fmt;
+    uint64_t gpu_bytes;
+    /* the last sampling set-up and the view it was made for */
+    int have_sampling;
+    ft_pgm_sampling sampling;
+    double sel_eye_m[3], sel_fwd[3], sel_up[3], sel_fovy;
+    uint32_t sel_w, sel_h;
+} ft_pgm_method;
+
+/* Error-bounded projective grid (src/lod/pgrid.h): the pgm grid (reused: its
+ * band buffers and avg atlas, its draw) with the pgrid vertex shader, plus a
+ * min/max atlas, the error buffer (RGBA8 texture + depth, drawn with
+ * err_prog) and the ray-cast pass (rc_prog, GLES 3). */
+typedef struct ft_pgrid_method {
+    ft_pgm_method pgm;
+    GLuint mm_tex;                 /* min | max atlas (levels >= FT_PGRID_ATLAS_L0) */
+    uint32_t mm_half_w, mm_h, mm_levels;
+    float mm_level_px[FT_PYRAMID_LEVELS_MAX][4];
+    ft_scalar_format mm_fmt;
+    GLuint err_tex, err_depth, err_fbo, rc_prog, quad_vbo;
+    struct ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
+    int err_prog_built;
+    GLint u_err_k_gamma, u_err_fwd, u_err_envelope; /* err_prog's own uniforms */
+    /* the tight bound (src/lod/pgrid.h 6; GLES 3 with ray casting): residual
+     * atlas (levels >= FT_PGRID_RES_L0), the vertex pass's and quad-bound
+     * pass's targets (grid-sized RGBA32F) and programs */
+    int tight;
+    GLuint res_tex, vtx_tex, slope_tex, vtx_fbo, quad_tex, quad_fbo, quad_prog;
+    uint32_t res_levels;
+    float res_level_px[FT_PYRAMID_LEVELS_MAX][4];
+    struct ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */
+    int vtx_prog_built;
+    GLint uq_vtx, uq_res, uq_heights, uq_grid_size, uq_cell_m, uq_origin, uq_pack, uq_drop;
+    GLint uq_res_levels, uq_res_level[FT_PYRAMID_LEVELS_MAX];
+    uint64_t terrain_px;            /* the last decision's terrain pixels (undilated code > 0) */
+    /* the late decision (GLES 3 with ray casting): the error buffer goes into
+     * pixel-pack buffer pack_pbo[pbo_next] without waiting; the next frame
+     * maps it (complete by then) and decides from it */
+    GLuint pack_pbo[2];
+    int pbo_full[2];
+    uint32_t pbo_next;
+    int late;
+    uint32_t w_px, h_px;
+    int distribution, ray_casting, es3;
+    double gamma_px;
+    double lod_scale;               /* degradation: ray cast over gamma_px * lod_scale */
+    uint64_t raycast_max_px;
+    uint8_t *readback;              /* w * h * 4, FT_POOL_METHOD */
+    uint8_t *work;                  /* w * h */
+    uint32_t hist[256];
+    /* the last frame's decision (colour pass; the position pass reuses it) */
+    double dec_eye_m[3], dec_fwd[3], dec_up[3];
+    uint32_t thr;                   /* code threshold, 256 = none */
+    uint64_t rc_px;                 /* pixels ray cast */
+    double achieved_px;
+    int budget_hit;
+    int have_decision;
+    uint64_t gpu_bytes;
+} ft_pgrid_method;
+
+typedef struct ft_method {
+    ft_method_kind kind;
+    union {
+        ft_brute brute;
+        ft_bintree_method bintree;
+        ft_pgm_method pgm;
+        ft_pgrid_method pgrid;
+    } u;
+} ft_method;
+
+/* The vertex shader (embedded name) the method draws with. */
+const char *ft_method_vertex_shader(ft_method_kind m);
+/* Lines placed before the vertex shader's body: the compile-time variant
+ * the scene needs (bintree: sub-sample levels, vertex table), "" for none. */
+const char *ft_method_vertex_defines(const ft_scene *s, int es3);
+/* The variant for tiles whose every vertex is on a sample, when the method
+ * draws those with a program of their own (bintree, GLES 3, sub-sample
+ * levels and the vertex table), else NULL. */
+const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3);
+
+/* CPU pool needs (FT_POOL_METHOD) of the scene's method. */
+void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                         ft_arena *a, ft_error *err);
+/* Binds the method's vertex state; the program is already in use. */
+void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                    const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+/* Per-frame LOD selection for the camera (no-op when the view is unchanged
+ * or the method selects nothing); ft_method_draw calls it too. */
+void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam);
+/* Coarsens the LOD by scale >= 1 (the degradation policy, src/lod/degrade.h):
+ * bintree draws to tau_px * scale, pgrid ray casts only the pixels over
+ * gamma_px * scale (its achieved bound is reported). Returns 0 when the method has no LOD
+ * knob (brute, pgm: the scale is then ignored). */
+int ft_method_set_lod_scale(ft_method *m, double scale);
+uint64_t ft_method_gpu_bytes(const ft_method *m);
+void ft_method_shutdown(ft_method *m, const ft_gl *gl);
+
+#if FT_WITH_METHOD_BRUTE
+void ft_brute_plan(const ft_scene *s, ft_arena *a);
+ft_status ft_brute_init(ft_brute *b, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                        ft_arena *a, ft_error *err);
+void ft_brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program *p,
+                   const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+void ft_brute_shutdown(ft_brute *b, const ft_gl *gl);
+#endif
+
+#if FT_WITH_METHOD_BINTREE
+void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                                 const ft_terrain *t, ft_arena *a, ft_error *err);
+void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam);
+void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale);
+void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale);
+void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
+                            const struct ft_terrain_program *p, const ft_terrain *t,
+                            const ft_camera *cam, ft_method_draw_stats *st);
+void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl);
+#endif
+
+#if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID /* pgrid draws with the pgm grid */
+void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+                             const ft_terrain *t, ft_arena *a, ft_error *err);
+void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
+/* Cell rows drawn by band b (the last band may be shorter). */
+uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
+/* Binds the avg atlas (unit 1) and sets program p's pgm uniforms for the
+ * selected sampling (u_pgm_grid with band row 0), without drawing. */
+void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
+                        const struct ft_terrain_program *p);
+void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);
+#endif
+
+#if FT_WITH_METHOD_PGRID
+void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                               const ft_terrain *t, ft_arena *a, ft_error *err);
+void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam);
+void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl,
+                          const struct ft_terrain_program *p, const ft_terrain *t,
+                          const ft_camera *cam, ft_method_draw_stats *st);
+void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl);
+#endif
+
+#endif

@@ -1,0 +1,383 @@
+/* method_bintree.c - draws the tiles the bintree selection (src/lod/bintree.h)
+ * picked, every tile with the same template (src/lod/bintree_template.h).
+ *
+ * GLES 3: one instanced draw; the instance buffer holds the three corner grid
+ * coordinates per tile (6 floats, exact integers), rewritten each frame with
+ * glBufferSubData from a staging array in the method pool. GLES 2 (no
+ * instancing): one draw per tile with the corners as uniforms. Heights and
+ * the diamond errors (for geomorphing) are vertex textures; on GLES 3 a
+ * vertex on a sample reads all it needs from one texel of the vertex table
+ * (bintree.h, ft_bt_sample_texel).
+ *
+ * Grids that are not (2^n+1)^2 are padded by clamping (see bintree.h): the
+ * vertex shader clamps grid coordinates into the real grid, so the padded
+ * area collapses onto the grid's edge and is never drawn. */
+#include <math.h>
+#include <string.h>
+
+#include "core/view_scale.h"
+#include "gpu/gpu_texture.h"
+#include "gpu/renderer.h"
+#include "lod/bintree_template.h"
+#include "lod/method.h"
+
+#define FT_BT_FLOATS_PER_TILE 6u
+/* The one-fetch vertex table goes up in strips of this many rows through
+ * FT_POOL_GPU_STAGING (width * rows * 16 bytes), not in one copy of the grid. */
+#define FT_BT_VTX_STRIP_ROWS 8u
+
+void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    uint32_t k = s->bintree_template_k;
+    if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
+        return; /* ft_bintree_init reports it */
+    }
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_vertices(k) * 2u * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_triangles(k) * 3u * sizeof(uint16_t));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
+    ft_arena_plan(a, FT_POOL_METHOD,
+                  (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
+    ft_bintree_plan(a, t->width, t->height, k, s->bintree_subsample_levels, s->bintree_tiles_max);
+    if (s->bintree_vertex_table && s->backend != FT_BACKEND_EGL_GLES2) {
+        ft_arena_plan(a, FT_POOL_GPU_STAGING,
+                      (size_t)t->width * FT_BT_VTX_STRIP_ROWS * 4u * sizeof(float));
+    }
+}
+
+/* GLES 3: the one-fetch vertex table (bintree.h, ft_bt_sample_texel) as an
+ * RGBA32F texture on unit 3, filled strip by strip. */
+static ft_status upload_vertex_table(ft_bintree_method *m, const ft_gl *gl, ft_arena *a,
+                                     ft_error *err)
+{
+    const uint32_t w = m->bt.width, h = m->bt.height;
+    float *strip = NULL;
+    const size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
+    ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING,
+                                 (size_t)w * FT_BT_VTX_STRIP_ROWS * 4u * sizeof(float),
+                                 (void **)&strip, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    gl->GenTextures(1, &m->vtx_tex);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
+                   NULL);
+    for (uint32_t y0 = 0; y0 < h; y0 += FT_BT_VTX_STRIP_ROWS) {
+        const uint32_t rows = (h - y0 < FT_BT_VTX_STRIP_ROWS) ? h - y0 : FT_BT_VTX_STRIP_ROWS;
+        for (uint32_t y = 0; y < rows; ++y) {
+            for (uint32_t x = 0; x < w; ++x) {
+                ft_bt_sample_texel(&m->bt, x, y0 + y, strip + ((size_t)y * w + x) * 4u);
+            }
+        }
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)y0, (GLsizei)w, (GLsizei)rows, GL_RGBA,
+                          GL_FLOAT, strip);
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
+    m->gpu_bytes += (uint64_t)w * h * 4u * sizeof(float);
+    return ft_gl_check(gl, "bintree vertex table upload", err);
+}
+
+ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                                 const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    const uint32_t k = s->bintree_template_k;
+    memset(m, 0, sizeof *m);
+    m->tau_px = s->bintree_tau_px;
+    m->lod_scale = 1.0;
+    m->morph = s->bintree_morph;
+    m->split_fraction = s->bintree_split_fraction;
+    m->es3 = (gl->api == FT_GL_API_ES3);
+    m->vertex_table = m->es3 && s->bintree_vertex_table;
+    ft_status st =
+        ft_bintree_init(&m->bt, t, k, s->bintree_subsample_levels, s->bintree_tiles_max, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const uint32_t nv = ft_bt_template_vertices(k), nt = ft_bt_template_triangles(k);
+    float *uv = NULL;
+    uint16_t *idx = NULL;
+    int16_t *scratch = NULL;
+    st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nv * 2u * sizeof(float), (void **)&uv, err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nt * 3u * sizeof(uint16_t), (void **)&idx,
+                           err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t),
+                           (void **)&scratch, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD,
+                           (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float),
+                           (void **)&m->inst, err);
+    }
+    if (st == FT_OK) {
+        st = ft_bt_template_build(k, uv, idx, scratch, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    m->index_count = nt * 3u;
+    m->triangles_per_tile = nt;
+    gl->GenBuffers(1, &m->vbo);
+    gl->GenBuffers(1, &m->ibo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)nv * 2u * sizeof(float)), uv,
+                   GL_STATIC_DRAW);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)nt * 3u * sizeof(uint16_t)), idx,
+                   GL_STATIC_DRAW);
+    m->gpu_bytes = (uint64_t)nv * 8u + (uint64_t)nt * 6u;
+    if (m->es3) {
+        const size_t bytes = (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float);
+        gl->GenBuffers(1, &m->inst_vbo);
+        gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
+        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
+        m->gpu_bytes += bytes;
+    }
+    /* Diamond errors for the geomorph: float where the context samples float
+     * textures in the vertex stage, else 24-bit fixed point over [0, max]. */
+    m->err_fmt.format = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT
+                                                    : FT_HEIGHT_FORMAT_PACKED;
+    m->err_fmt.pack_min = 0.0f;
+    m->err_fmt.pack_range = (m->bt.max_err_m > 0.0) ? (float)m->bt.max_err_m : 1.0f;
+    st = ft_gpu_upload_scalar(gl, &m->err_fmt, m->bt.err_m, m->bt.lattice_side,
+                              m->bt.lattice_side, GL_TEXTURE1, a, &m->err_tex, &m->gpu_bytes,
+                              err);
+    if (st != FT_OK) {
+        return st;
+    }
+    if (m->vertex_table) {
+        if (gl->caps.max_vertex_texture_units < 4) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree on GLES 3 needs 4 vertex texture units; this device has %d",
+                           gl->caps.max_vertex_texture_units);
+        }
+        st = upload_vertex_table(m, gl, a, err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
+    if (m->bt.sub > 0u) {
+        /* the twist atlas the closed-form errors below the samples read */
+        const ft_bt_twist_layout *tl = &m->bt.twist;
+        if (gl->caps.max_vertex_texture_units < 3) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree.subsample_levels needs 3 vertex texture units; this device "
+                           "has %d", gl->caps.max_vertex_texture_units);
+        }
+        if (tl->atlas_w > (uint32_t)gl->caps.max_texture_size ||
+            tl->atlas_h > (uint32_t)gl->caps.max_texture_size) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree.subsample_levels: the twist atlas %ux%u exceeds "
+                           "GL_MAX_TEXTURE_SIZE %d (use subsample_levels = 0 for this grid)",
+                           tl->atlas_w, tl->atlas_h, gl->caps.max_texture_size);
+        }
+        float dmax = 0.0f;
+        const uint32_t top = tl->levels - 1u;
+        for (uint32_t y = 0; y < tl->h[top]; ++y) {
+            for (uint32_t x = 0; x < tl->w[top]; ++x) {
+                const float d = m->bt.twist_atlas[(size_t)(tl->oy[top] + y) * tl->atlas_w +
+                                                  tl->ox[top] + x];
+                dmax = (d > dmax) ? d : dmax;
+            }
+        }
+        m->twist_fmt.format = m->err_fmt.format;
+        m->twist_fmt.pack_min = 0.0f;
+        m->twist_fmt.pack_range = (dmax > 0.0f) ? dmax : 1.0f;
+        st = ft_gpu_upload_scalar(gl, &m->twist_fmt, m->bt.twist_atlas, tl->atlas_w, tl->atlas_h,
+                                  GL_TEXTURE2, a, &m->twist_tex, &m->gpu_bytes, err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
+    return ft_gl_check(gl, "bintree init (template, instance buffer, error texture)", err);
+}
+
+static int same_view(const ft_bintree_method *m, const ft_camera *cam)
+{
+    return m->have_selection && memcmp(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m) == 0 &&
+           memcmp(m->sel_fwd, cam->forward, sizeof m->sel_fwd) == 0 &&
+           memcmp(m->sel_up, cam->up, sizeof m->sel_up) == 0 && m->sel_fovy == cam->fovy_rad &&
+           m->sel_w == cam->width_px && m->sel_h == cam->height_px;
+}
+
+void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    if (same_view(m, cam)) {
+        return;
+    }
+    ft_bt_view v;
+    ft_bt_view_from_camera(cam, t, 1, m->morph, &v);
+    v.split_fraction = m->split_fraction;
+    ft_bintree_select(&m->bt, &v, m->tau_px * m->lod_scale, &m->sel);
+    for (uint32_t i = 0; i < m->sel.tiles; ++i) {
+        const ft_bt_tile *tile = &m->bt.tiles[i];
+        float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
+        o[0] = (float)tile->apex[0];
+        o[1] = (float)tile->apex[1];
+        o[2] = (float)tile->left[0];
+        o[3] = (float)tile->left[1];
+        o[4] = (float)tile->right[0];
+        o[5] = (float)tile->right[1];
+    }
+    memcpy(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m);
+    memcpy(m->sel_fwd, cam->forward, sizeof m->sel_fwd);
+    memcpy(m->sel_up, cam->up, sizeof m->sel_up);
+    m->sel_fovy = cam->fovy_rad;
+    m->sel_w = cam->width_px;
+    m->sel_h = cam->height_px;
+    m->have_selection = 1;
+    m->uploaded = 0;
+}
+
+void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale)
+{
+    const double s = scale < 1.0 ? 1.0 : scale;
+    if (s != m->lod_scale) {
+        m->lod_scale = s;
+        m->have_selection = 0; /* select again for the same view */
+    }
+}
+
+/* The method's uniforms on program p (current). */
+static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
+                         const struct ft_terrain_program *p, const ft_camera *cam)
+{
+    const double tau = m->sel.tau_used_px; /* the morph band is the selection's */
+    const double split = m->morph ? m->split_fraction * tau : tau;
+    const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
+    gl->Uniform1i(p->u_bt_err, 1);
+    gl->Uniform2f(p->u_bt_err_pack, m->err_fmt.pack_min,
+                  m->err_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->err_fmt.pack_range : 0.0f);
+    gl->Uniform3f(p->u_bt_lattice, (float)m->bt.step, (float)m->bt.lattice_side,
+                  (float)m->bt.fine_side);
+    const ft_bt_twist_layout *tl = &m->bt.twist;
+    gl->Uniform4f(p->u_bt_sub, (float)(1u << m->bt.sub), (float)(m->bt.step << m->bt.sub),
+                  (float)tl->levels, m->bt.sub > 0u ? 1.0f : 0.0f);
+    if (m->vertex_table) {
+        gl->Uniform1i(p->u_bt_vtx, 3);
+    }
+    if (m->bt.sub > 0u) {
+        gl->Uniform1i(p->u_bt_twist, 2);
+        gl->Uniform4f(p->u_bt_twist_pack, m->twist_fmt.pack_min,
+                      m->twist_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->twist_fmt.pack_range
+                                                                     : 0.0f,
+                      (float)tl->atlas_w, (float)tl->atlas_h);
+        for (uint32_t l = 0; l < tl->levels; ++l) {
+            gl->Uniform2f(p->u_bt_twist_off[l], (float)tl->ox[l], (float)tl->oy[l]);
+        }
+    }
+    gl->Uniform4f(p->u_bt_morph, (float)cam->px_per_rad_k, (float)split, (float)band,
+                  (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
+    gl->Uniform4f(p->u_bt_axis, (float)cam->forward[0], (float)cam->forward[1],
+                  (float)cam->forward[2], (float)ft_view_corner_cos(cam));
+}
+
+/* GLES 3: tiles [first, first + count) of the instance buffer, instanced. */
+static void draw_instances(const ft_bintree_method *m, const ft_gl *gl, uint32_t first,
+                           uint32_t count)
+{
+    const GLsizei stride = (GLsizei)(FT_BT_FLOATS_PER_TILE * sizeof(float));
+    const size_t base = (size_t)first * (size_t)stride; /* no base instance on GLES 3.0 */
+    gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)base);
+    gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
+                            (const void *)(base + 4u * sizeof(float)));
+    gl->DrawElementsInstanced(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
+                              (const void *)0, (GLsizei)count);
+}
+
+void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
+                            const struct ft_terrain_program *p, const ft_terrain *t,
+                            const ft_camera *cam, ft_method_draw_stats *st)
+{
+    ft_bintree_method_select(m, t, cam);
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    if (m->bt.sub > 0u) {
+        gl->ActiveTexture(GL_TEXTURE2);
+        gl->BindTexture(GL_TEXTURE_2D, m->twist_tex);
+    }
+    if (m->vertex_table) {
+        gl->ActiveTexture(GL_TEXTURE3);
+        gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
+    /* Coarse tiles (every vertex on a sample) go through the pass's coarse
+     * program when it has one: the sub-sample code is not in it. */
+    const struct ft_terrain_program *coarse = m->vertex_table ? p->coarse : NULL;
+    if (coarse != NULL) {
+        gl->UseProgram(coarse->program);
+        set_uniforms(m, gl, coarse, cam);
+        gl->UseProgram(p->program);
+    }
+    set_uniforms(m, gl, p, cam);
+
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    const uint32_t tiles = m->sel.tiles;
+    if (tiles > 0u && m->es3) {
+        gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
+        if (!m->uploaded) {
+            gl->BufferSubData(GL_ARRAY_BUFFER, 0,
+                              (GLsizeiptr)((size_t)tiles * FT_BT_FLOATS_PER_TILE * sizeof(float)),
+                              m->inst);
+            m->uploaded = 1;
+        }
+        gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
+        gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
+        const uint32_t n_coarse = (coarse != NULL) ? m->sel.tiles_coarse : 0u;
+        st->draw_calls = 0u;
+        if (n_coarse > 0u) {
+            gl->UseProgram(coarse->program);
+            draw_instances(m, gl, 0u, n_coarse);
+            gl->UseProgram(p->program);
+            st->draw_calls += 1u;
+        }
+        if (tiles > n_coarse) {
+            draw_instances(m, gl, n_coarse, tiles - n_coarse);
+            st->draw_calls += 1u;
+        }
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
+        gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
+        gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
+        gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
+    } else {
+        /* GLES 2: bounded by tiles_max draws */
+        for (uint32_t i = 0; i < tiles; ++i) {
+            const float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
+            gl->Uniform4f(p->u_tile0, o[0], o[1], o[2], o[3]);
+            gl->Uniform2f(p->u_tile1, o[4], o[5]);
+            gl->DrawElements(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
+                             (const void *)0);
+        }
+        st->draw_calls = tiles;
+    }
+    st->triangles = (uint64_t)tiles * m->triangles_per_tile;
+    st->tiles = tiles;
+    st->tau_achieved_px = m->sel.tau_achieved_px;
+    st->tau_target_px = m->sel.tau_used_px;
+    st->budget_hit = m->sel.budget_hit;
+}
+
+void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl)
+{
+    if (m->vbo) gl->DeleteBuffers(1, &m->vbo);
+    if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
+    if (m->inst_vbo) gl->DeleteBuffers(1, &m->inst_vbo);
+    if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
+    if (m->twist_tex) gl->DeleteTextures(1, &m->twist_tex);
+    if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
+    m->vbo = m->ibo = m->inst_vbo = m->err_tex = m->twist_tex = m->vtx_tex = 0u;
+}

@@ -1,0 +1,308 @@
+/* method_pgm.c - persistent grid mapping (the math is in src/lod/pgm.h, the
+ * per-vertex part in shaders/pgm.vert.glsl).
+ *
+ * GPU state, all made once at init:
+ *  - one template BAND of the grid: vbo (column, row within the band) for
+ *    band_rows + 1 vertex rows, ibo the band's triangles as 16-bit indices,
+ *    row by row. The grid (cols x rows, any shape) is drawn as band_count
+ *    draws of that band with the band's first row as a uniform; the last band
+ *    draws a prefix of the indices. 16-bit indices work on every GLES 2
+ *    context (with or without OES_element_index_uint), so there is one code
+ *    path to test, and the buffers hold at most 65536 vertices whatever the
+ *    grid size. A 430 x 430 grid is 3 draws, 200 x 800 is 3.
+ *  - the average pyramid's levels 1.. in one atlas texture (pgm.h,
+ *    ft_pgm_atlas_layout), in the heights' texel format (float, or packed
+ *    24-bit over the terrain's [min, max]: averages lie inside it). The method
+ *    uploads it itself, so it does not need gpu.pyramid_textures = 1 (which
+ *    would upload every level as its own texture, and min/max too, none of
+ *    which a vertex shader can pick per vertex). Level 0 is the renderer's
+ *    heights texture. Vertex texture units needed: 2.
+ * The CPU side per frame is the sampling camera (ft_pgm_setup: O(pyramid
+ * levels), no allocation), recomputed only when the view changes. */
+#include <math.h>
+#include <string.h>
+
+#include "gpu/gpu_texture.h"
+#include "gpu/renderer.h"
+#include "lod/method.h"
+
+typedef struct pgm_shape {
+    uint32_t vrows;      /* vertex rows in the template band */
+    uint32_t band_rows;  /* = vrows - 1 cell rows */
+    uint32_t band_count;
+    uint32_t atlas_w, atlas_h;
+} pgm_shape;
+
+static void shape_of(const ft_scene *s, const ft_terrain *t, pgm_shape *sh)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    const uint32_t cols = s->pgm_grid_cols, rows = s->pgm_grid_rows;
+    uint32_t vrows = FT_PGM_BAND_VERTICES_MAX / cols; /* >= 8: cols <= 8192 */
+    vrows = (vrows < rows) ? vrows : rows;
+    sh->vrows = vrows;
+    sh->band_rows = vrows - 1u;
+    sh->band_count = (rows - 1u + sh->band_rows - 1u) / sh->band_rows;
+    if (!ft_pgm_atlas_layout(t, origin, &sh->atlas_w, &sh->atlas_h)) {
+        sh->atlas_w = sh->atlas_h = 0u;
+    }
+}
+
+static size_t vbo_bytes(const ft_scene *s, const pgm_shape *sh)
+{
+    return (size_t)sh->vrows * s->pgm_grid_cols * 2u * sizeof(float);
+}
+
+static size_t ibo_bytes(const ft_scene *s, const pgm_shape *sh)
+{
+    return (size_t)sh->band_rows * (s->pgm_grid_cols - 1u) * 6u * sizeof(uint16_t);
+}
+
+void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    if (s->pgm_grid_cols < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_cols > FT_PGM_GRID_SIDE_MAX ||
+        s->pgm_grid_rows < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_rows > FT_PGM_GRID_SIDE_MAX) {
+        return; /* init reports it */
+    }
+    pgm_shape sh;
+    shape_of(s, t, &sh);
+    /* Init scratch, used one after the other and given back in between: the
+     * atlas floats, then the band's vertices, then its indices. */
+    size_t need = (size_t)sh.atlas_w * sh.atlas_h * sizeof(float);
+    need = (vbo_bytes(s, &sh) > need) ? vbo_bytes(s, &sh) : need;
+    need = (ibo_bytes(s, &sh) > need) ? ibo_bytes(s, &sh) : need;
+    ft_arena_plan(a, FT_POOL_METHOD, need);
+}
+
+/* The avg levels 1.. copied into one w x h float image, then uploaded in
+ * the format of the heights texture. */
+static ft_status upload_atlas(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+                              const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    uint32_t w = 0, h = 0;
+    const ft_pyramid *p = &t->pyr;
+    memset(m->level_px, 0, sizeof m->level_px);
+    m->level_px[0][2] = (float)t->width;
+    m->level_px[0][3] = (float)t->height;
+    if (!ft_pgm_atlas_layout(t, origin, &w, &h)) {
+        return FT_OK; /* a single level: the shader never leaves level 0 */
+    }
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgm: the avg-pyramid atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", w, h,
+                       gl->caps.max_texture_size);
+    }
+    ft_height_format f = s->height_format;
+    if (f == FT_HEIGHT_FORMAT_AUTO) { /* the renderer's rule for the heights */
+        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
+    }
+    m->atlas_fmt.format = f;
+    m->atlas_fmt.pack_min = t->min_height_m;
+    m->atlas_fmt.pack_range = t->max_height_m - t->min_height_m;
+    if (!(m->atlas_fmt.pack_range > 0.0f)) {
+        m->atlas_fmt.pack_range = 1.0f;
+    }
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *img = NULL;
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, (size_t)w * h * sizeof(float),
+                                 (void **)&img, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    for (uint32_t l = 1; l < p->avg_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        const ft_pyramid_level *lv = &p->avg[l];
+        for (uint32_t y = 0; y < lv->height; ++y) {
+            memcpy(img + (size_t)(origin[l][1] + y) * w + origin[l][0],
+                   lv->avg_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
+        }
+        m->level_px[l][0] = (float)origin[l][0];
+        m->level_px[l][1] = (float)origin[l][1];
+        m->level_px[l][2] = (float)lv->width;
+        m->level_px[l][3] = (float)lv->height;
+    }
+    /* packed: its staging comes from gpu_staging, which the renderer planned
+     * for the (larger) heights texture and gives back after each upload */
+    st = ft_gpu_upload_scalar(gl, &m->atlas_fmt, img, w, h, GL_TEXTURE1, a, &m->atlas_tex,
+                              &m->gpu_bytes, err);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    m->atlas_w = w;
+    m->atlas_h = h;
+    return st;
+}
+
+static ft_status upload_band(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+                             const pgm_shape *sh, ft_arena *a, ft_error *err)
+{
+    const uint32_t cols = m->cols;
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *uv = NULL;
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, vbo_bytes(s, sh), (void **)&uv, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    for (uint32_t y = 0; y < sh->vrows; ++y) {
+        for (uint32_t x = 0; x < cols; ++x) {
+            uv[((size_t)y * cols + x) * 2u + 0u] = (float)x;
+            uv[((size_t)y * cols + x) * 2u + 1u] = (float)y;
+        }
+    }
+    gl->GenBuffers(1, &m->vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)vbo_bytes(s, sh), uv, GL_STATIC_DRAW);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+
+    uint16_t *idx = NULL;
+    st = ft_arena_take(a, FT_POOL_METHOD, ibo_bytes(s, sh), (void **)&idx, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    size_t k = 0;
+    for (uint32_t y = 0; y < sh->band_rows; ++y) {
+        for (uint32_t x = 0; x + 1u < cols; ++x) {
+            /* < 65536 vertices in the band, so every index fits 16 bits */
+            const uint16_t v00 = (uint16_t)(y * cols + x), v10 = (uint16_t)(v00 + 1u);
+            const uint16_t v01 = (uint16_t)(v00 + cols), v11 = (uint16_t)(v01 + 1u);
+            idx[k++] = v00; idx[k++] = v10; idx[k++] = v11;
+            idx[k++] = v00; idx[k++] = v11; idx[k++] = v01;
+        }
+    }
+    gl->GenBuffers(1, &m->ibo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)ibo_bytes(s, sh), idx, GL_STATIC_DRAW);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    m->gpu_bytes += vbo_bytes(s, sh) + ibo_bytes(s, sh);
+    return FT_OK;
+}
+
+ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+                             const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    memset(m, 0, sizeof *m);
+    if (s->pgm_grid_cols < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_cols > FT_PGM_GRID_SIDE_MAX ||
+        s->pgm_grid_rows < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_rows > FT_PGM_GRID_SIDE_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "pgm: grid %u x %u outside %u..%u per side",
+                       s->pgm_grid_cols, s->pgm_grid_rows, FT_PGM_GRID_SIDE_MIN,
+                       FT_PGM_GRID_SIDE_MAX);
+    }
+    const ft_pyramid *p = &t->pyr;
+    if (p->avg_levels < 1u || p->avg_levels > FT_PYRAMID_LEVELS_MAX || p->minmax_levels < 1u) {
+        return ft_fail(err, FT_ERR_ARG,
+                       "pgm needs the terrain's avg pyramid (levels: %u) and max pyramid "
+                       "(levels: %u) in memory; the terrain was loaded without them",
+                       p->avg_levels, p->minmax_levels);
+    }
+    for (uint32_t l = 1; l < p->avg_levels; ++l) {
+        if (p->avg[l].avg_m == NULL) {
+            return ft_fail(err, FT_ERR_ARG, "pgm: avg pyramid level %u is missing", l);
+        }
+    }
+    if (gl->caps.max_vertex_texture_units < 2) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgm samples the heights and the avg-pyramid atlas in the vertex shader: "
+                       "it needs 2 vertex texture units, this device has %d",
+                       gl->caps.max_vertex_texture_units);
+    }
+    pgm_shape sh;
+    shape_of(s, t, &sh);
+    m->cols = s->pgm_grid_cols;
+    m->rows = s->pgm_grid_rows;
+    m->band_rows = sh.band_rows;
+    m->band_count = sh.band_count;
+    m->levels = p->avg_levels;
+    ft_status st = upload_atlas(m, gl, s, t, a, err);
+    if (st == FT_OK) {
+        st = upload_band(m, gl, s, &sh, a, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    return ft_gl_check(gl, "pgm init (grid band, avg-pyramid atlas)", err);
+}
+
+uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b)
+{
+    const uint32_t first = b * m->band_rows, total = m->rows - 1u;
+    if (first >= total) {
+        return 0u;
+    }
+    return (total - first < m->band_rows) ? total - first : m->band_rows;
+}
+
+static int same_view(const ft_pgm_method *m, const ft_camera *cam)
+{
+    return m->have_sampling && memcmp(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m) == 0 &&
+           memcmp(m->sel_fwd, cam->forward, sizeof m->sel_fwd) == 0 &&
+           memcmp(m->sel_up, cam->up, sizeof m->sel_up) == 0 && m->sel_fovy == cam->fovy_rad &&
+           m->sel_w == cam->width_px && m->sel_h == cam->height_px;
+}
+
+void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    if (same_view(m, cam)) {
+        return;
+    }
+    ft_pgm_setup(&m->sampling, cam, t);
+    memcpy(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m);
+    memcpy(m->sel_fwd, cam->forward, sizeof m->sel_fwd);
+    memcpy(m->sel_up, cam->up, sizeof m->sel_up);
+    m->sel_fovy = cam->fovy_rad;
+    m->sel_w = cam->width_px;
+    m->sel_h = cam->height_px;
+    m->have_sampling = 1;
+}
+
+void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
+                        const struct ft_terrain_program *p)
+{
+    const ft_pgm_sampling *s = &m->sampling;
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, m->atlas_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform1i(p->u_pgm_atlas, 1);
+    gl->Uniform2f(p->u_pgm_atlas_size, (float)m->atlas_w, (float)m->atlas_h);
+    gl->Uniform2f(p->u_pgm_atlas_pack, m->atlas_fmt.pack_min,
+                  m->atlas_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->atlas_fmt.pack_range
+                                                                 : 0.0f);
+    for (uint32_t l = 0; l < m->levels; ++l) {
+        gl->Uniform4f(p->u_pgm_level[l], m->level_px[l][0], m->level_px[l][1],
+                      m->level_px[l][2], m->level_px[l][3]);
+    }
+    gl->Uniform3f(p->u_pgm_fwd, (float)s->forward[0], (float)s->forward[1],
+                  (float)s->forward[2]);
+    gl->Uniform3f(p->u_pgm_right, (float)s->right[0], (float)s->right[1], (float)s->right[2]);
+    gl->Uniform3f(p->u_pgm_up, (float)s->up[0], (float)s->up[1], (float)s->up[2]);
+    gl->Uniform4f(p->u_pgm_rect, (float)s->rect[0], (float)s->rect[1], (float)s->rect[2],
+                  (float)s->rect[3]);
+    gl->Uniform2f(p->u_pgm_eye, (float)s->height_m, (float)s->min_neg_dz);
+    gl->Uniform4f(p->u_pgm_grid, (float)(m->cols - 1u), (float)(m->rows - 1u), 0.0f,
+                  (float)m->levels);
+}
+
+void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    ft_pgm_method_select(m, t, cam);
+    ft_pgm_method_bind(m, gl, p);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    /* bounded: band_count <= rows - 1 */
+    for (uint32_t b = 0; b < m->band_count; ++b) {
+        const uint32_t cells = ft_pgm_band_cell_rows(m, b);
+        gl->Uniform4f(p->u_pgm_grid, (float)(m->cols - 1u), (float)(m->rows - 1u),
+                      (float)(b * m->band_rows), (float)m->levels);
+        gl->DrawElements(GL_TRIANGLES, (GLsizei)(cells * (m->cols - 1u) * 6u),
+                         GL_UNSIGNED_SHORT, (const void *)0);
+        st->draw_calls += 1u;
+    }
+    st->triangles = 2ull * (m->cols - 1u) * (m->rows - 1u);
+}
+
+void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
+{
+    if (m->vbo) gl->DeleteBuffers(1, &m->vbo);
+    if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
+    if (m->atlas_tex) gl->DeleteTextures(1, &m->atlas_tex);
+    m->vbo = m->ibo = m->atlas_tex = 0u;
+}

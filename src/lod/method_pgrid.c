@@ -1,0 +1,824 @@
+/* method_pgrid.c - the error-bounded projective grid (src/lod/pgrid.h).
+ *
+ * Per frame, in each pass (colour and position) with the pass's program p:
+ *  1. the grid is drawn as pgm draws it (ft_pgm_method_draw: bands, avg
+ *     atlas, sampling camera) with shaders/pgrid.vert.glsl (row distribution,
+ *     per-vertex delta);
+ *  2. the error buffer: the same grid with pgrid_err.frag.glsl into an RGBA8
+ *     texture with its own depth buffer (R = normalised error, G = code);
+ *  3. colour pass only (the position pass reuses the decision of the same
+ *     view): the error buffer is read back, the dilated-code histogram gives
+ *     the ray-cast threshold inside raycast_max_px (src/lod/pgrid.h 5);
+ *  4. GLES 3 with ray_casting = 1: a full-screen pass (pgrid_rc.frag.glsl)
+ *     ray casts the pixels over the threshold and writes their colour (or
+ *     position) and gl_FragDepth over the mesh (DepthFunc ALWAYS).
+ * GLES 2 (no gl_FragDepth, no texelFetch): steps 1-3 only; init says so
+ * on stderr and the stats report the mesh's error bound (tau_achieved_px)
+ * instead of gamma. All GL objects and CPU buffers are made at init. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "gpu/gpu_texture.h"
+#include "gpu/renderer.h"
+#include "gpu/shade.h"
+#include "lod/method.h"
+
+/* The ray-cast program's uniform locations, looked up once at init (a frame
+ * makes no glGetUniformLocation call). They live in the same arena block as
+ * the error pass's program, right after it: m->err_prog points at the first
+ * member of this struct. */
+typedef struct pgrid_rc_locs {
+    GLint err, heights, mm, thr, pack, grid_size, mm_info, mm_levels, eye_g, cell_m, drop;
+    GLint fwd, right, up, tan, size, view_proj, mode, sky;
+    ft_shade_locs shade;
+    GLint mm_level[FT_PYRAMID_LEVELS_MAX];
+} pgrid_rc_locs;
+
+typedef struct pgrid_programs {
+    ft_terrain_program err; /* first: m->err_prog == &block->err */
+    pgrid_rc_locs rc;
+} pgrid_programs;
+
+static pgrid_rc_locs *rc_locs(const ft_pgrid_method *m)
+{
+    return &((pgrid_programs *)(void *)m->err_prog)->rc;
+}
+
+static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
+{
+#define U(field, name) u->field = gl->GetUniformLocation(prog, name)
+    U(err, "u_err");
+    U(heights, "u_heights");
+    U(mm, "u_pgrid_mm");
+    U(thr, "u_rc_thr");
+    U(pack, "u_pack");
+    U(grid_size, "u_grid_size");
+    U(mm_info, "u_pgrid_mm_info");
+    U(mm_levels, "u_pgrid_mm_levels");
+    U(eye_g, "u_rc_eye_g");
+    U(cell_m, "u_cell_m");
+    U(drop, "u_earth_drop_per_m2");
+    U(fwd, "u_rc_fwd");
+    U(right, "u_rc_right");
+    U(up, "u_rc_up");
+    U(tan, "u_rc_tan");
+    U(size, "u_rc_size");
+    U(view_proj, "u_view_proj");
+    U(mode, "u_rc_mode");
+    U(sky, "u_rc_sky");
+#undef U
+    ft_renderer_shade_locate(gl, prog, &u->shade);
+    for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
+        u->mm_level[l] = gl->GetUniformLocation(prog, name);
+    }
+}
+
+static void pgm_scene(const ft_scene *s, ft_scene *out)
+{
+    *out = *s;
+    out->pgm_grid_cols = s->pgrid_grid_cols;
+    out->pgm_grid_rows = s->pgrid_grid_rows;
+}
+
+void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    static ft_scene ps; /* init-time only; too large for a small stack */
+    pgm_scene(s, &ps);
+    ft_pgm_method_plan(&ps, t, a);
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], hw = 1u, h = 1u;
+    if (t->pyr.minmax_levels > 0u) {
+        ft_pgrid_minmax_layout(t, origin, &hw, &h);
+    }
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)hw * 2u * h * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)s->width_px * s->height_px * 5u +
+                                         sizeof(pgrid_programs) + 64u);
+    ft_arena_plan(a, FT_POOL_METHOD, sizeof(ft_terrain_program) + 64u);
+    /* the residual atlas's staging (reset after upload, like the min/max
+     * atlas's: the larger of the two is what the pool must hold) */
+    uint32_t rw = 1u, rh = 1u;
+    if (t->pyr.minmax_levels > 0u) {
+        ft_pgrid_residual_layout(t, origin, &rw, &rh);
+    }
+    const size_t res_bytes = (size_t)rw * rh * sizeof(float);
+    const size_t mm_bytes = (size_t)hw * 2u * h * sizeof(float);
+    if (res_bytes > mm_bytes) {
+        ft_arena_plan(a, FT_POOL_METHOD, res_bytes - mm_bytes);
+    }
+}
+
+/* ---- the tight bound (src/lod/pgrid.h 6) ------------------------------------------ */
+
+static ft_status upload_residuals(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                                  ft_arena *a, ft_error *err)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    uint32_t w = 1u, h = 1u;
+    memset(m->res_level_px, 0, sizeof m->res_level_px);
+    ft_pgrid_residual_layout(t, origin, &w, &h);
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid: the residual atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", w, h,
+                       gl->caps.max_texture_size);
+    }
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *img = NULL;
+    ft_status st =
+        ft_arena_take(a, FT_POOL_METHOD, (size_t)w * h * sizeof(float), (void **)&img, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    ft_pgrid_residual_fill(t, img, w, h);
+    const ft_pyramid *p = &t->pyr;
+    m->res_levels = p->minmax_levels;
+    for (uint32_t l = FT_PGRID_RES_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        m->res_level_px[l][0] = (float)origin[l][0];
+        m->res_level_px[l][1] = (float)origin[l][1];
+        m->res_level_px[l][2] = (float)p->minmax[l].width;
+        m->res_level_px[l][3] = (float)p->minmax[l].height;
+    }
+    const ft_scalar_format f = {FT_HEIGHT_FORMAT_FLOAT, 0.0f, 1.0f};
+    st = ft_gpu_upload_scalar(gl, &f, img, w, h, GL_TEXTURE6, a, &m->res_tex, &m->gpu_bytes, err);
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    return st;
+}
+
+/* A grid-sized RGBA32F texture (NEAREST) on texture unit `unit`. */
+static void make_float_texture(ft_pgrid_method *m, const ft_gl *gl, GLenum unit, uint32_t w,
+                               uint32_t h, GLuint *tex)
+{
+    gl->ActiveTexture(unit);
+    gl->GenTextures(1, tex);
+    gl->BindTexture(GL_TEXTURE_2D, *tex);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
+                   NULL);
+    gl->ActiveTexture(GL_TEXTURE0);
+    m->gpu_bytes += (uint64_t)w * h * 16u;
+}
+
+/* A framebuffer of one or two grid-sized RGBA32F textures (tex1 = NULL: one). */
+static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit0,
+                                   GLenum unit1, uint32_t w, uint32_t h, GLuint *tex0,
+                                   GLuint *tex1, GLuint *fbo, const char *what, ft_error *err)
+{
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED, "pgrid: the %s target %ux%u exceeds "
+                       "GL_MAX_TEXTURE_SIZE %d", what, w, h, gl->caps.max_texture_size);
+    }
+    make_float_texture(m, gl, unit0, w, h, tex0);
+    if (tex1 != NULL) {
+        make_float_texture(m, gl, unit1, w, h, tex1);
+    }
+    gl->GenFramebuffers(1, fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex0, 0);
+    if (tex1 != NULL) {
+        static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, *tex1, 0);
+        gl->DrawBuffers(2, both);
+    }
+    const GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        return ft_fail(err, FT_ERR_GPU, "pgrid: the %s target %ux%u (RGBA32F) is incomplete: "
+                       "0x%04x", what, w, h, (unsigned)st);
+    }
+    return FT_OK;
+}
+
+static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                            const ft_gpu_terrain *gt, ft_arena *a, ft_error *err)
+{
+    ft_status st = upload_residuals(m, gl, t, a, err);
+    if (st == FT_OK) {
+        st = make_float_target(m, gl, GL_TEXTURE4, GL_TEXTURE7, m->pgm.cols, m->pgm.rows,
+                               &m->vtx_tex, &m->slope_tex, &m->vtx_fbo, "vertex pass", err);
+    }
+    if (st == FT_OK) {
+        st = make_float_target(m, gl, GL_TEXTURE5, GL_TEXTURE5, m->pgm.cols - 1u,
+                               m->pgm.rows - 1u, &m->quad_tex, NULL, &m->quad_fbo, "quad bound",
+                               err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program),
+                           (void **)&m->vtx_prog, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    memset(m->vtx_prog, 0, sizeof *m->vtx_prog);
+    st = ft_renderer_build_terrain_program(gl, t, gt, "pgrid_pass.vert.glsl",
+                                           "pgrid_vtx.frag.glsl", m->vtx_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->vtx_prog_built = 1;
+    st = ft_renderer_link_program(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", "a_uv",
+                                  &m->quad_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const GLuint q = m->quad_prog;
+    m->uq_vtx = gl->GetUniformLocation(q, "u_pgrid_vtx");
+    m->uq_res = gl->GetUniformLocation(q, "u_pgrid_res");
+    m->uq_heights = gl->GetUniformLocation(q, "u_heights");
+    m->uq_grid_size = gl->GetUniformLocation(q, "u_grid_size");
+    m->uq_cell_m = gl->GetUniformLocation(q, "u_cell_m");
+    m->uq_origin = gl->GetUniformLocation(q, "u_origin_rel_eye_m");
+    m->uq_pack = gl->GetUniformLocation(q, "u_pack");
+    m->uq_drop = gl->GetUniformLocation(q, "u_earth_drop_per_m2");
+    m->uq_res_levels = gl->GetUniformLocation(q, "u_pgrid_res_levels");
+    for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgrid_res_level[%u]", l);
+        m->uq_res_level[l] = gl->GetUniformLocation(q, name);
+    }
+    /* the uniforms that never change */
+    gl->UseProgram(q);
+    gl->Uniform1i(m->uq_heights, 0);
+    gl->Uniform1i(m->uq_vtx, 4);
+    gl->Uniform1i(m->uq_res, 6);
+    gl->Uniform2f(m->uq_grid_size, (float)t->width, (float)t->height);
+    gl->Uniform2f(m->uq_cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform2f(m->uq_pack, gt->pack_min_m,
+                  gt->format == FT_HEIGHT_FORMAT_PACKED ? gt->pack_range_m : 0.0f);
+    gl->Uniform1f(m->uq_drop, (float)t->curv_drop_per_m2);
+    gl->Uniform1f(m->uq_res_levels, (float)m->res_levels);
+    for (uint32_t l = 0; l < m->res_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        gl->Uniform4f(m->uq_res_level[l], m->res_level_px[l][0], m->res_level_px[l][1],
+                      m->res_level_px[l][2], m->res_level_px[l][3]);
+    }
+    gl->UseProgram(0);
+    m->tight = 1;
+    return ft_gl_check(gl, "pgrid init (tight bound: residual atlas, vertex and quad passes)",
+                       err);
+}
+
+static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                               const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    uint32_t hw = 1u, h = 1u;
+    const ft_pyramid *p = &t->pyr;
+    memset(m->mm_level_px, 0, sizeof m->mm_level_px);
+    ft_pgrid_minmax_layout(t, origin, &hw, &h);
+    m->mm_half_w = hw;
+    m->mm_h = h;
+    m->mm_levels = p->minmax_levels;
+    if (2u * hw > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid: the min/max atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", 2u * hw, h,
+                       gl->caps.max_texture_size);
+    }
+    ft_height_format f = s->height_format;
+    if (f == FT_HEIGHT_FORMAT_AUTO) {
+        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
+    }
+    m->mm_fmt.format = f;
+    m->mm_fmt.pack_min = t->min_height_m;
+    m->mm_fmt.pack_range = t->max_height_m - t->min_height_m;
+    if (!(m->mm_fmt.pack_range > 0.0f)) {
+        m->mm_fmt.pack_range = 1.0f;
+    }
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *img = NULL;
+    const size_t n = (size_t)hw * 2u * h;
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, n * sizeof(float), (void **)&img, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        img[i] = t->min_height_m;
+    }
+    for (uint32_t l = FT_PGRID_ATLAS_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        const ft_pyramid_level *lv = &p->minmax[l];
+        for (uint32_t y = 0; y < lv->height; ++y) {
+            float *row = img + (size_t)(origin[l][1] + y) * hw * 2u + origin[l][0];
+            memcpy(row, lv->min_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
+            memcpy(row + hw, lv->max_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
+        }
+        m->mm_level_px[l][0] = (float)origin[l][0];
+        m->mm_level_px[l][1] = (float)origin[l][1];
+        m->mm_level_px[l][2] = (float)lv->width;
+        m->mm_level_px[l][3] = (float)lv->height;
+    }
+    for (uint32_t l = 0; l < FT_PGRID_ATLAS_L0 && l < p->minmax_levels; ++l) {
+        m->mm_level_px[l][2] = (float)p->minmax[l].width;
+        m->mm_level_px[l][3] = (float)p->minmax[l].height;
+    }
+    st = ft_gpu_upload_scalar(gl, &m->mm_fmt, img, hw * 2u, h, GL_TEXTURE2, a, &m->mm_tex,
+                              &m->gpu_bytes, err);
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    return st;
+}
+
+static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error *err)
+{
+    const GLsizei w = (GLsizei)m->w_px, h = (GLsizei)m->h_px;
+    gl->GenRenderbuffers(1, &m->err_depth);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, m->err_depth);
+    gl->RenderbufferStorage(GL_RENDERBUFFER,
+                            gl->caps.has_depth24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT16,
+                            w, h);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->GenTextures(1, &m->err_tex);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, m->es3 ? GL_RGBA8 : GL_RGBA, w, h, 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, NULL);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->GenFramebuffers(1, &m->err_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m->err_tex, 0);
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                m->err_depth);
+    GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        return ft_fail(err, FT_ERR_GPU, "pgrid: error buffer %ux%u incomplete: 0x%04x", m->w_px,
+                       m->h_px, (unsigned)st);
+    }
+    m->gpu_bytes += (uint64_t)w * (uint64_t)h * 8u;
+    return FT_OK;
+}
+
+ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                               const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    static ft_scene ps;
+    memset(m, 0, sizeof *m);
+    if (t->pyr.minmax_levels < 1u) {
+        return ft_fail(err, FT_ERR_ARG, "pgrid needs the terrain's min/max pyramid in memory");
+    }
+    if (gl->caps.max_vertex_texture_units < 3) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid samples heights, avg and min/max atlases in the vertex shader: "
+                       "it needs 3 vertex texture units, this device has %d",
+                       gl->caps.max_vertex_texture_units);
+    }
+    pgm_scene(s, &ps);
+    ft_status st = ft_pgm_method_init(&m->pgm, gl, &ps, t, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->w_px = s->width_px;
+    m->h_px = s->height_px;
+    m->distribution = s->pgrid_view_distribution ? FT_PGRID_DIST_VIEW : FT_PGRID_DIST_UNIFORM;
+    m->gamma_px = s->pgrid_gamma_px;
+    m->lod_scale = 1.0;
+    m->raycast_max_px = s->pgrid_raycast_max_px;
+    m->es3 = (gl->api == FT_GL_API_ES3);
+    m->ray_casting = s->pgrid_ray_casting && m->es3;
+    if (s->pgrid_ray_casting && !m->es3) {
+        (void)fprintf(stderr,
+                      "pgrid: GLES 2 context (no gl_FragDepth, no texelFetch): running WITHOUT "
+                      "ray casting; the error is the mesh's (reported as tau_achieved_px), "
+                      "gamma_px = %g is not guaranteed\n",
+                      s->pgrid_gamma_px);
+    }
+    st = upload_minmax(m, gl, s, t, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    st = make_error_target(m, gl, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const size_t px = (size_t)m->w_px * m->h_px;
+    st = ft_arena_take(a, FT_POOL_METHOD, px * 4u, (void **)&m->readback, err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, px, (void **)&m->work, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, sizeof(pgrid_programs), (void **)&m->err_prog,
+                           err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    memset(m->err_prog, 0, sizeof(pgrid_programs));
+    ft_gpu_terrain gt;
+    memset(&gt, 0, sizeof gt);
+    gt.format = m->mm_fmt.format;
+    gt.pack_min_m = m->mm_fmt.pack_min;
+    gt.pack_range_m = m->mm_fmt.pack_range;
+    st = ft_renderer_build_terrain_program(gl, t, &gt, "pgrid.vert.glsl", "pgrid_err.frag.glsl",
+                                           m->err_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->err_prog_built = 1;
+    m->u_err_k_gamma = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_err");
+    m->u_err_fwd = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_fwd");
+    m->u_err_envelope = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_envelope");
+    char frag_buf[FT_SHADE_DEFINES_MAX];
+    if (m->ray_casting) {
+        static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
+        st = ft_renderer_link_program_frag(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
+                                           ft_renderer_shade_defines(s, t, frag_buf), "a_corner",
+                                           &m->rc_prog, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        locate_rc(gl, m->rc_prog, rc_locs(m));
+        gl->GenBuffers(1, &m->quad_vbo);
+        gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
+        m->gpu_bytes += sizeof corners;
+        /* the grid's vertex shader then reads 6 textures */
+        if (s->pgrid_residual_bound && gl->caps.has_float_color_buffer &&
+            gl->caps.has_float_textures && gl->caps.max_vertex_texture_units >= 6) {
+            st = init_tight(m, gl, t, &gt, a, err);
+            if (st != FT_OK) {
+                return st;
+            }
+        } else if (s->pgrid_residual_bound) {
+            (void)fprintf(stderr, "pgrid: error_bound = residual needs float render targets "
+                                  "and 6 vertex texture units, which this context lacks: "
+                                  "using the relief bound\n");
+        }
+    }
+    if (m->ray_casting) {
+        /* the late decision's two pixel-pack buffers (src/lod/pgrid.h 5) */
+        const GLsizeiptr bytes = (GLsizeiptr)m->w_px * (GLsizeiptr)m->h_px * 4;
+        gl->GenBuffers(2, m->pack_pbo);
+        for (int k = 0; k < 2; ++k) {
+            gl->BindBuffer(GL_PIXEL_PACK_BUFFER, m->pack_pbo[k]);
+            gl->BufferData(GL_PIXEL_PACK_BUFFER, bytes, NULL, GL_STREAM_READ);
+            m->gpu_bytes += (uint64_t)bytes;
+        }
+        gl->BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        m->late = 1;
+    }
+    m->thr = FT_PGRID_CODES;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
+}
+
+void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale)
+{
+    const double s = scale < 1.0 ? 1.0 : scale;
+    if (s != m->lod_scale) {
+        m->lod_scale = s;
+        m->have_decision = 0; /* decide again for the same view */
+    }
+}
+
+void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    ft_pgm_method_select(&m->pgm, t, cam);
+}
+
+/* Uniforms of pgrid.vert.glsl beyond pgm's, on program p (locations from
+ * init: ft_terrain_program carries them). */
+static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p)
+{
+    const ft_pgm_sampling *s = &m->pgm.sampling;
+    float s0 = 0.0f, s1 = 0.0f;
+    if (m->distribution == FT_PGRID_DIST_VIEW) {
+        s0 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[1]);
+        s1 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[3]);
+    }
+    gl->Uniform4f(p->u_pgrid_dist, (float)m->distribution, s0, s1, (float)s->depression_rad);
+    gl->Uniform1i(p->u_pgrid_mm, 2);
+    gl->Uniform4f(p->u_pgrid_mm_info, (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
+                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+    gl->Uniform1f(p->u_pgrid_mm_levels, (float)m->mm_levels);
+    for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        gl->Uniform4f(p->u_pgrid_mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
+                      m->mm_level_px[l][2], m->mm_level_px[l][3]);
+    }
+    gl->Uniform1i(p->u_pgrid_quad, 5);
+    gl->Uniform1i(p->u_pgrid_vtx, 4);
+    gl->Uniform1i(p->u_pgrid_slope, 7);
+    gl->Uniform1f(p->u_pgrid_tight, m->tight ? 1.0f : 0.0f);
+}
+
+/* The tight bound's two passes (src/lod/pgrid.h 6), before the grid is drawn:
+ * the grid's vertices into vtx_tex, then every quad's bound into quad_tex,
+ * which the grid's vertex shader reads (unit 5). */
+static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                         const ft_camera *cam, GLint fb)
+{
+    GLint vp[4];
+    gl->GetIntegerv(GL_VIEWPORT, vp);
+    const float ox = (float)(t->origin_world_x_m - cam->eye_m[0]);
+    const float oy = (float)(t->origin_world_y_m - cam->eye_m[1]);
+    const float oz = (float)(0.0 - cam->eye_m[2]);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    /* the vertex pass */
+    const ft_terrain_program *v = m->vtx_prog;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->vtx_fbo);
+    gl->Viewport(0, 0, (GLsizei)m->pgm.cols, (GLsizei)m->pgm.rows);
+    gl->UseProgram(v->program);
+    gl->Uniform3f(v->u_origin_rel_eye_m, ox, oy, oz);
+    set_grid_uniforms(m, gl, v);
+    ft_pgm_method_bind(&m->pgm, gl, v);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    /* the quad bounds */
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->quad_fbo);
+    gl->Viewport(0, 0, (GLsizei)(m->pgm.cols - 1u), (GLsizei)(m->pgm.rows - 1u));
+    gl->UseProgram(m->quad_prog);
+    gl->ActiveTexture(GL_TEXTURE4);
+    gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
+    gl->ActiveTexture(GL_TEXTURE6);
+    gl->BindTexture(GL_TEXTURE_2D, m->res_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform3f(m->uq_origin, ox, oy, oz);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    gl->Viewport(vp[0], vp[1], vp[2], vp[3]);
+    gl->ActiveTexture(GL_TEXTURE5);
+    gl->BindTexture(GL_TEXTURE_2D, m->quad_tex);
+    gl->ActiveTexture(GL_TEXTURE7);
+    gl->BindTexture(GL_TEXTURE_2D, m->slope_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+}
+
+static int same_decision_view(const ft_pgrid_method *m, const ft_camera *cam)
+{
+    return m->have_decision && memcmp(m->dec_eye_m, cam->eye_m, sizeof m->dec_eye_m) == 0 &&
+           memcmp(m->dec_fwd, cam->forward, sizeof m->dec_fwd) == 0 &&
+           memcmp(m->dec_up, cam->up, sizeof m->dec_up) == 0;
+}
+
+/* The dilated-code histogram and terrain pixels of m->readback. */
+static void count_codes(ft_pgrid_method *m)
+{
+    ft_pgrid_histogram(m->readback, m->w_px, m->h_px, m->work, m->hist);
+    uint64_t terrain = 0u; /* pixels the mesh (or an envelope) covers: code > 0 */
+    for (size_t k = 0; k < (size_t)m->w_px * m->h_px; ++k) {
+        terrain += (m->readback[4u * k + 1u] != 0u);
+    }
+    m->terrain_px = terrain;
+}
+
+static void remember_view(ft_pgrid_method *m, const ft_camera *cam)
+{
+    memcpy(m->dec_eye_m, cam->eye_m, sizeof m->dec_eye_m);
+    memcpy(m->dec_fwd, cam->forward, sizeof m->dec_fwd);
+    memcpy(m->dec_up, cam->up, sizeof m->dec_up);
+    m->have_decision = 1;
+}
+
+/* The late decision (src/lod/pgrid.h 5; GLES 3 with ray casting). This frame's
+ * error buffer goes into a pixel-pack buffer without waiting for it; the
+ * previous frame's, complete by now, is mapped and gives the histogram that
+ * sets this frame's threshold. The threshold is applied per pixel on the GPU
+ * to this frame's own buffer, so the bound reported below holds for this
+ * frame whatever its count; what comes one frame late is the count: a view
+ * that changes abruptly can ray cast more than raycast_max_px for one frame
+ * (time, not error), and the pixels reported (raycast_px, terrain_px) are the
+ * previous frame's, at the threshold it used. The first frame has no
+ * histogram: it ray casts everything over gamma. */
+static void decide_late(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+{
+    const uint32_t cur = m->pbo_next, prev = cur ^ 1u;
+    const size_t bytes = (size_t)m->w_px * m->h_px * 4u;
+    const double gamma = m->gamma_px * m->lod_scale; /* degradation raises gamma */
+    int have = 0;
+    if (m->pbo_full[prev]) {
+        gl->BindBuffer(GL_PIXEL_PACK_BUFFER, m->pack_pbo[prev]);
+        const void *p = gl->MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, (GLsizeiptr)bytes,
+                                           GL_MAP_READ_BIT);
+        if (p != NULL) {
+            memcpy(m->readback, p, bytes);
+            have = 1;
+        }
+        (void)gl->UnmapBuffer(GL_PIXEL_PACK_BUFFER);
+        m->pbo_full[prev] = 0;
+    }
+    gl->BindBuffer(GL_PIXEL_PACK_BUFFER, m->pack_pbo[cur]);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
+                   (void *)0);
+    gl->BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    m->pbo_full[cur] = 1;
+    m->pbo_next = prev;
+    if (have) {
+        count_codes(m);
+        /* the previous frame's pixels at the threshold it used */
+        uint64_t last = 0u;
+        for (uint32_t c = m->thr; c < FT_PGRID_CODES; ++c) last += m->hist[c];
+        m->rc_px = last;
+        uint64_t unused;
+        m->thr = ft_pgrid_budget_threshold(m->hist, gamma, m->raycast_max_px, &unused,
+                                           &m->budget_hit);
+    } else {
+        m->rc_px = 0u;
+        m->terrain_px = 0u;
+        m->thr = ft_pgrid_code(gamma);
+        m->budget_hit = 0;
+    }
+    /* pixels under the threshold have codes <= thr - 1 */
+    m->achieved_px = m->budget_hit ? ft_pgrid_code_rho_hi(m->thr - 1u) : gamma;
+    remember_view(m, cam);
+}
+
+static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+{
+    if (m->late) {
+        decide_late(m, gl, cam);
+        return;
+    }
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->ReadPixels(0, 0, (GLsizei)m->w_px, (GLsizei)m->h_px, GL_RGBA, GL_UNSIGNED_BYTE,
+                   m->readback);
+    count_codes(m);
+    uint32_t top = 0u; /* largest dilated code present */
+    for (uint32_t c = 1; c < FT_PGRID_CODES; ++c) {
+        if (m->hist[c] != 0u) top = c;
+    }
+    if (m->ray_casting) {
+        /* the degradation policy trades error for time: it raises gamma */
+        const double gamma = m->gamma_px * m->lod_scale;
+        m->thr = ft_pgrid_budget_threshold(m->hist, gamma, m->raycast_max_px, &m->rc_px,
+                                           &m->budget_hit);
+        /* pixels under the threshold have codes <= thr - 1 */
+        const uint32_t below = (m->thr < top + 1u) ? m->thr - 1u : top;
+        const double hi = (below >= 1u) ? ft_pgrid_code_rho_hi(below) : 0.0;
+        m->achieved_px = m->budget_hit ? hi : ((hi < gamma) ? hi : gamma);
+    } else {
+        m->thr = FT_PGRID_CODES;
+        m->rc_px = 0u;
+        m->budget_hit = 0;
+        m->achieved_px = (top >= 1u) ? ft_pgrid_code_rho_hi(top) : 0.0;
+    }
+    remember_view(m, cam);
+}
+
+static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p,
+                     const ft_terrain *t, const ft_camera *cam)
+{
+    const GLuint prog = m->rc_prog;
+    const int pos_pass = (p->shade.ramp_h < 0);
+    gl->UseProgram(prog);
+    const pgrid_rc_locs *u = rc_locs(m);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    gl->ActiveTexture(GL_TEXTURE2);
+    gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform1i(u->err, 3);
+    gl->Uniform1i(u->heights, 0);
+    gl->Uniform1i(u->mm, 2);
+    gl->Uniform1f(u->thr, (float)m->thr);
+    gl->Uniform2f(u->pack, m->mm_fmt.pack_min,
+                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+    gl->Uniform2f(u->grid_size, (float)t->width, (float)t->height);
+    gl->Uniform4f(u->mm_info, (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
+                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+    gl->Uniform1f(u->mm_levels, (float)m->mm_levels);
+    for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        gl->Uniform4f(u->mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
+                      m->mm_level_px[l][2], m->mm_level_px[l][3]);
+    }
+    gl->Uniform3f(u->eye_g, (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
+                  (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
+                  (float)cam->eye_m[2]);
+    gl->Uniform2f(u->cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
+    gl->Uniform1f(u->drop, (float)t->curv_drop_per_m2);
+    gl->Uniform3f(u->fwd, (float)cam->forward[0], (float)cam->forward[1],
+                  (float)cam->forward[2]);
+    gl->Uniform3f(u->right, (float)cam->right[0], (float)cam->right[1],
+                  (float)cam->right[2]);
+    gl->Uniform3f(u->up, (float)cam->up[0], (float)cam->up[1], (float)cam->up[2]);
+    const double ty = tan(0.5 * cam->fovy_rad);
+    gl->Uniform3f(u->tan, (float)(ty * (double)cam->width_px / (double)cam->height_px),
+                  (float)ty, 0.0f);
+    gl->Uniform2f(u->size, (float)m->w_px, (float)m->h_px);
+    gl->UniformMatrix4fv(u->view_proj, 1, GL_FALSE, cam->view_proj);
+    gl->Uniform1f(u->mode, pos_pass ? 1.0f : 0.0f);
+    float sky[3] = {FT_SKY_R, FT_SKY_G, FT_SKY_B};
+    if (!pos_pass && p->shade_state != NULL) {
+        ft_shade_palette_sky(p->shade_state->palette, sky);
+        ft_renderer_shade_uniforms(gl, &u->shade, p->shade_state);
+    }
+    gl->Uniform4f(u->sky, sky[0], sky[1], sky[2], 1.0f);
+    gl->DepthFunc(GL_ALWAYS);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->DepthFunc(GL_LESS);
+}
+
+void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                          const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    GLint fb = 0;
+    gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
+    ft_pgm_method_select(&m->pgm, t, cam);
+    if (m->tight) {
+        tight_passes(m, gl, t, cam, fb);
+        gl->UseProgram(p->program);
+        st->draw_calls += 2u;
+    }
+    /* 1. the mesh, with the pass's program (already in use) */
+    gl->ActiveTexture(GL_TEXTURE2);
+    gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
+    gl->ActiveTexture(GL_TEXTURE0);
+    set_grid_uniforms(m, gl, p);
+    ft_pgm_method_draw(&m->pgm, gl, p, t, cam, st);
+    const int pos_pass = (p->shade.ramp_h < 0);
+    /* 2. the error buffer (the position pass reuses the colour pass's) */
+    {
+        const ft_terrain_program *e = m->err_prog;
+        gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
+        gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        gl->UseProgram(e->program);
+        gl->UniformMatrix4fv(e->u_view_proj, 1, GL_FALSE, cam->view_proj);
+        gl->Uniform3f(e->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
+                      (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+        gl->Uniform2f(m->u_err_k_gamma, (float)cam->px_per_rad_k, (float)m->gamma_px);
+        gl->Uniform3f(m->u_err_fwd, (float)cam->forward[0], (float)cam->forward[1],
+                      (float)cam->forward[2]);
+        set_grid_uniforms(m, gl, e);
+        ft_method_draw_stats dummy;
+        memset(&dummy, 0, sizeof dummy);
+        ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
+        st->draw_calls += dummy.draw_calls;
+        if (m->ray_casting) {
+            /* 2b. the upper and lower envelopes (src/lod/pgrid.h 3): where one
+             * lies in front of the mesh, the pixel may show a ridge the
+             * mesh's skyline missed (or, from under the ground, a surface
+             * the mesh leaves out): the pixel takes the larger code (GLES 3
+             * MAX blending); depth writes off, the mesh's depth decides */
+            const GLint env = m->u_err_envelope;
+            gl->DepthMask(GL_FALSE);
+            gl->Enable(GL_BLEND);
+            gl->BlendEquation(GL_MAX);
+            for (int side = 0; side < 2; ++side) {
+                gl->Uniform1f(env, side == 0 ? 1.0f : -1.0f);
+                memset(&dummy, 0, sizeof dummy);
+                ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
+                st->draw_calls += dummy.draw_calls;
+            }
+            gl->Disable(GL_BLEND);
+            gl->BlendEquation(GL_FUNC_ADD);
+            gl->DepthMask(GL_TRUE);
+            gl->Uniform1f(env, 0.0f);
+        }
+        /* 3. the decision (colour pass, or a view the colour pass did not see) */
+        if (!pos_pass || !same_decision_view(m, cam)) {
+            decide(m, gl, cam);
+        }
+        gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    }
+    /* 4. ray casting */
+    /* (not on the count: with the late decision it is the previous frame's;
+     * the pass leaves every pixel under the threshold alone) */
+    if (m->ray_casting && m->thr < FT_PGRID_CODES) {
+        ray_cast(m, gl, p, t, cam);
+        st->draw_calls += 1u;
+    }
+    gl->UseProgram(p->program);
+    st->raycast_px = m->rc_px;
+    st->terrain_px = m->terrain_px;
+    st->tau_achieved_px = m->achieved_px;
+    st->budget_hit = m->budget_hit;
+}
+
+void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
+{
+    ft_pgm_method_shutdown(&m->pgm, gl);
+    if (m->mm_tex) gl->DeleteTextures(1, &m->mm_tex);
+    if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
+    if (m->err_depth) gl->DeleteRenderbuffers(1, &m->err_depth);
+    if (m->err_fbo) gl->DeleteFramebuffers(1, &m->err_fbo);
+    if (m->rc_prog) gl->DeleteProgram(m->rc_prog);
+    if (m->quad_vbo) gl->DeleteBuffers(1, &m->quad_vbo);
+    if (m->pack_pbo[0]) gl->DeleteBuffers(2, m->pack_pbo);
+    m->pack_pbo[0] = m->pack_pbo[1] = 0u;
+    m->pbo_full[0] = m->pbo_full[1] = 0;
+    m->late = 0;
+    if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
+    if (m->vtx_prog_built && m->vtx_prog->program) gl->DeleteProgram(m->vtx_prog->program);
+    if (m->quad_prog) gl->DeleteProgram(m->quad_prog);
+    if (m->res_tex) gl->DeleteTextures(1, &m->res_tex);
+    if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
+    if (m->slope_tex) gl->DeleteTextures(1, &m->slope_tex);
+    if (m->quad_tex) gl->DeleteTextures(1, &m->quad_tex);
+    if (m->vtx_fbo) gl->DeleteFramebuffers(1, &m->vtx_fbo);
+    if (m->quad_fbo) gl->DeleteFramebuffers(1, &m->quad_fbo);
+    m->quad_prog = m->res_tex = m->vtx_tex = m->slope_tex = m->quad_tex = 0u;
+    m->vtx_fbo = m->quad_fbo = 0u;
+    m->vtx_prog_built = 0;
+    m->tight = 0;
+    m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;
+    m->err_prog_built = 0;
+}

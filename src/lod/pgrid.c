@@ -1,0 +1,452 @@
+/* pgrid.c - the error-bounded projective grid's CPU arithmetic (pgrid.h). */
+#include "lod/pgrid.h"
+
+#include <math.h>
+
+double ft_pgrid_delta(double hmin_m, double hmax_m, double h_m)
+{
+    const double a = hmax_m - h_m, b = h_m - hmin_m;
+    return (a > b) ? a : b;
+}
+
+double ft_pgrid_rho(double k_px, double delta_m, double dist_m)
+{
+    return k_px * delta_m / ((dist_m > 1e-6) ? dist_m : 1e-6);
+}
+
+double ft_pgrid_norm_error(double rho_px, double gamma_px)
+{
+    return (rho_px > gamma_px) ? 1.0 - gamma_px / rho_px : 0.0;
+}
+
+uint32_t ft_pgrid_code(double rho_px)
+{
+    if (!(rho_px > 0.0)) {
+        return 1u;
+    }
+    const double c =
+        ceil((log2(rho_px) - FT_PGRID_CODE_LOG2_MIN) * 255.0 / FT_PGRID_CODE_LOG2_SPAN);
+    if (!(c >= 1.0)) {
+        return 1u;
+    }
+    return (c >= 255.0) ? 255u : (uint32_t)c;
+}
+
+double ft_pgrid_code_rho_hi(uint32_t code)
+{
+    if (code >= 255u) {
+        return INFINITY; /* saturated: anything above 2^8 px */
+    }
+    return exp2((double)code * FT_PGRID_CODE_LOG2_SPAN / 255.0 + FT_PGRID_CODE_LOG2_MIN);
+}
+
+double ft_pgrid_row_s(double depression_rad, double y)
+{
+    const double beta = depression_rad - atan(y);
+    /* cot(beta) = cos / sin; beta in (0, pi) for every ray that meets the plane */
+    return asinh(cos(beta) / sin(beta));
+}
+
+double ft_pgrid_row_y(int distribution, double depression_rad, double y0, double y1,
+                      uint32_t rows, double j)
+{
+    const double t = j / (double)(rows - 1u);
+    if (distribution != FT_PGRID_DIST_VIEW) {
+        return y0 + (y1 - y0) * t;
+    }
+    const double s0 = ft_pgrid_row_s(depression_rad, y0);
+    const double s1 = ft_pgrid_row_s(depression_rad, y1);
+    const double s = s0 + (s1 - s0) * t;
+    const double beta = atan2(1.0, sinh(s));
+    return tan(depression_rad - beta);
+}
+
+static double clampd(double v, double lo, double hi)
+{
+    return (v < lo) ? lo : ((v > hi) ? hi : v);
+}
+
+void ft_pgrid_region_minmax(const ft_terrain *t, double x0_m, double y0_m, double x1_m,
+                            double y1_m, double *hmin_m, double *hmax_m)
+{
+    const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
+    double gx0 = clampd((x0_m - t->origin_world_x_m) / t->cell_x_m, 0.0, wx);
+    double gx1 = clampd((x1_m - t->origin_world_x_m) / t->cell_x_m, 0.0, wx);
+    double gy0 = clampd((y0_m - t->origin_world_y_m) / t->cell_y_m, 0.0, wy);
+    double gy1 = clampd((y1_m - t->origin_world_y_m) / t->cell_y_m, 0.0, wy);
+    if (gx1 < gx0) { double s = gx0; gx0 = gx1; gx1 = s; }
+    if (gy1 < gy0) { double s = gy0; gy0 = gy1; gy1 = s; }
+    const double side = fmax(fmax(gx1 - gx0, gy1 - gy0), 1.0);
+    uint32_t level = (uint32_t)fmax(0.0, ceil(log2(side)));
+    const ft_pyramid *p = &t->pyr;
+    if (level >= p->minmax_levels) {
+        level = p->minmax_levels - 1u;
+    }
+    const ft_pyramid_level *lv = &p->minmax[level];
+    const double scale = exp2((double)level);
+    /* texel i covers grid x in [i 2^L, (i + 1) 2^L]; x = 2^L k touches two */
+    uint32_t i0 = (uint32_t)fmin(floor(gx0 / scale), (double)(lv->width - 1u));
+    uint32_t i1 = (uint32_t)fmin(floor(gx1 / scale), (double)(lv->width - 1u));
+    uint32_t j0 = (uint32_t)fmin(floor(gy0 / scale), (double)(lv->height - 1u));
+    uint32_t j1 = (uint32_t)fmin(floor(gy1 / scale), (double)(lv->height - 1u));
+    if (i0 > 0u && gx0 == (double)i0 * scale) i0 -= 1u;
+    if (j0 > 0u && gy0 == (double)j0 * scale) j0 -= 1u;
+    if (i1 > i0 + 1u) i1 = i0 + 1u; /* side <= 2^L: never more than 2 texels */
+    if (j1 > j0 + 1u) j1 = j0 + 1u;
+    double lo = INFINITY, hi = -INFINITY;
+    for (uint32_t j = j0; j <= j1; ++j) {
+        for (uint32_t i = i0; i <= i1; ++i) {
+            const size_t k = (size_t)j * lv->width + i;
+            lo = fmin(lo, (double)lv->min_m[k]);
+            hi = fmax(hi, (double)lv->max_m[k]);
+        }
+    }
+    *hmin_m = lo;
+    *hmax_m = hi;
+}
+
+uint32_t ft_pgrid_budget_threshold(const uint32_t hist[FT_PGRID_CODES], double gamma_px,
+                                   uint64_t max_px, uint64_t *count, int *budget_hit)
+{
+    const uint32_t c0 = ft_pgrid_code(gamma_px);
+    uint64_t above[FT_PGRID_CODES + 1u];
+    above[FT_PGRID_CODES] = 0u;
+    for (uint32_t c = FT_PGRID_CODES; c-- > 0u;) {
+        above[c] = above[c + 1u] + hist[c];
+    }
+    uint32_t thr = c0;
+    while (thr < FT_PGRID_CODES && above[thr] > max_px) {
+        ++thr;
+    }
+    *count = above[thr];
+    *budget_hit = (thr > c0);
+    return thr;
+}
+
+void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *work,
+                        uint32_t hist[FT_PGRID_CODES])
+{
+    for (uint32_t c = 0; c < FT_PGRID_CODES; ++c) {
+        hist[c] = 0u;
+    }
+    for (uint32_t y = 0; y < h; ++y) {
+        const uint8_t *row = rgba + (size_t)y * w * 4u + 1u;
+        uint8_t *out = work + (size_t)y * w;
+        for (uint32_t x = 0; x < w; ++x) {
+            uint8_t m = row[(size_t)x * 4u];
+            if (x > 0u && row[(size_t)(x - 1u) * 4u] > m) m = row[(size_t)(x - 1u) * 4u];
+            if (x + 1u < w && row[(size_t)(x + 1u) * 4u] > m) m = row[(size_t)(x + 1u) * 4u];
+            out[x] = m;
+        }
+    }
+    for (uint32_t y = 0; y < h; ++y) {
+        const uint8_t *a = work + (size_t)(y > 0u ? y - 1u : y) * w;
+        const uint8_t *b = work + (size_t)y * w;
+        const uint8_t *c = work + (size_t)(y + 1u < h ? y + 1u : y) * w;
+        for (uint32_t x = 0; x < w; ++x) {
+            uint8_t m = b[x];
+            if (a[x] > m) m = a[x];
+            if (c[x] > m) m = c[x];
+            hist[m] += 1u;
+        }
+    }
+}
+
+/* Atlas of the min/max-shaped levels l0..: level l0 at (0, 0), levels
+ * l0 + 1.. stacked in a column right of it; 1 x 1 when there are none. */
+static void atlas_layout(const ft_terrain *t, uint32_t l0, uint32_t origin_px[][2],
+                         uint32_t *width_px, uint32_t *height_px)
+{
+    const ft_pyramid *p = &t->pyr;
+    *width_px = *height_px = 1u;
+    if (p->minmax_levels <= l0) {
+        return; /* the lower levels come from the heights: nothing to lay out */
+    }
+    const uint32_t w0 = p->minmax[l0].width, h0 = p->minmax[l0].height;
+    uint32_t col_w = 0u, y = 0u;
+    origin_px[l0][0] = 0u;
+    origin_px[l0][1] = 0u;
+    for (uint32_t l = l0 + 1u; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        origin_px[l][0] = w0;
+        origin_px[l][1] = y;
+        y += p->minmax[l].height;
+        col_w = (p->minmax[l].width > col_w) ? p->minmax[l].width : col_w;
+    }
+    *width_px = w0 + col_w;
+    *height_px = (y > h0) ? y : h0;
+}
+
+void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
+                            uint32_t *height_px)
+{
+    atlas_layout(t, FT_PGRID_ATLAS_L0, origin_px, half_w, height_px);
+}
+
+/* ---- 6. the tight bound ---------------------------------------------------- */
+
+void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
+                              uint32_t *height_px)
+{
+    atlas_layout(t, FT_PGRID_RES_L0, origin_px, width_px, height_px);
+}
+
+typedef struct node_box {
+    uint32_t x0, x1, y0, y1;
+    double m, bx, by; /* plane: centre value, rise across the node in x and y */
+} node_box;
+
+static node_box node_of(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j)
+{
+    node_box n;
+    const uint32_t s = 1u << level;
+    n.x0 = i * s;
+    n.y0 = j * s;
+    n.x1 = (n.x0 + s < t->width - 1u) ? n.x0 + s : t->width - 1u;
+    n.y1 = (n.y0 + s < t->height - 1u) ? n.y0 + s : t->height - 1u;
+    const float *h = t->heights_m;
+    const double h00 = h[(size_t)n.y0 * t->width + n.x0], h10 = h[(size_t)n.y0 * t->width + n.x1];
+    const double h01 = h[(size_t)n.y1 * t->width + n.x0], h11 = h[(size_t)n.y1 * t->width + n.x1];
+    n.m = 0.25 * (h00 + h10 + h01 + h11);
+    n.bx = 0.5 * (h10 + h11 - h00 - h01);
+    n.by = 0.5 * (h01 + h11 - h00 - h10);
+    return n;
+}
+
+static double plane_at(const node_box *n, double gx, double gy)
+{
+    const double u = (gx - (double)n->x0) / (double)(n->x1 - n->x0) - 0.5;
+    const double v = (gy - (double)n->y0) / (double)(n->y1 - n->y0) - 0.5;
+    return n->m + n->bx * u + n->by * v;
+}
+
+double ft_pgrid_node_plane(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j,
+                           double gx, double gy)
+{
+    const node_box n = node_of(t, level, i, j);
+    return plane_at(&n, gx, gy);
+}
+
+double ft_pgrid_node_residual(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j)
+{
+    const node_box n = node_of(t, level, i, j);
+    double r = 0.0;
+    for (uint32_t y = n.y0; y <= n.y1; ++y) {
+        const float *row = t->heights_m + (size_t)y * t->width;
+        for (uint32_t x = n.x0; x <= n.x1; ++x) {
+            const double d = fabs((double)row[x] - plane_at(&n, (double)x, (double)y));
+            r = (d > r) ? d : r;
+        }
+    }
+    return r;
+}
+
+void ft_pgrid_residual_fill(const ft_terrain *t, float *atlas, uint32_t width_px,
+                            uint32_t height_px)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], w = 1u, h = 1u;
+    ft_pgrid_residual_layout(t, origin, &w, &h);
+    for (size_t k = 0; k < (size_t)width_px * height_px; ++k) {
+        atlas[k] = 0.0f;
+    }
+    const ft_pyramid *p = &t->pyr;
+    for (uint32_t l = FT_PGRID_RES_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        const ft_pyramid_level *lv = &p->minmax[l];
+        for (uint32_t j = 0; j < lv->height; ++j) {
+            float *row = atlas + (size_t)(origin[l][1] + j) * width_px + origin[l][0];
+            for (uint32_t i = 0; i < lv->width; ++i) {
+                /* float rounds to nearest: one ulp up keeps it a bound */
+                const double r = ft_pgrid_node_residual(t, l, i, j);
+                row[i] = nextafterf((float)r, INFINITY);
+            }
+        }
+    }
+}
+
+/* The quad with its corners clamped into the grid (the shader's rule: the
+ * grid's vertices are clamped into it, a rounding must not leave it). */
+static ft_pgrid_quad clamped(const ft_terrain *t, const ft_pgrid_quad *q)
+{
+    ft_pgrid_quad c = *q;
+    for (int k = 0; k < 4; ++k) {
+        c.g[k][0] = clampd(c.g[k][0], 0.0, (double)(t->width - 1u));
+        c.g[k][1] = clampd(c.g[k][1], 0.0, (double)(t->height - 1u));
+    }
+    return c;
+}
+
+/* The grid-coordinate box of a quad's corners. */
+static void quad_box(const ft_pgrid_quad *q, double *lo_x, double *hi_x, double *lo_y,
+                     double *hi_y)
+{
+    *lo_x = *hi_x = q->g[0][0];
+    *lo_y = *hi_y = q->g[0][1];
+    for (int k = 1; k < 4; ++k) {
+        *lo_x = fmin(*lo_x, q->g[k][0]);
+        *hi_x = fmax(*hi_x, q->g[k][0]);
+        *lo_y = fmin(*lo_y, q->g[k][1]);
+        *hi_y = fmax(*hi_y, q->g[k][1]);
+    }
+}
+
+/* |f| at the ends of a quadratic piece f(t) on [ta, tb] with end values fa,
+ * fb and curvature gamma (f'' = 2 gamma), and at its stationary point */
+static double piece_max(double ta, double tb, double fa, double fb, double gamma)
+{
+    double m = fmax(fabs(fa), fabs(fb));
+    const double w = tb - ta;
+    if (w > 0.0 && gamma != 0.0) {
+        const double sl = (fb - fa) / w;
+        const double ts = 0.5 * (ta + tb) - sl / (2.0 * gamma);
+        if (ts > ta && ts < tb) {
+            m = fmax(m, fabs(fa + (ts - ta) * sl + gamma * (ts - ta) * (ts - tb)));
+        }
+    }
+    return m;
+}
+
+/* Barycentric weights of (x, y) in triangle a b c; 0 if degenerate. */
+static int barycentric(const double a[2], const double b[2], const double c[2], double x,
+                       double y, double w[3])
+{
+    const double det = (b[1] - c[1]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[1] - c[1]);
+    if (fabs(det) < 1e-12) {
+        return 0;
+    }
+    w[0] = ((b[1] - c[1]) * (x - c[0]) + (c[0] - b[0]) * (y - c[1])) / det;
+    w[1] = ((c[1] - a[1]) * (x - c[0]) + (a[0] - c[0]) * (y - c[1])) / det;
+    w[2] = 1.0 - w[0] - w[1];
+    return 1;
+}
+
+static double sample_at(const ft_terrain *t, uint32_t x, uint32_t y)
+{
+    return (double)t->heights_m[(size_t)y * t->width + x];
+}
+
+double ft_pgrid_quad_exact(const ft_terrain *t, const ft_pgrid_quad *q_in, int *fits)
+{
+    const ft_pgrid_quad qc = clamped(t, q_in);
+    const double(*g)[2] = qc.g;
+    const double *h = qc.h_m;
+    double lo_x, hi_x, lo_y, hi_y;
+    quad_box(&qc, &lo_x, &hi_x, &lo_y, &hi_y);
+    /* the window: FT_PGRID_EXACT_CELLS cells from floor(lo), moved inside */
+    const double n = (double)FT_PGRID_EXACT_CELLS;
+    const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
+    const double ox = fmax(0.0, fmin(floor(lo_x), wx - n)), oy = fmax(0.0, fmin(floor(lo_y), wy - n));
+    *fits = (lo_x >= ox && lo_y >= oy && hi_x <= ox + n && hi_y <= oy + n);
+    if (!*fits) {
+        return 0.0;
+    }
+    /* the quad's 5 edges (triangles 0-1-3 and 0-3-2: the grid's index order) */
+    static const int edge[5][2] = {{0, 1}, {1, 3}, {3, 2}, {2, 0}, {0, 3}};
+    double e = 0.0;
+    for (uint32_t cy = 0; cy < FT_PGRID_EXACT_CELLS; ++cy) {
+        for (uint32_t cx = 0; cx < FT_PGRID_EXACT_CELLS; ++cx) {
+            const double x0 = ox + cx, y0 = oy + cy;
+            if (x0 + 1.0 > wx + 1e-9 || y0 + 1.0 > wy + 1e-9) continue; /* grid smaller than the window */
+            if (x0 > hi_x || x0 + 1.0 < lo_x || y0 > hi_y || y0 + 1.0 < lo_y) continue;
+            const uint32_t ix = (uint32_t)x0, iy = (uint32_t)y0;
+            const double h00 = sample_at(t, ix, iy), h10 = sample_at(t, ix + 1u, iy);
+            const double h01 = sample_at(t, ix, iy + 1u), h11 = sample_at(t, ix + 1u, iy + 1u);
+            const double d = h00 - h10 - h01 + h11;
+            for (int k = 0; k < 5; ++k) {
+                const double *p = g[edge[k][0]], *r = g[edge[k][1]];
+                const double hp = h[edge[k][0]], hr = h[edge[k][1]];
+                const double dx = r[0] - p[0], dy = r[1] - p[1];
+                /* the edge's parameter range inside the cell (slabs) */
+                double ta = 0.0, tb = 1.0;
+                if (dx != 0.0) {
+                    const double t0 = (x0 - p[0]) / dx, t1 = (x0 + 1.0 - p[0]) / dx;
+                    ta = fmax(ta, fmin(t0, t1));
+                    tb = fmin(tb, fmax(t0, t1));
+                } else if (p[0] < x0 || p[0] > x0 + 1.0) {
+                    continue;
+                }
+                if (dy != 0.0) {
+                    const double t0 = (y0 - p[1]) / dy, t1 = (y0 + 1.0 - p[1]) / dy;
+                    ta = fmax(ta, fmin(t0, t1));
+                    tb = fmin(tb, fmax(t0, t1));
+                } else if (p[1] < y0 || p[1] > y0 + 1.0) {
+                    continue;
+                }
+                if (ta > tb) continue;
+                double f[2];
+                for (int end = 0; end < 2; ++end) {
+                    const double tt = end ? tb : ta;
+                    const double u = p[0] + tt * dx - x0, v = p[1] + tt * dy - y0;
+                    const double hb = h00 + (h10 - h00) * u + (h01 - h00) * v + d * u * v;
+                    f[end] = hb - (hp + tt * (hr - hp));
+                }
+                e = fmax(e, piece_max(ta, tb, f[0], f[1], d * dx * dy));
+            }
+        }
+    }
+    /* samples inside a triangle: H has a kink there */
+    static const int tri[2][3] = {{0, 1, 3}, {0, 3, 2}};
+    for (uint32_t sy = 0; sy <= FT_PGRID_EXACT_CELLS; ++sy) {
+        for (uint32_t sx = 0; sx <= FT_PGRID_EXACT_CELLS; ++sx) {
+            const double x = ox + sx, y = oy + sy;
+            if (x > wx || y > wy || x < lo_x || x > hi_x || y < lo_y || y > hi_y) continue;
+            for (int k = 0; k < 2; ++k) {
+                double w[3];
+                const int *v = tri[k];
+                if (!barycentric(g[v[0]], g[v[1]], g[v[2]], x, y, w)) continue;
+                if (w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0) continue;
+                const double l = w[0] * h[v[0]] + w[1] * h[v[1]] + w[2] * h[v[2]];
+                e = fmax(e, fabs(sample_at(t, (uint32_t)x, (uint32_t)y) - l));
+            }
+        }
+    }
+    return e;
+}
+
+double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q)
+{
+    int fits = 0;
+    const double exact = ft_pgrid_quad_exact(t, q, &fits);
+    if (fits) {
+        return exact;
+    }
+    return ft_pgrid_quad_residual(t, q);
+}
+
+double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q_in)
+{
+    const ft_pgrid_quad qc = clamped(t, q_in);
+    const double(*g)[2] = qc.g;
+    const double *h = qc.h_m;
+    double lo_x, hi_x, lo_y, hi_y;
+    quad_box(&qc, &lo_x, &hi_x, &lo_y, &hi_y);
+    const double wx = (double)(t->width - 1u), wy = (double)(t->height - 1u);
+    lo_x = clampd(lo_x, 0.0, wx);
+    hi_x = clampd(hi_x, 0.0, wx);
+    lo_y = clampd(lo_y, 0.0, wy);
+    hi_y = clampd(hi_y, 0.0, wy);
+    const double side = fmax(fmax(hi_x - lo_x, hi_y - lo_y), 1.0);
+    uint32_t level = (uint32_t)fmax(0.0, ceil(log2(side)));
+    const ft_pyramid *p = &t->pyr;
+    if (level >= p->minmax_levels) {
+        level = p->minmax_levels - 1u;
+    }
+    const ft_pyramid_level *lv = &p->minmax[level];
+    const double scale = exp2((double)level);
+    const uint32_t i0 = (uint32_t)fmin(floor(lo_x / scale), (double)(lv->width - 1u));
+    const uint32_t j0 = (uint32_t)fmin(floor(lo_y / scale), (double)(lv->height - 1u));
+    uint32_t i1 = (uint32_t)fmin(floor(hi_x / scale), (double)(lv->width - 1u));
+    uint32_t j1 = (uint32_t)fmin(floor(hi_y / scale), (double)(lv->height - 1u));
+    if (i1 > i0 + 1u) i1 = i0 + 1u; /* side <= 2^L: never more than 2 nodes */
+    if (j1 > j0 + 1u) j1 = j0 + 1u;
+    double e = 0.0;
+    for (uint32_t j = j0; j <= j1; ++j) {
+        for (uint32_t i = i0; i <= i1; ++i) {
+            const node_box n = node_of(t, level, i, j);
+            double off = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                off = fmax(off, fabs(plane_at(&n, g[k][0], g[k][1]) - h[k]));
+            }
+            e = fmax(e, ft_pgrid_node_residual(t, level, i, j) + off);
+        }
+    }
+    return e;
+}

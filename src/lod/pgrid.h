@@ -1,0 +1,207 @@
+/* pgrid.h - the error-bounded projective grid (method 'pgrid'): the CPU half
+ * of the arithmetic, the mirror the tests hold shaders/pgrid*.glsl to.
+ *
+ * pgrid is pgm (src/lod/pgm.h: sampling camera, viewport extension, per-vertex
+ * avg-pyramid LOD; its C functions are reused here) plus:
+ *
+ * 1. Row distribution. Row j of rows (t = j / (rows - 1)) sits at image-plane
+ *    height y_j of the sampling camera (depression dep_s, eye h above the
+ *    base plane). uniform: y_j = mix(y0, y1, t) (pgm). view: the centre ray at
+ *    image height y has depression beta = dep_s - atan(y) and meets the base
+ *    plane at the signed ground distance d = h cot(beta). Rows are evenly
+ *    spaced in
+ *        s = asinh(d / h)
+ *    so s_j = mix(s(y0), s(y1), t), beta_j = atan2(1, sinh(s_j)),
+ *    y_j = tan(dep_s - beta_j) (closed form, monotone in j). For d >> h,
+ *    s ~ ln(2 d / h): rows are spaced uniformly in log ground distance, so
+ *    a cell's depth on the ground (d ds) grows like its width (prop. to d) and
+ *    cells stay close to square; near the nadir (d ~ 0) asinh is linear and
+ *    the rows are ~h apart, and a bottom edge past the nadir (d < 0) is fine.
+ *    The columns stay uniform in x (cells are already d-proportional across).
+ *
+ * 2. Per-vertex object-space error. Region of influence of vertex (i, j):
+ *    the axis-aligned box of the ground points of grid points (i +- 1, j +- 1)
+ *    (clamped into the grid): every triangle touching the vertex lies in it.
+ *    hmin, hmax: min/max pyramid over the box, read at the level L_b where the
+ *    box spans at most 2 x 2 texels, L_b = max(0, ceil(log2(box side in
+ *    cells))). With h_v the vertex's (avg-pyramid, morphed) height,
+ *        delta = max(hmax - h_v, h_v - hmin)   (>= 0 always; h_v may lie outside)
+ *    and |h_v - H(x)| <= delta for every x of the box. A mesh point P is a
+ *    convex combination of its triangle's vertices, so |P.z - H(P.xy)| <=
+ *    the same combination of the deltas: the interpolated delta. Per fragment
+ *        rho = K * delta / (|P - eye| cos^2 theta),  K = height_px / (2 tan(fovy / 2))
+ *    with theta the angle between P - eye and the view axis, bounds the
+ *    metric's e (src/measure/metric.h, which is rho's numerator over |P - eye|: the
+ *    angle in centre pixels) and the displacement in true pixels: a
+ *    perspective image stretches angles by up to 1 / cos^2 theta (radially),
+ *    15x at 75 degrees off axis, so wide views (FOV 150) need the factor.
+ *
+ * 3. Error buffer (RGBA8, drawn with the grid): R = 1 - gamma / rho where
+ *    rho > gamma, else 0 (the normalised error), G = code(rho), an 8-bit
+ *    log code rounded UP: code(rho) = ceil((log2(rho) + 8) * 255 / 16) clamped
+ *    to [1, 255] for terrain, 0 for sky (clear). rho > g implies code(rho) >=
+ *    code(g), so thresholding codes is conservative.
+ *    With ray casting, the grid is drawn twice more into it, as envelopes:
+ *    every vertex at the max (then the min) of its region, with GLES 3 MAX
+ *    blending and depth writes off (the mesh's depth decides what is in
+ *    front). A vertex's region holds every cell around it, so the upper
+ *    envelope lies on or above the surface over each triangle's footprint,
+ *    and a ray from an eye above it that reaches the surface crosses it
+ *    first: every pixel the true surface can cover is covered by the mesh or
+ *    an envelope in front of it, and takes the largest code there. Without
+ *    them a ridge whose mesh skyline is lower than the true one shows sky
+ *    (or farther terrain) with a small code: 28 pixels of missed ridge on
+ *    Rainier at 800 x 600, 0 with them. The lower envelope does the same for
+ *    an eye under the ground, looking at the surface from below.
+ *
+ * 4. Ray-cast set: pixel p is ray cast iff max(code over p's 3 x 3
+ *    neighbourhood) >= code_thr. The one-pixel dilation is the silhouette
+ *    rule: a sky pixel next to a terrain pixel over gamma is ray cast too
+ *    (the mesh edge there may be off by up to rho px); sky next to terrain
+ *    under gamma is within gamma (<= 1 px for gamma <= 1). code_thr =
+ *    code(gamma_px) unless the budget says otherwise (5).
+ *
+ * 5. Budget: the histogram of dilated codes of an error buffer gives the
+ *    count for every threshold. The smallest threshold >= code(gamma) whose
+ *    count fits raycast_max_px is used; if it is above code(gamma) the
+ *    budget was hit, and the error reported is rho_hi(thr - 1) (the largest
+ *    rho a code below the threshold stands for). With ray casting (GLES 3)
+ *    the decision is one frame late and never stalls: the frame's error
+ *    buffer is read into a pixel-pack buffer without waiting, and the next
+ *    frame maps it (complete by then) to choose its own threshold. The
+ *    threshold is applied per pixel on the GPU to the frame's own buffer,
+ *    so the bound holds on every frame; what is late is the count: after an
+ *    abrupt change of view one frame can ray cast more than raycast_max_px
+ *    (a time overrun, not an error one), and the counts reported are the
+ *    previous frame's. Without ray casting (GLES 2) the buffer is read at
+ *    once and the reported error is rho_hi(largest code present). */
+#ifndef FT_PGRID_H
+#define FT_PGRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lod/pgm.h"
+#include "terrain/terrain.h"
+
+#define FT_PGRID_DIST_UNIFORM 0
+#define FT_PGRID_DIST_VIEW 1
+#define FT_PGRID_CODE_LOG2_MIN (-8.0)
+#define FT_PGRID_CODE_LOG2_SPAN 16.0
+#define FT_PGRID_CODES 256u
+
+/* delta = max(hmax - h, h - hmin) (>= 0 for h in or out of [hmin, hmax]). */
+double ft_pgrid_delta(double hmin_m, double hmax_m, double h_m);
+/* rho = K * delta / dist (dist floored at 1e-6 m). */
+double ft_pgrid_rho(double k_px, double delta_m, double dist_m);
+/* 0 where rho <= gamma, else 1 - gamma / rho (in [0, 1)). */
+double ft_pgrid_norm_error(double rho_px, double gamma_px);
+
+/* 8-bit error code (rounded up; >= 1 for any rho, 0 is reserved for sky). */
+uint32_t ft_pgrid_code(double rho_px);
+/* The largest rho code c stands for: 2^((c * 16 / 255) - 8). */
+double ft_pgrid_code_rho_hi(uint32_t code);
+
+/* s(y) = asinh(cot(dep - atan(y))) for the sampling depression dep. */
+double ft_pgrid_row_s(double depression_rad, double y);
+/* Image-plane height of row j (0 bottom) of rows, for rect y in [y0, y1]. */
+double ft_pgrid_row_y(int distribution, double depression_rad, double y0, double y1,
+                      uint32_t rows, double j);
+
+/* Min and max of the surface over the world box [x0,x1] x [y0,y1] (metres),
+ * clamped into the grid, read from the min/max pyramid at the level where
+ * the box spans at most 2 x 2 texels (the shader's rule). */
+void ft_pgrid_region_minmax(const ft_terrain *t, double x0_m, double y0_m, double x1_m,
+                            double y1_m, double *hmin_m, double *hmax_m);
+
+/* The ray-cast threshold for a histogram of dilated codes (hist[c] pixels
+ * with dilated code c; hist[0] is sky away from terrain over gamma): the
+ * smallest code >= code(gamma) with count(code >= thr) <= max_px (256 =
+ * nothing ray cast). *count: pixels ray cast at the threshold;
+ * *budget_hit: thr > code(gamma). */
+uint32_t ft_pgrid_budget_threshold(const uint32_t hist[FT_PGRID_CODES], double gamma_px,
+                                   uint64_t max_px, uint64_t *count, int *budget_hit);
+
+/* Dilated-code histogram from an RGBA8 error-buffer readback (G = code),
+ * w x h; work: w * h bytes scratch (may alias rgba's last 3/4: see .c). */
+void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *work,
+                        uint32_t hist[FT_PGRID_CODES]);
+
+/* Atlas of the min and max pyramids' levels FT_PGRID_ATLAS_L0.. (levels 0
+ * and 1 are computed from the heights texture in the shaders: 2 x 2 and
+ * 3 x 3 samples; that keeps the atlas at 1/16 of the grid): level L at
+ * origin_px[L] for min and origin_px[L] + (half_w, 0) for max. 1 x 1 when
+ * there are no such levels. */
+#define FT_PGRID_ATLAS_L0 2u
+void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
+                            uint32_t *height_px);
+
+/* 6. The tight bound (GLES 3 with ray casting): what the error buffer needs
+ *    is |L(x) - H(x)|, L the drawn surface (the grid's linear interpolation
+ *    of its vertex heights), H the bilinear truth, not the relief of H
+ *    around a vertex (2), which on real terrain exceeds gamma's worth of
+ *    metres at almost every vertex.
+ *    Plane-residual pyramid: node (i, j) of level L covers the same samples
+ *    as min/max texel (i, j) of level L, [x0, x1] x [y0, y1] with x0 = i 2^L,
+ *    x1 = min(x0 + 2^L, width - 1). Its plane p is the least-squares plane of
+ *    its four corner samples: centre value m = mean of the corners, slopes
+ *    bx = (h10 + h11 - h00 - h01) / 2 across x1 - x0, by likewise. Its
+ *    residual r = max |H - p| over the node, exact from the samples alone
+ *    (H - p is bilinear on every cell, so its extremes are at samples). At
+ *    level 0 (one cell) r = |h00 - h10 - h01 + h11| / 4, computed from the
+ *    heights; levels FT_PGRID_RES_L0.. are an R32F atlas.
+ *    Quad bound: a grid quad with corners (g_k, h_k) (grid coordinates of
+ *    the drawn vertices and their drawn heights) is covered by <= 2 x 2 nodes
+ *    of the level where its box spans at most 2 nodes (2's rule). Over the
+ *    part of the quad in node N,
+ *        H - L = (H - p_N) + (p_N - L),  |H - p_N| <= r_N,
+ *    and p_N - L is linear on each of the quad's two triangles, so its extreme
+ *    is at a corner: |H - L| <= r_N + max_k |p_N(g_k) - h_k|. The quad's
+ *    bound e_Q is the largest over its nodes, plus the curvature chord (2).
+ *    A vertex's delta is the largest e_Q of the <= 4 quads around it (every
+ *    triangle touching the vertex lies in one of them), so the interpolated
+ *    delta bounds |L - H| over every triangle, as before; the envelopes are
+ *    the mesh moved up and down by delta (they enclose H). */
+#define FT_PGRID_RES_L0 1u
+/* Atlas of the residual levels FT_PGRID_RES_L0.. (level L at origin_px[L]),
+ * width_px x height_px (1 x 1 when the terrain has no such level). */
+void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
+                              uint32_t *height_px);
+/* Residual r of node (i, j) at level (any level, 0 included), from the
+ * heights: max |H - p| over the node's samples. */
+double ft_pgrid_node_residual(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j);
+/* Plane of node (i, j) at level evaluated at grid point (gx, gy). */
+double ft_pgrid_node_plane(const ft_terrain *t, uint32_t level, uint32_t i, uint32_t j,
+                           double gx, double gy);
+/* Fills the residual atlas (row-major, width_px x height_px floats; texels
+ * outside every level are 0). Init time: each level visits every sample once. */
+void ft_pgrid_residual_fill(const ft_terrain *t, float *atlas, uint32_t width_px,
+                            uint32_t height_px);
+/* A grid quad as drawn: corners (i, j), (i+1, j), (i, j+1), (i+1, j+1) at
+ * grid coordinates g[k] (clamped into the grid) with drawn heights h_m[k]. */
+typedef struct ft_pgrid_quad {
+    double g[4][2];
+    double h_m[4];
+} ft_pgrid_quad;
+/* Exact quads: a quad whose box lies in a window of FT_PGRID_EXACT_CELLS^2
+ * cells gets the exact max of |L - H|. On a piece (a triangle inside one
+ * cell) H - L = linear + D u v (D the cell's twist): a saddle, so its
+ * extremes over the piece are on the piece's boundary; along a cell line H
+ * is linear, so on the cell-line parts of the boundary they are at the
+ * ends, which are samples inside the triangle or points on its edges; along
+ * a triangle edge inside a cell H - L is a quadratic in the edge parameter
+ * (curvature D dx dy): its ends and its one stationary point. So the max is
+ * over (a) the 5 edges of the quad's two triangles, cut at the cell lines,
+ * each piece's ends and stationary point, and (b) the samples inside a
+ * triangle. Bigger quads take the residual rule. */
+#define FT_PGRID_EXACT_CELLS 4u
+/* The exact max for a quad that fits the window (*fits = 1), else 0 with
+ * *fits = 0. */
+double ft_pgrid_quad_exact(const ft_terrain *t, const ft_pgrid_quad *q, int *fits);
+/* The residual rule's bound (any quad). */
+double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q);
+/* The quad bound e_Q (metres, without the chord): exact when the quad fits
+ * the window, else the residual rule; the shader's rule in double. */
+double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q);
+
+#endif

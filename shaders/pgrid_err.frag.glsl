@@ -10,12 +10,7 @@ precision highp float;
 precision mediump float;
 #endif
 
-#if FT_ES3
-out vec4 o_color;
-#define FT_FRAG_COLOR o_color
-#else
-#define FT_FRAG_COLOR gl_FragColor
-#endif
+#include "frag_out.glsl"
 
 uniform vec2 u_pgrid_err;  /* (K px, gamma px) */
 uniform vec3 u_pgrid_fwd;  /* viewing camera's forward axis (world, unit) */

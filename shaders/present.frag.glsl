@@ -1,11 +1,9 @@
 /* present.frag.glsl - copies the frame texel for texel (NEAREST, same size). */
 precision mediump float;
+#include "frag_out.glsl"
 #if FT_ES3
-out vec4 o_color;
-#define FT_FRAG_COLOR o_color
 #define FT_TEXTURE texture
 #else
-#define FT_FRAG_COLOR gl_FragColor
 #define FT_TEXTURE texture2D
 #endif
 uniform sampler2D u_frame;

@@ -6,12 +6,7 @@ precision highp float;
 precision mediump float;
 #endif
 
-#if FT_ES3
-out vec4 o_color;
-#define FT_FRAG_COLOR o_color
-#else
-#define FT_FRAG_COLOR gl_FragColor
-#endif
+#include "frag_out.glsl"
 
 #include "shade_relative.glsl"
 #include "shade.glsl"

@@ -3,12 +3,7 @@
  * target; alpha 1 marks terrain (the clear value has alpha 0). */
 precision highp float;
 
-#if FT_ES3
-out vec4 o_color;
-#define FT_FRAG_COLOR o_color
-#else
-#define FT_FRAG_COLOR gl_FragColor
-#endif
+#include "frag_out.glsl"
 
 FT_IN_FS vec3 v_pos_rel_eye_m;
 FT_IN_FS vec3 v_normal;

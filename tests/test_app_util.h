@@ -17,6 +17,43 @@ static inline ft_pose ft_test_pose(double lat, double lon, double alt, double he
     return p;
 }
 
+/* The crack tests' views over N42E001, which the terrain covers completely:
+ * nadir, and oblique views steep enough that the top edge of the frustum
+ * meets the ground well inside the grid (about 20 km away at most; the grid
+ * is about 80 x 110 km). */
+#define FT_TEST_COVERED_VIEWS 5u
+static inline ft_pose ft_test_covered_view(uint32_t i)
+{
+    static const double v[FT_TEST_COVERED_VIEWS][6] = {
+        {42.50, 1.50, 6000.0, 0.0, -90.0, 0.0},    {42.45, 1.45, 4500.0, 30.0, -89.0, 0.0},
+        {42.50, 1.50, 4000.0, 45.0, -45.0, 0.0},   {42.40, 1.60, 4200.0, 200.0, -50.0, 10.0},
+        {42.60, 1.40, 4000.0, 300.0, -60.0, -15.0},
+    };
+    const double *a = v[i % FT_TEST_COVERED_VIEWS];
+    return ft_test_pose(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+
+/* Clears to magenta, never a terrain colour, so that a crack or a hole in
+ * the drawn surface shows as clear pixels (ft_test_clear_pixels). */
+static inline void ft_test_clear_magenta(ft_app *app)
+{
+    app->renderer.clear_rgb[0] = 1.0f;
+    app->renderer.clear_rgb[1] = 0.0f;
+    app->renderer.clear_rgb[2] = 1.0f;
+}
+
+/* Pixels of the clear colour in the app's last frame. */
+static inline uint32_t ft_test_clear_pixels(const ft_app *app)
+{
+    const uint8_t *p = app->renderer.rgba;
+    const size_t n = (size_t)app->scene.width_px * app->scene.height_px;
+    uint32_t c = 0;
+    for (size_t i = 0; i < n; ++i) {
+        c += (p[4u * i] == 255u && p[4u * i + 1u] == 0u && p[4u * i + 2u] == 255u);
+    }
+    return c;
+}
+
 /* Parses scene_text over the defaults and inits app; what names the set-up
  * in the failure message. */
 static inline void ft_test_app_init(ft_app *app, const char *scene_text, const char *what)

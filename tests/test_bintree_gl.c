@@ -372,29 +372,8 @@ static void test_watertight(const char *dem)
 
 /* ---- 2. image crack test -------------------------------------------------------- */
 
-static uint32_t clear_pixels(void)
-{
-    const uint8_t *p = g_app.renderer.rgba;
-    const size_t n = (size_t)g_app.scene.width_px * g_app.scene.height_px;
-    uint32_t c = 0;
-    for (size_t i = 0; i < n; ++i) {
-        c += (p[4u * i] == 255u && p[4u * i + 1u] == 0u && p[4u * i + 2u] == 255u);
-    }
-    return c;
-}
-
 static void test_cracks(const char *backend, const char *dem)
 {
-    /* Views the terrain covers completely: nadir, and oblique views steep
-     * enough that the top edge of the frustum meets the ground well inside
-     * the grid (about 20 km away at most; the grid is about 80 x 110 km). */
-    const ft_pose covered[] = {
-        ft_test_pose(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
-        ft_test_pose(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
-        ft_test_pose(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
-        ft_test_pose(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
-        ft_test_pose(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
-    };
     static const uint32_t ks[] = {2, 3, 4, 2, 3};
     static const uint32_t subs[] = {0, 0, 0, 2, 3};
     static const double taus[] = {0.5, 2.0, 8.0};
@@ -408,15 +387,14 @@ static void test_cracks(const char *backend, const char *dem)
                 /* the strict GLES 2 context (MESA_GLES_VERSION_OVERRIDE=2.0) */
                 CHECK(strstr(g_app.gpu.version, "OpenGL ES 2.0") != NULL);
             }
-            g_app.renderer.clear_rgb[0] = 1.0f; /* magenta: never a terrain colour */
-            g_app.renderer.clear_rgb[1] = 0.0f;
-            g_app.renderer.clear_rgb[2] = 1.0f;
+            ft_test_clear_magenta(&g_app);
             uint32_t tiles_sum = 0;
-            for (size_t v = 0; v < sizeof covered / sizeof covered[0]; ++v) {
+            for (uint32_t v = 0; v < FT_TEST_COVERED_VIEWS; ++v) {
+                const ft_pose view = ft_test_covered_view(v);
                 ft_camera cam;
                 ft_frame_stats fs;
-                ft_test_frame(&g_app, &covered[v], &cam, &fs);
-                const uint32_t n = clear_pixels();
+                ft_test_frame(&g_app, &view, &cam, &fs);
+                const uint32_t n = ft_test_clear_pixels(&g_app);
                 tiles_sum += fs.tiles;
                 CHECK(fs.tiles > 0u);
                 /* GLES 3: one instanced draw, two with sub-sample levels (coarse
@@ -426,7 +404,7 @@ static void test_cracks(const char *backend, const char *dem)
                                         g_app.renderer.prog_color.coarse != NULL) ? 2u : 1u;
                 CHECK(es2 ? fs.draw_calls == fs.tiles : fs.draw_calls == kinds);
                 if (n > 0u) {
-                    fprintf(stderr, "k=%u tau=%.1f view %zu: %u clear-colour pixels\n", ks[ki],
+                    fprintf(stderr, "k=%u tau=%.1f view %u: %u clear-colour pixels\n", ks[ki],
                             taus[ti], v, n);
                 }
                 if (n > worst) worst = n;
@@ -437,11 +415,11 @@ static void test_cracks(const char *backend, const char *dem)
             ft_frame_stats fs;
             const ft_pose sky = ft_test_pose(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
             ft_test_frame(&g_app, &sky, &cam, &fs);
-            CHECK(clear_pixels() > 1000u);
+            CHECK(ft_test_clear_pixels(&g_app) > 1000u);
             printf("cracks %s k=%u S=%u tau=%.1f: %u tiles over %zu covered views, 0 expected "
                    "clear pixels\n",
                    backend, ks[ki], subs[ki], taus[ti], tiles_sum,
-                   sizeof covered / sizeof covered[0]);
+                   (size_t)FT_TEST_COVERED_VIEWS);
             ft_app_shutdown(&g_app);
         }
     }

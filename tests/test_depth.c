@@ -45,6 +45,7 @@
 #include <string.h>
 
 #include "core/camera.h"
+#include "core/units.h"
 #include "terrain/pyramid.h"
 #include "terrain/terrain.h"
 #include "terrain/terrain_file.h"
@@ -56,7 +57,6 @@
 #include "test_app_util.h"
 #endif
 
-#define PI 3.14159265358979323846
 
 /* ---- rule ------------------------------------------------------------------------- */
 
@@ -134,7 +134,7 @@ static void brute_force(const ft_terrain *t, const double eye[3], double k, doub
 
 static double corner_cos_for(double fovy_deg, double aspect)
 {
-    const double ty = tan(0.5 * fovy_deg * PI / 180.0), tx = ty * aspect;
+    const double ty = tan(0.5 * fovy_deg * FT_PI / 180.0), tx = ty * aspect;
     return 1.0 / sqrt(1.0 + tx * tx + ty * ty);
 }
 
@@ -299,10 +299,10 @@ static void render(const char *backend, const char *dem, uint8_t *out, ft_frame_
     ft_test_app_init(&g_app, g_text, dem);
     const ft_terrain *t = &g_app.terrain;
     /* the eye above sample (ORD_COL_EYE, ORD_ROW_EYE), as a pose */
-    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double m_per_deg = FT_EARTH_RADIUS_M * FT_PI / 180.0;
     const double ex = ORD_X0 + ORD_COL_EYE * ORD_DX, ey = ORD_Y0 + ORD_ROW_EYE * ORD_DY;
     ft_pose p = {t->anchor_lat_deg + (ey - ORD_Y0) / m_per_deg,
-                 t->anchor_lon_deg + (ex - ORD_X0) / (m_per_deg * cos(t->anchor_lat_deg * PI / 180.0)),
+                 t->anchor_lon_deg + (ex - ORD_X0) / (m_per_deg * cos(t->anchor_lat_deg * FT_PI / 180.0)),
                  ORD_EYE_ALT, 180.0, -0.2, 0.0};
     ft_camera cam;
     ft_error err;

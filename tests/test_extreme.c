@@ -34,6 +34,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "core/units.h"
 #include "input/pose_feed.h"
 #include "terrain/pyramid.h"
 #include "terrain/terrain_file.h"
@@ -278,7 +279,7 @@ static int horizon_ok(const ft_camera *cam, const char *method)
     for (uint32_t y = 0; y < h && first == h; ++y) {
         if (pos[((size_t)y * w + w / 2u) * 4u + 3u] > 0.5f) first = y;
     }
-    const double r = FT_EARTH_RADIUS_M, pi = 3.14159265358979323846;
+    const double r = FT_EARTH_RADIUS_M, pi = FT_PI;
     const double expect_deg = -acos(r / (r + OCEAN_EYE_M)) * 180.0 / pi;
     const double pitch_deg = asin(cam->forward[2]) * 180.0 / pi;
     /* the boundary between the last sky and the first sea row's centres */

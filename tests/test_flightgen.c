@@ -28,6 +28,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/units.h"
 #include "input/canaero.h"
 #include "input/candump.h"
 #include "flight_path.h"
@@ -35,9 +36,8 @@
 #include "input/pose_state.h"
 #include "test_util.h"
 
-#define PI 3.14159265358979323846
-#define DEG (PI / 180.0)
-#define RAD (180.0 / PI)
+#define DEG (FT_PI / 180.0)
+#define RAD (180.0 / FT_PI)
 
 static flight_path g_path;
 
@@ -566,7 +566,7 @@ static void test_other_builtins(void)
             last_hdg = d.vals[i].v;
         }
     }
-    double want_bank = atan(70.0 * (2.0 * PI / (90.0 - 3.0)) / FLIGHT_G_M_S2) * RAD;
+    double want_bank = atan(70.0 * (2.0 * FT_PI / (90.0 - 3.0)) / FLIGHT_G_M_S2) * RAD;
     CHECK_NEAR(max_roll, want_bank, 1e-3);
     CHECK_NEAR(unwrapped, 360.0, 1e-3);
     CHECK(last_hdg >= 0.0 && fabs(ft_wrap_deg_pm180(last_hdg)) < 1e-3);

@@ -16,12 +16,12 @@
 #include <string.h>
 
 #include "core/camera.h"
+#include "core/units.h"
 #include "measure/metric.h"
 #include "measure/reference.h"
 #include "terrain/terrain.h"
 #include "test_util.h"
 
-#define PI 3.14159265358979323846
 #define W 200u
 #define H 150u
 #define NPX (W * H)
@@ -159,7 +159,7 @@ static void check_case(const char *name, double ox, double oy, double a, double 
     ft_camera cam;
     double eye[3] = {ox + 1280.0, oy - 200.0, 0.0};
     eye[2] = a * 1280.0 + b * -200.0 + 300.0;
-    REQUIRE(ft_camera_init(&cam, eye, 0.2, -30.0 * PI / 180.0, 0.1, 50.0 * PI / 180.0, W, H, 1.0,
+    REQUIRE(ft_camera_init(&cam, eye, 0.2, -30.0 * FT_PI / 180.0, 0.1, 50.0 * FT_PI / 180.0, W, H, 1.0,
                            10000.0, NULL) == FT_OK);
     expect_stats es = synth(&t, &cam, a, b, d);
     REQUIRE(es.n > NPX / 2);
@@ -188,7 +188,7 @@ static void test_coverage_and_special(void)
     make_plane(&t, heights, 257, 0.0, 0.0, 0.0, 0.0);
     ft_camera cam;
     double eye[3] = {1280.0, -200.0, 300.0};
-    REQUIRE(ft_camera_init(&cam, eye, 0.2, -30.0 * PI / 180.0, 0.1, 50.0 * PI / 180.0, W, H, 1.0,
+    REQUIRE(ft_camera_init(&cam, eye, 0.2, -30.0 * FT_PI / 180.0, 0.1, 50.0 * FT_PI / 180.0, W, H, 1.0,
                            10000.0, NULL) == FT_OK);
     expect_stats es = synth(&t, &cam, 0.0, 0.0, 1.5);
     ft_error_stats st;
@@ -276,7 +276,7 @@ static void test_percentile(void)
     make_plane(&t, heights, 65, 0.0, 0.0, 0.0, 0.0);
     ft_camera cam;
     double eye[3] = {320.0, 320.0, 100.0};
-    REQUIRE(ft_camera_init(&cam, eye, 0.0, -PI / 2.0 + 0.01, 0.0, 1.0, W, H, 1.0, 1000.0,
+    REQUIRE(ft_camera_init(&cam, eye, 0.0, -FT_PI / 2.0 + 0.01, 0.0, 1.0, W, H, 1.0, 1000.0,
                            NULL) == FT_OK);
     double *list = malloc(sizeof(double) * NPX);
     REQUIRE(list != NULL);
@@ -333,7 +333,7 @@ static void test_corner_and_centre(void)
     for (int c = 0; c < 2; ++c) {
         /* the corner of a wide, nearly level view; the centre of a 35 deg dive */
         const double pitch_deg = (c == 0) ? -12.0 : -35.0, fov_deg = (c == 0) ? 100.0 : 60.0;
-        REQUIRE(ft_camera_init(&cam, eye, 0.3, pitch_deg * PI / 180.0, 0.0, fov_deg * PI / 180.0,
+        REQUIRE(ft_camera_init(&cam, eye, 0.3, pitch_deg * FT_PI / 180.0, 0.0, fov_deg * FT_PI / 180.0,
                                W, H, 1.0, 10000.0, NULL) == FT_OK);
         double r[3];
         ft_camera_pixel_ray(&cam, pix[c][0], pix[c][1], r);
@@ -358,7 +358,7 @@ static void test_corner_and_centre(void)
             /* on the axis: old = d K / t bounds it, and d K cos(pitch) / t
              * (the offset's part across the ray) is its first-order value */
             CHECK(st.max_px <= old * 1.001);
-            CHECK_NEAR(st.max_px, old * cos(35.0 * PI / 180.0), 0.02 * old);
+            CHECK_NEAR(st.max_px, old * cos(35.0 * FT_PI / 180.0), 0.02 * old);
         }
         printf("%s pixel: exact %.4f px (independent %.4f), old formula %.4f px\n",
                c == 0 ? "corner" : "centre", st.max_px, expect, old);
@@ -381,7 +381,7 @@ static void test_ridge_removed(void)
     }
     ft_camera cam;
     double eye[3] = {640.0, 0.0, 100.0}; /* the ridge's front top edge is 300 m ahead */
-    REQUIRE(ft_camera_init(&cam, eye, 0.0, 0.0, 0.0, 30.0 * PI / 180.0, W, H, 1.0, 10000.0,
+    REQUIRE(ft_camera_init(&cam, eye, 0.0, 0.0, 0.0, 30.0 * FT_PI / 180.0, W, H, 1.0, 10000.0,
                            NULL) == FT_OK);
     ft_error err;
     REQUIRE(ft_reference_render(&t, &cam, g_ref, NPX, &err) == FT_OK);
@@ -434,7 +434,7 @@ static void test_exact_frame_has_no_occlusion(void)
     }
     ft_camera cam;
     double eye[3] = {1280.0, -300.0, 260.0};
-    REQUIRE(ft_camera_init(&cam, eye, 0.1, -8.0 * PI / 180.0, 0.05, 60.0 * PI / 180.0, W, H, 1.0,
+    REQUIRE(ft_camera_init(&cam, eye, 0.1, -8.0 * FT_PI / 180.0, 0.05, 60.0 * FT_PI / 180.0, W, H, 1.0,
                            10000.0, NULL) == FT_OK);
     REQUIRE(ft_reference_render(&t, &cam, g_ref, NPX, NULL) == FT_OK);
     for (size_t i = 0; i < NPX; ++i) {
@@ -473,12 +473,12 @@ static void test_sea_horizon(void)
     CHECK(ft_terrain_curvature_drop(FT_CURVATURE_AUTO, FT_UNIT_METRE) == 0.0);
     CHECK(ft_terrain_curvature_drop(FT_CURVATURE_FLAT, FT_UNIT_DEGREE) == 0.0);
     const double h = 10000.0, R = FT_EARTH_RADIUS_M;
-    const double dep_deg = acos(R / (R + h)) * 180.0 / PI;
+    const double dep_deg = acos(R / (R + h)) * 180.0 / FT_PI;
     ft_camera cam;
     double eye[3] = {409600.0, 409600.0, h};
     const double fov_deg = 4.0; /* 0.0078 deg a row */
     const double pitch_deg = -3.0; /* the horizon falls 27 rows under the centre */
-    REQUIRE(ft_camera_init(&cam, eye, 0.0, pitch_deg * PI / 180.0, 0.0, fov_deg * PI / 180.0, HW,
+    REQUIRE(ft_camera_init(&cam, eye, 0.0, pitch_deg * FT_PI / 180.0, 0.0, fov_deg * FT_PI / 180.0, HW,
                            HH, 1.0, 1e6, NULL) == FT_OK);
     REQUIRE(ft_reference_render(&t, &cam, ref, (size_t)HW * HH, NULL) == FT_OK);
     uint32_t first = HH; /* first sea row in the middle column */
@@ -488,7 +488,7 @@ static void test_sea_horizon(void)
     REQUIRE(first > 0u && first < HH);
     /* the boundary lies between the centres of rows first - 1 and first */
     double yb = (double)first;
-    double elev_deg = pitch_deg + atan((HH * 0.5 - yb) / cam.px_per_rad_k) * 180.0 / PI;
+    double elev_deg = pitch_deg + atan((HH * 0.5 - yb) / cam.px_per_rad_k) * 180.0 / FT_PI;
     printf("sea horizon from 10 km: at %.4f deg, expected %.4f deg\n", elev_deg, -dep_deg);
     CHECK_NEAR(elev_deg, -dep_deg, 0.05);
     /* the hit at the horizon row lies about sqrt(2 R h) = 357 km away */

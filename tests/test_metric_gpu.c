@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "core/units.h"
 #include "terrain/pyramid.h"
 #include "terrain/terrain_file.h"
 #include "test_util.h"
@@ -110,7 +111,7 @@ int main(int argc, char **argv)
     write_plane(plane);
 
     /* 1. exact plane at 1e7 m */
-    double lon = 9.0 + 640.0 / (111195.0797 * cos(45.0 * 3.14159265358979323846 / 180.0));
+    double lon = 9.0 + 640.0 / (111195.0797 * cos(45.0 * FT_RAD_PER_DEG));
     double lat = 45.0 - 300.0 / 111195.0797;
     ft_status st = run(backend, plane, lat, lon, 600.0, 0.0, -25.0, &es, &err);
     if (st != FT_OK) {
@@ -144,7 +145,7 @@ int main(int argc, char **argv)
                                   ft_metric_scratch_bytes(cam.width_px, cam.height_px), &bad,
                                   &err) == FT_OK);
         /* the nearest terrain is about 570 m away: 5 m there is about 1.8 px at K = 208 */
-        double k = 240.0 / (2.0 * tan(30.0 * 3.14159265358979323846 / 180.0));
+        double k = 240.0 / (2.0 * tan(30.0 * FT_RAD_PER_DEG));
         printf("plane measured against truth + 5 m: max %.3f px, mean %.3f px (K = %.1f)\n",
                bad.max_px, bad.mean_px, k);
         CHECK(bad.max_px > 1.0);

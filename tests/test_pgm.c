@@ -16,7 +16,7 @@
 #include "terrain/pyramid.h"
 #include "test_util.h"
 
-#define DEG (FT_PGM_PI / 180.0)
+#define DEG (FT_PI / 180.0)
 
 static uint32_t g_rng = 12345u;
 static double urand(void)
@@ -119,7 +119,7 @@ static void test_rules(void)
     for (int k = 0; k < 200; ++k) {
         const double h = 10.0 + 5000.0 * urand(), m = h * 0.98 * urand();
         const double r = 1.0 + 20000.0 * urand();
-        const double g = ft_pgm_gamma(h, m, r, FT_PGM_PI);
+        const double g = ft_pgm_gamma(h, m, r, FT_PI);
         const double beta = atan(h / r), x = (h - m) * r / h;
         CHECK_NEAR(tan(beta + g), h / x, 1e-9 * (h / x));
     }

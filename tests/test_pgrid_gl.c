@@ -353,27 +353,8 @@ static void test_sweep(const char *dem, double lat, double lon)
 
 /* ---- 4. image crack test -------------------------------------------------------- */
 
-static uint32_t clear_pixels(void)
-{
-    const uint8_t *p = g_app.renderer.rgba;
-    const size_t n = (size_t)W_PX * H_PX;
-    uint32_t c = 0;
-    for (size_t i = 0; i < n; ++i) {
-        c += (p[4u * i] == 255u && p[4u * i + 1u] == 0u && p[4u * i + 2u] == 255u);
-    }
-    return c;
-}
-
 static void test_cracks(const char *backend, const char *dem)
 {
-    /* views the terrain covers completely (as in test_bintree_gl) */
-    const ft_pose covered[] = {
-        ft_test_pose(42.50, 1.50, 6000.0, 0.0, -90.0, 0.0),
-        ft_test_pose(42.45, 1.45, 4500.0, 30.0, -89.0, 0.0),
-        ft_test_pose(42.50, 1.50, 4000.0, 45.0, -45.0, 0.0),
-        ft_test_pose(42.40, 1.60, 4200.0, 200.0, -50.0, 10.0),
-        ft_test_pose(42.60, 1.40, 4000.0, 300.0, -60.0, -15.0),
-    };
     const int es2 = strcmp(backend, "egl-gles2") == 0;
     static const uint32_t grids[][2] = {{150u, 600u}, {430u, 430u}};
     uint32_t worst = 0, worst_pos = 0;
@@ -387,18 +368,17 @@ static void test_cracks(const char *backend, const char *dem)
                            !es2, d};
                 app_init(&c);
                 if (es2) CHECK(strstr(g_app.gpu.version, "OpenGL ES 2.0") != NULL);
-                g_app.renderer.clear_rgb[0] = 1.0f; /* magenta: never a terrain colour */
-                g_app.renderer.clear_rgb[1] = 0.0f;
-                g_app.renderer.clear_rgb[2] = 1.0f;
+                ft_test_clear_magenta(&g_app);
                 double bound_min = INFINITY, bound_max = 0.0;
                 uint32_t rc_px = 0;
-                for (size_t v = 0; v < sizeof covered / sizeof covered[0]; ++v) {
+                for (uint32_t v = 0; v < FT_TEST_COVERED_VIEWS; ++v) {
+                    const ft_pose view = ft_test_covered_view(v);
                     ft_camera cam;
                     ft_frame_stats fs;
-                    ft_test_frame(&g_app, &covered[v], &cam, &fs);
-                    const uint32_t n = clear_pixels();
+                    ft_test_frame(&g_app, &view, &cam, &fs);
+                    const uint32_t n = ft_test_clear_pixels(&g_app);
                     if (n > 0u) {
-                        fprintf(stderr, "%s rc %d %ux%u %s view %zu: %u clear-colour pixels\n",
+                        fprintf(stderr, "%s rc %d %ux%u %s view %u: %u clear-colour pixels\n",
                                 backend, rc, grids[g][0], grids[g][1], d ? "view" : "uniform", v,
                                 n);
                     }
@@ -436,11 +416,11 @@ static void test_cracks(const char *backend, const char *dem)
                 ft_frame_stats fs;
                 const ft_pose sky = ft_test_pose(42.5, 1.5, 4000.0, 0.0, 5.0, 0.0);
                 ft_test_frame(&g_app, &sky, &cam, &fs);
-                CHECK(clear_pixels() > 1000u); /* the counter works */
+                CHECK(ft_test_clear_pixels(&g_app) > 1000u); /* the counter works */
                 printf("cracks %s ray casting %d %ux%u %s: no clear pixel in %zu covered views; "
                        "reported bound %.3f..%.3f px; %u px ray cast\n",
                        backend, rc, grids[g][0], grids[g][1], d ? "view" : "uniform",
-                       sizeof covered / sizeof covered[0], bound_min, bound_max, rc_px);
+                       (size_t)FT_TEST_COVERED_VIEWS, bound_min, bound_max, rc_px);
                 ft_app_shutdown(&g_app);
             }
         }

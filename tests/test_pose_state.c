@@ -8,11 +8,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/units.h"
 #include "input/pose_state.h"
 #include "test_util.h"
 
-#define PI_D 3.14159265358979323846
-#define D2R (PI_D / 180.0)
+#define D2R (FT_PI / 180.0)
 #define MS_NS UINT64_C(1000000)
 
 /* Smallest signed difference of two angles in degrees. */

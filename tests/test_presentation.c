@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "core/scene.h"
+#include "core/units.h"
 #include "gpu/shade.h"
 #include "test_util.h"
 #if FT_PRESENTATION_GL
@@ -25,7 +26,6 @@
 #include "test_terrain_util.h"
 #endif
 
-#define PI 3.14159265358979323846
 
 /* ---- the scene keys ---------------------------------------------------------------- */
 
@@ -93,7 +93,7 @@ static int run_parse(void)
     REQUIRE(parse("", &s, &err) == FT_OK);
     ft_shade_state_from_scene(&st, &s);
     st.aircraft_alt_m = 1000.0f;
-    const float e0 = (float)(-1000.0 * FT_FT_TO_M), e1 = (float)(-100.0 * FT_FT_TO_M);
+    const float e0 = (float)(-1000.0 * FT_M_PER_FT), e1 = (float)(-100.0 * FT_M_PER_FT);
     CHECK(ft_shade_band_of(&st, 1000.0f + e0 - 0.01f) == 0u);
     CHECK(ft_shade_band_of(&st, 1000.0f + e0) == 1u);
     CHECK(ft_shade_band_of(&st, 1000.0f + e1 - 0.01f) == 1u);
@@ -225,10 +225,10 @@ static void stairs_case(const char *backend, const char *method, const char *dem
                    palette, haze_km);
     ft_test_app_init(&g_app, g_text, colouring);
     const ft_terrain *t = &g_app.terrain;
-    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double m_per_deg = FT_EARTH_RADIUS_M * FT_PI / 180.0;
     const double ex = ST_X0 + 128.0 * ST_CELL_M, ey = ST_Y0 + 128.0 * ST_CELL_M;
     ft_pose p = {t->anchor_lat_deg + (ey - ST_Y0) / m_per_deg,
-                 t->anchor_lon_deg + (ex - ST_X0) / (m_per_deg * cos(t->anchor_lat_deg * PI / 180.0)),
+                 t->anchor_lon_deg + (ex - ST_X0) / (m_per_deg * cos(t->anchor_lat_deg * FT_PI / 180.0)),
                  ST_ALT_M, 0.0, -89.5, 0.0};
     ft_camera cam;
     ft_frame_stats fs;
@@ -354,10 +354,10 @@ static void sea_frame(const char *backend, const char *dem, int horizon, double 
     (void)snprintf(g_text, sizeof g_text, k_sea_scene, backend, dem, horizon);
     ft_test_app_init(&g_app, g_text, "sea");
     const ft_terrain *t = &g_app.terrain;
-    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double m_per_deg = FT_EARTH_RADIUS_M * FT_PI / 180.0;
     const double ex = 256.0 * SEA_CELL_M, ey = SEA_EYE_ROW * SEA_CELL_M;
     ft_pose p = {t->anchor_lat_deg + ey / m_per_deg,
-                 t->anchor_lon_deg + ex / (m_per_deg * cos(t->anchor_lat_deg * PI / 180.0)),
+                 t->anchor_lon_deg + ex / (m_per_deg * cos(t->anchor_lat_deg * FT_PI / 180.0)),
                  alt_m, 0.0, pitch_deg, 0.0};
     ft_frame_stats fs;
     ft_test_frame(&g_app, &p, cam, &fs);
@@ -385,7 +385,7 @@ static void sea_case(const char *backend, const char *dem, double alt_m, double 
     sea_frame(backend, dem, 0, alt_m, pitch_deg, &cam);
     const double k = (double)ST_H * 0.5 / tan(cam.fovy_rad * 0.5); /* px per unit tangent */
     const double dip = sqrt(2.0 * alt_m / FT_EARTH_RADIUS_M);
-    const double p = pitch_deg * PI / 180.0;
+    const double p = pitch_deg * FT_PI / 180.0;
     double edge_err_max = 0.0, line_err_max = 0.0, dip_px_mid = 0.0, line_mid = 0.0;
     uint32_t edge_cols = 0u, line_cols = 0u, missing = 0u;
     for (uint32_t x = 0; x < ST_W; ++x) {
@@ -450,7 +450,7 @@ static void sea_case(const char *backend, const char *dem, double alt_m, double 
     printf("%s sea at %g m, pitch %g deg: dip %.4f deg = %.2f px below the zero-pitch line "
            "(centre column); sea edge within %.2f px of it over %u columns; line centre "
            "%.2f (want %.2f), within %.2f px over %u columns; %u columns missing\n",
-           backend, alt_m, pitch_deg, dip * 180.0 / PI, dip_px_mid, edge_err_max, edge_cols,
+           backend, alt_m, pitch_deg, dip * 180.0 / FT_PI, dip_px_mid, edge_err_max, edge_cols,
            line_mid, line_y, line_err_max, line_cols, missing);
     CHECK(missing == 0u && edge_cols == ST_W && line_cols == ST_W - 2u);
     CHECK(edge_err_max <= 1.0);
@@ -615,9 +615,9 @@ static int run_voids(const char *backend, const char *method)
     printf("half-void tile: %u of %u samples void-filled (%.1f%%)\n", t.void_count,
            VOID_SIDE * VOID_SIDE, 100.0 * t.void_count / (VOID_SIDE * VOID_SIDE));
     terrain_free(&t);
-    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double m_per_deg = FT_EARTH_RADIUS_M * FT_PI / 180.0;
     const double ex = 60.0 * VOID_CELL_M, ey = 64.0 * VOID_CELL_M; /* just west of the edge */
-    const ft_pose p = {45.0 + ey / m_per_deg, 9.0 + ex / (m_per_deg * cos(45.0 * PI / 180.0)),
+    const ft_pose p = {45.0 + ey / m_per_deg, 9.0 + ex / (m_per_deg * cos(45.0 * FT_PI / 180.0)),
                        2500.0, 0.0, -89.5, 0.0};
     void_case(backend, method, dem_plain, &p, 1, NULL, NULL); /* fills g_plain_rgba */
     CHECK(g_app.renderer.void_tex == 0u); /* no voids: no texture, no variant */
@@ -670,10 +670,10 @@ static int run_grid(const char *backend, const char *method)
     (void)snprintf(g_text + used, sizeof g_text - used, "[presentation]\ngrid_m = 1000\n");
     ft_test_app_init(&g_app, g_text, dem);
     const ft_terrain *t = &g_app.terrain;
-    const double m_per_deg = FT_EARTH_RADIUS_M * PI / 180.0;
+    const double m_per_deg = FT_EARTH_RADIUS_M * FT_PI / 180.0;
     /* above the crossing of the lines x = 2000 m and y = 2000 m, off centre */
     const double ex = 2031.0, ey = 1987.0;
-    const ft_pose p = {45.0 + ey / m_per_deg, 9.0 + ex / (m_per_deg * cos(45.0 * PI / 180.0)),
+    const ft_pose p = {45.0 + ey / m_per_deg, 9.0 + ex / (m_per_deg * cos(45.0 * FT_PI / 180.0)),
                        800.0, 0.0, -89.5, 0.0};
     ft_camera cam;
     ft_frame_stats fs;

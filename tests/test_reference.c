@@ -11,13 +11,13 @@
 #include <time.h>
 
 #include "core/camera.h"
+#include "core/units.h"
 #include "gpu/shade.h"
 #include "measure/reference.h"
 #include "terrain/pyramid.h"
 #include "terrain/terrain.h"
 #include "test_util.h"
 
-#define PI 3.14159265358979323846
 
 /* ---------------------------------------------------------------- helpers */
 
@@ -145,7 +145,7 @@ static void normalize(double d[3])
 
 static void rand_dir(double d[3])
 {
-    double z = rnd_in(-1.0, 1.0), a = rnd_in(0.0, 2.0 * PI), r = sqrt(1.0 - z * z);
+    double z = rnd_in(-1.0, 1.0), a = rnd_in(0.0, 2.0 * FT_PI), r = sqrt(1.0 - z * z);
     d[0] = r * cos(a);
     d[1] = r * sin(a);
     d[2] = z;
@@ -432,7 +432,7 @@ static void test_plane_render(double ox, double oy, double a, double b, const ch
     ft_camera cam;
     double eye_rel[3] = {320.0, -100.0, 123.25 + 200.0}, eye[3];
     to_world(&t, eye_rel, eye);
-    REQUIRE(ft_camera_init(&cam, eye, 0.1, -25.0 * PI / 180.0, 0.05, 60.0 * PI / 180.0, W, H, 1.0,
+    REQUIRE(ft_camera_init(&cam, eye, 0.1, -25.0 * FT_PI / 180.0, 0.05, 60.0 * FT_PI / 180.0, W, H, 1.0,
                            5000.0, NULL) == FT_OK);
     ft_error err;
     CHECK(ft_reference_render(&t, &cam, px, (size_t)W * H - 1, &err) == FT_ERR_ARG);
@@ -535,7 +535,7 @@ static void test_hyperbolic(void)
 static void test_sine(void)
 {
     ft_terrain t;
-    double p[4] = {40.0, 2.0 * PI / 200.0, 2.0 * PI / 150.0, 60.0};
+    double p[4] = {40.0, 2.0 * FT_PI / 200.0, 2.0 * FT_PI / 150.0, 60.0};
     grid_make(&t, 65, 65, 10.0, 10.0, 0.0, 0.0, f_sine, p);
     double bound = p[0] * (p[1] * p[1] * 100.0 + p[2] * p[2] * 100.0) / 8.0 + 1e-4;
     int hits = 0, misses = 0, bad_res = 0, bad_march = 0, bad_bound = 0;
@@ -582,7 +582,7 @@ static void test_sine(void)
 static void test_edges(void)
 {
     ft_terrain t;
-    double ps[4] = {40.0, 2.0 * PI / 200.0, 2.0 * PI / 150.0, 60.0};
+    double ps[4] = {40.0, 2.0 * FT_PI / 200.0, 2.0 * FT_PI / 150.0, 60.0};
     grid_make(&t, 65, 65, 10.0, 10.0, 0.0, 0.0, f_sine, ps);
     int hit;
     double th;
@@ -871,7 +871,7 @@ static void test_vs_brute(void)
 static void test_render_poses(void)
 {
     ft_terrain t;
-    double ps[4] = {40.0, 2.0 * PI / 200.0, 2.0 * PI / 150.0, 60.0};
+    double ps[4] = {40.0, 2.0 * FT_PI / 200.0, 2.0 * FT_PI / 150.0, 60.0};
     grid_make(&t, 65, 65, 10.0, 10.0, 0.0, 0.0, f_sine, ps);
     static ft_ref_pixel px[64 * 48];
     struct pose {
@@ -891,8 +891,8 @@ static void test_render_poses(void)
         ft_camera cam;
         double eye[3] = {poses[k].x, poses[k].y, poses[k].z};
         if (k == 3) eye[2] = ft_terrain_height_at(&t, eye[0], eye[1]) - 3.0;
-        REQUIRE(ft_camera_init(&cam, eye, poses[k].head * PI / 180.0,
-                               poses[k].pitch * PI / 180.0, poses[k].roll * PI / 180.0, 1.0, 64,
+        REQUIRE(ft_camera_init(&cam, eye, poses[k].head * FT_PI / 180.0,
+                               poses[k].pitch * FT_PI / 180.0, poses[k].roll * FT_PI / 180.0, 1.0, 64,
                                48, 0.5, 1e8, NULL) == FT_OK);
         REQUIRE(ft_reference_render(&t, &cam, px, 64 * 48, NULL) == FT_OK);
         int hits = 0, bad = 0;
@@ -977,7 +977,7 @@ static double now_s(void)
 /* p = {seed phases...}: smooth octaves plus per-sample noise */
 static double f_fractal(double x, double y, const double *p)
 {
-    double z = 800.0, amp = 600.0, k = 2.0 * PI / 20000.0;
+    double z = 800.0, amp = 600.0, k = 2.0 * FT_PI / 20000.0;
     for (int o = 0; o < 8; ++o) {
         z += amp * sin(k * x + p[2 * o]) * sin(k * 1.3 * y + p[2 * o + 1]);
         amp *= 0.5;
@@ -991,7 +991,7 @@ static void test_timing(void)
 {
     ft_terrain t;
     double ph[16];
-    for (int i = 0; i < 16; ++i) ph[i] = rnd_in(0.0, 2.0 * PI);
+    for (int i = 0; i < 16; ++i) ph[i] = rnd_in(0.0, 2.0 * FT_PI);
     grid_make(&t, 1025, 1025, 30.0, 30.0, 5e5, 4e6, f_fractal, ph);
     const uint32_t W = 640, H = 480;
     ft_ref_pixel *px = malloc(sizeof(ft_ref_pixel) * W * H);
@@ -1000,8 +1000,8 @@ static void test_timing(void)
     eye_rel[2] = t.max_height_m + 150.0;
     to_world(&t, eye_rel, eye);
     ft_camera cam;
-    REQUIRE(ft_camera_init(&cam, eye, 45.0 * PI / 180.0, -6.0 * PI / 180.0, 0.0,
-                           45.0 * PI / 180.0, W, H, 1.0, 60000.0, NULL) == FT_OK);
+    REQUIRE(ft_camera_init(&cam, eye, 45.0 * FT_PI / 180.0, -6.0 * FT_PI / 180.0, 0.0,
+                           45.0 * FT_PI / 180.0, W, H, 1.0, 60000.0, NULL) == FT_OK);
     double t0 = now_s();
     REQUIRE(ft_reference_render(&t, &cam, px, (size_t)W * H, NULL) == FT_OK);
     double t1 = now_s();
@@ -1039,12 +1039,12 @@ static void test_depth_range(void)
     const double zmin = 200.0, zmax = 1000.0, clearance = 2000.0;
     for (size_t k = 0; k < sizeof fovs_deg / sizeof fovs_deg[0]; ++k) {
         const uint32_t w = 160u, h = 120u;
-        const double ty = tan(0.5 * fovs_deg[k] * PI / 180.0), tx = ty * w / h;
+        const double ty = tan(0.5 * fovs_deg[k] * FT_PI / 180.0), tx = ty * w / h;
         double n = 0.0, f = 0.0;
         ft_camera_pick_depth_range(eye, zmin, zmax, bmin, bmax, 1.0 / sqrt(1.0 + tx * tx + ty * ty),
                                    &n, &f);
         ft_camera cam;
-        REQUIRE(ft_camera_init(&cam, eye, 0.3, -0.4, 0.2, fovs_deg[k] * PI / 180.0, w, h, n, f,
+        REQUIRE(ft_camera_init(&cam, eye, 0.3, -0.4, 0.2, fovs_deg[k] * FT_PI / 180.0, w, h, n, f,
                                NULL) == FT_OK);
         double least_depth = INFINITY;
         for (uint32_t y = 0; y <= h; y += h / 4u) {

@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "core/units.h"
 #include "input/candump.h"
 #include "flight_path.h"
 #include "app/replay.h"
@@ -183,7 +184,7 @@ static FILE *g_fg_out;
  * orbit stays within 4 km, where that is exact to 1e-3). */
 static void local_m(double lat, double lon, double alt, double out[3])
 {
-    const double deg = 3.14159265358979323846 / 180.0;
+    const double deg = FT_RAD_PER_DEG;
     double m = 0.0, n = 0.0;
     ft_wgs84_radii_m(46.5, &m, &n);
     out[0] = (lat - 46.5) * deg * m;
@@ -453,7 +454,7 @@ static void test_timestamps(void)
 
 int main(void)
 {
-    const double pi = 3.14159265358979323846, pitch_rad = -12.0 * pi / 180.0;
+    const double pitch_rad = -12.0 * FT_RAD_PER_DEG;
     k_yaw_rate = 30.0 * cos(pitch_rad);
     k_roll_rate = -k_yaw_rate * tan(pitch_rad);
     ft_scene s;

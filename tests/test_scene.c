@@ -4,6 +4,11 @@
 #include <string.h>
 
 #include "core/scene.h"
+/* The scene is configuration, not GL: it must build where no GL header is
+ * included (the profile tool compiles it for the build host). */
+#if defined(GL_ES_VERSION_2_0) || defined(GL_ES_VERSION_3_0)
+#error "core/scene.h pulls in a GL header"
+#endif
 #include "test_util.h"
 
 static ft_status parse(const char *text, ft_scene *s, ft_error *err)

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "core/units.h"
 
 #define BENCH_FRAMES_MAX 1000
 #define BENCH_LIST_MAX 8
@@ -89,17 +90,16 @@ static double time_tables_ms(const ft_terrain *t, uint32_t k, uint32_t sub, uint
 
 static ft_pose orbit_pose(const ft_pose *centre, int f, int frames)
 {
-    const double pi = 3.14159265358979323846;
-    const double a = 2.0 * pi * f / frames;
+    const double a = 2.0 * FT_PI * f / frames;
     const double r_m = 6000.0, m_per_deg = 111195.0797;
     ft_pose p = *centre;
     p.lat_deg = centre->lat_deg + r_m * sin(a) / m_per_deg;
-    p.lon_deg = centre->lon_deg - r_m * cos(a) / (m_per_deg * cos(centre->lat_deg * pi / 180.0));
+    p.lon_deg = centre->lon_deg - r_m * cos(a) / (m_per_deg * cos(centre->lat_deg * FT_RAD_PER_DEG));
     p.alt_m = centre->alt_m + 500.0 * sin(3.0 * a);
     /* look back at the centre: heading from the position toward it */
     double dn = centre->lat_deg - p.lat_deg, de = centre->lon_deg - p.lon_deg;
-    de *= cos(centre->lat_deg * pi / 180.0);
-    p.heading_deg = fmod(atan2(de, dn) * 180.0 / pi + 360.0, 360.0);
+    de *= cos(centre->lat_deg * FT_RAD_PER_DEG);
+    p.heading_deg = fmod(atan2(de, dn) * FT_DEG_PER_RAD + 360.0, 360.0);
     p.pitch_deg = -10.0;
     p.roll_deg = 0.0;
     return p;

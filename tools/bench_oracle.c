@@ -109,7 +109,7 @@ ft_status bench_oracle_prepare(bench_oracle *o, ft_renderer *r, const ft_camera 
         return ft_fail(err, FT_ERR_ARG, "oracle: not initialised");
     }
     const ft_bintree_method *bm = &r->method.u.bintree;
-    if (!bm->have_selection) {
+    if (!bm->sel_view.valid) {
         return ft_fail(err, FT_ERR_ARG, "oracle: the method has not selected tiles yet");
     }
     const ft_gl *gl = o->gl;

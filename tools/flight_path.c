@@ -7,14 +7,12 @@
 #include <math.h>
 
 #include "core/ft_ns.h"
+#include "core/units.h"
 #include "input/canaero.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define FP_PI 3.14159265358979323846
-#define FP_DEG (FP_PI / 180.0)
-#define FP_RAD (180.0 / FP_PI)
 #define FP_MIN_SPEED_M_S 0.5 /* below this a direction is noise */
 #define FP_SUBSTEPS 8u       /* position integration steps per built-in waypoint */
 
@@ -35,9 +33,9 @@ static void where(const flight_path *p, uint32_t i, char *buf, size_t cap)
  * (the segments are short enough for the chord to be the arc). */
 static void delta_m(const flight_waypoint *a, const flight_waypoint *b, double d[3])
 {
-    double lat_mid_rad = 0.5 * (a->lat_deg + b->lat_deg) * FP_DEG;
-    d[0] = (b->lat_deg - a->lat_deg) * FP_DEG * FLIGHT_EARTH_RADIUS_M;
-    d[1] = ft_wrap_deg_pm180(b->lon_deg - a->lon_deg) * FP_DEG * FLIGHT_EARTH_RADIUS_M *
+    double lat_mid_rad = 0.5 * (a->lat_deg + b->lat_deg) * FT_RAD_PER_DEG;
+    d[0] = (b->lat_deg - a->lat_deg) * FT_RAD_PER_DEG * FLIGHT_EARTH_RADIUS_M;
+    d[1] = ft_wrap_deg_pm180(b->lon_deg - a->lon_deg) * FT_RAD_PER_DEG * FLIGHT_EARTH_RADIUS_M *
            cos(lat_mid_rad);
     d[2] = b->alt_m - a->alt_m;
 }
@@ -51,9 +49,9 @@ static void segment_velocity(const flight_waypoint *a, const flight_waypoint *b,
     const double dt = b->t_s - a->t_s;
     double m = 0.0, n = 0.0;
     ft_wgs84_radii_m(lat_deg, &m, &n);
-    v[0] = (b->lat_deg - a->lat_deg) / dt * FP_DEG * (m + alt_m);
-    v[1] = ft_wrap_deg_pm180(b->lon_deg - a->lon_deg) / dt * FP_DEG * (n + alt_m) *
-           cos(lat_deg * FP_DEG);
+    v[0] = (b->lat_deg - a->lat_deg) / dt * FT_RAD_PER_DEG * (m + alt_m);
+    v[1] = ft_wrap_deg_pm180(b->lon_deg - a->lon_deg) / dt * FT_RAD_PER_DEG * (n + alt_m) *
+           cos(lat_deg * FT_RAD_PER_DEG);
     v[2] = (b->alt_m - a->alt_m) / dt;
 }
 
@@ -163,10 +161,10 @@ static void derive_attitude(flight_path *p)
         double heading = prev_heading_deg;
         double pitch = 0.0, roll = 0.0;
         if (vh >= FP_MIN_SPEED_M_S) {
-            heading = ft_wrap_deg_0_360(atan2(ve, vn) * FP_RAD);
+            heading = ft_wrap_deg_0_360(atan2(ve, vn) * FT_DEG_PER_RAD);
         }
         if (hypot(vh, vu) >= FP_MIN_SPEED_M_S) {
-            pitch = atan2(vu, vh) * FP_RAD;
+            pitch = atan2(vu, vh) * FT_DEG_PER_RAD;
         }
         if (i > 0u && i + 1u < n && vh >= FP_MIN_SPEED_M_S) {
             double din[3], dout[3];
@@ -176,10 +174,10 @@ static void derive_attitude(flight_path *p)
             if (hypot(din[0], din[1]) / tin >= FP_MIN_SPEED_M_S &&
                 hypot(dout[0], dout[1]) / tout >= FP_MIN_SPEED_M_S) {
                 double turn_deg = ft_wrap_deg_pm180((atan2(dout[1], dout[0]) -
-                                                     atan2(din[1], din[0])) * FP_RAD);
+                                                     atan2(din[1], din[0])) * FT_DEG_PER_RAD);
                 /* the segment headings hold at the segment midpoints */
-                double turn_rad_s = turn_deg * FP_DEG / (0.5 * (tin + tout));
-                roll = atan(vh * turn_rad_s / FLIGHT_G_M_S2) * FP_RAD;
+                double turn_rad_s = turn_deg * FT_RAD_PER_DEG / (0.5 * (tin + tout));
+                roll = atan(vh * turn_rad_s / FLIGHT_G_M_S2) * FT_DEG_PER_RAD;
                 if (roll > FLIGHT_DERIVED_ROLL_MAX_DEG) {
                     roll = FLIGHT_DERIVED_ROLL_MAX_DEG;
                 } else if (roll < -FLIGHT_DERIVED_ROLL_MAX_DEG) {
@@ -278,7 +276,7 @@ ft_status flight_path_finish(flight_path *p, ft_error *err)
         p->w_rad_s[i][2] = d.z * k / dt;
         static const char *const k_axis[3] = {"roll rate", "pitch rate", "yaw rate"};
         for (uint32_t a3 = 0u; a3 < 3u; ++a3) {
-            double r_deg_s = p->w_rad_s[i][a3] * FP_RAD;
+            double r_deg_s = p->w_rad_s[i][a3] * FT_DEG_PER_RAD;
             if (!(fabs(r_deg_s) <= FLIGHT_RATE_MAX_DEG_S)) {
                 where(p, i + 1u, loc, sizeof loc);
                 where(p, i, ploc, sizeof ploc);
@@ -476,9 +474,9 @@ void flight_path_sample(const flight_path *p, double t_s, flight_sample *out)
     out->alt_m = a->alt_m + f * (b->alt_m - a->alt_m);
     out->q = ft_quat_integrate_body_rate(p->q[lo], p->w_rad_s[lo], dt);
     ft_quat_to_euler_deg(out->q, &out->heading_deg, &out->pitch_deg, &out->roll_deg);
-    out->p_deg_s = p->w_rad_s[lo][0] * FP_RAD;
-    out->q_deg_s = p->w_rad_s[lo][1] * FP_RAD;
-    out->r_deg_s = p->w_rad_s[lo][2] * FP_RAD;
+    out->p_deg_s = p->w_rad_s[lo][0] * FT_DEG_PER_RAD;
+    out->q_deg_s = p->w_rad_s[lo][1] * FT_DEG_PER_RAD;
+    out->r_deg_s = p->w_rad_s[lo][2] * FT_DEG_PER_RAD;
     double v[3];
     segment_velocity(a, b, out->lat_deg, out->alt_m, v);
     out->v_n_m_s = v[0];
@@ -566,8 +564,8 @@ static double turn360_heading(const builtin_ctx *c, double t, double *rate)
         return 0.0;
     }
     if (tau < tr) {
-        *rate = wm * 0.5 * (1.0 - cos(FP_PI * tau / tr));
-        return wm * (0.5 * tau - tr / (2.0 * FP_PI) * sin(FP_PI * tau / tr));
+        *rate = wm * 0.5 * (1.0 - cos(FT_PI * tau / tr));
+        return wm * (0.5 * tau - tr / (2.0 * FT_PI) * sin(FT_PI * tau / tr));
     }
     if (tau < tr + th) {
         *rate = wm;
@@ -575,8 +573,8 @@ static double turn360_heading(const builtin_ctx *c, double t, double *rate)
     }
     if (tau < tt) {
         double u = tau - tr - th;
-        *rate = wm * 0.5 * (1.0 + cos(FP_PI * u / tr));
-        return a2 + wm * (0.5 * u + tr / (2.0 * FP_PI) * sin(FP_PI * u / tr));
+        *rate = wm * 0.5 * (1.0 + cos(FT_PI * u / tr));
+        return a2 + wm * (0.5 * u + tr / (2.0 * FT_PI) * sin(FT_PI * u / tr));
     }
     *rate = 0.0;
     return a2 + a1;
@@ -586,18 +584,18 @@ static double turn360_heading(const builtin_ctx *c, double t, double *rate)
  * duration: level, half-cosine push-over, hold, half-cosine pull-out, level. */
 static double dive_gamma(double f)
 {
-    double gm = DIVE_GAMMA_DEG * FP_DEG;
+    double gm = DIVE_GAMMA_DEG * FT_RAD_PER_DEG;
     if (f < 0.1) {
         return 0.0;
     }
     if (f < 0.25) {
-        return -gm * 0.5 * (1.0 - cos(FP_PI * (f - 0.1) / 0.15));
+        return -gm * 0.5 * (1.0 - cos(FT_PI * (f - 0.1) / 0.15));
     }
     if (f < 0.6) {
         return -gm;
     }
     if (f < 0.8) {
-        return -gm * 0.5 * (1.0 + cos(FP_PI * (f - 0.6) / 0.2));
+        return -gm * 0.5 * (1.0 + cos(FT_PI * (f - 0.6) / 0.2));
     }
     return 0.0;
 }
@@ -613,10 +611,10 @@ static void builtin_motion(const builtin_ctx *c, double t, double *psi, double *
         /* bearing from the centre starts at 180 (south); clockwise flight
          * heads 90 deg right of the bearing */
         *turn = c->speed_m_s / c->radius_m;
-        *psi = FP_PI + *turn * t + 0.5 * FP_PI;
+        *psi = FT_PI + *turn * t + 0.5 * FT_PI;
         break;
     case FLIGHT_CLIMB:
-        *psi = 0.5 * FP_PI;
+        *psi = 0.5 * FT_PI;
         *gamma = c->climb_gamma_rad;
         break;
     case FLIGHT_DIVE:
@@ -628,7 +626,7 @@ static void builtin_motion(const builtin_ctx *c, double t, double *psi, double *
         break;
     case FLIGHT_VALLEY:
     default:
-        *psi = 0.25 * FP_PI;
+        *psi = 0.25 * FT_PI;
         break;
     }
 }
@@ -671,7 +669,7 @@ static ft_status builtin_setup(const flight_builtin_params *bp, builtin_ctx *c, 
     }
     double dflt = k_builtin_defaults[bp->kind].duration_s;
     if (bp->kind == FLIGHT_ORBIT) {
-        dflt = 2.0 * FP_PI * c->radius_m / c->speed_m_s;
+        dflt = 2.0 * FT_PI * c->radius_m / c->speed_m_s;
     }
     c->duration_s = isnan(bp->duration_s) ? dflt : bp->duration_s;
     if (!(c->duration_s >= FLIGHT_DURATION_MIN_S && c->duration_s <= FLIGHT_DURATION_MAX_S)) {
@@ -681,7 +679,7 @@ static ft_status builtin_setup(const flight_builtin_params *bp, builtin_ctx *c, 
     }
     double v = c->speed_m_s;
     if (bp->kind == FLIGHT_ORBIT) {
-        double bank_deg = atan(v * v / (FLIGHT_G_M_S2 * c->radius_m)) * FP_RAD;
+        double bank_deg = atan(v * v / (FLIGHT_G_M_S2 * c->radius_m)) * FT_DEG_PER_RAD;
         if (bank_deg > BANK_MAX_DEG) {
             return ft_fail(err, FT_ERR_ARG,
                            "path orbit: %g m/s on a %g m radius needs %.1f deg of bank, at most "
@@ -691,7 +689,7 @@ static ft_status builtin_setup(const flight_builtin_params *bp, builtin_ctx *c, 
     } else if (bp->kind == FLIGHT_CLIMB) {
         double vz = (CLIMB_TOP_M - c->alt0_m) / c->duration_s;
         double s = vz / v;
-        if (!(s <= sin(CLIMB_GAMMA_MAX_DEG * FP_DEG))) {
+        if (!(s <= sin(CLIMB_GAMMA_MAX_DEG * FT_RAD_PER_DEG))) {
             return ft_fail(err, FT_ERR_ARG,
                            "path climb: %g m in %g s at %g m/s is steeper than %g deg; use a "
                            "longer --duration",
@@ -708,8 +706,8 @@ static ft_status builtin_setup(const flight_builtin_params *bp, builtin_ctx *c, 
                                             "%g s)",
                            c->duration_s, 2.0 * TURN_LEAD_S + 2.0 * c->ramp_s + 1.0);
         }
-        c->turn_rate_max_rad_s = 2.0 * FP_PI / (tt - c->ramp_s);
-        double bank_deg = atan(v * c->turn_rate_max_rad_s / FLIGHT_G_M_S2) * FP_RAD;
+        c->turn_rate_max_rad_s = 2.0 * FT_PI / (tt - c->ramp_s);
+        double bank_deg = atan(v * c->turn_rate_max_rad_s / FLIGHT_G_M_S2) * FT_DEG_PER_RAD;
         if (bank_deg > BANK_MAX_DEG) {
             return ft_fail(err, FT_ERR_ARG,
                            "path turn360: a 360 deg turn in %g s at %g m/s needs %.1f deg of "
@@ -732,7 +730,7 @@ ft_status flight_path_builtin(flight_path *p, const flight_builtin_params *bp, f
     if (isnan(dur)) {
         double r = isnan(bp->radius_m) ? ORBIT_RADIUS_DEFAULT_M : bp->radius_m;
         double v = isnan(bp->speed_m_s) ? k_builtin_defaults[bp->kind].speed_m_s : bp->speed_m_s;
-        dur = bp->kind == FLIGHT_ORBIT ? 2.0 * FP_PI * r / v : k_builtin_defaults[bp->kind].duration_s;
+        dur = bp->kind == FLIGHT_ORBIT ? 2.0 * FT_PI * r / v : k_builtin_defaults[bp->kind].duration_s;
     }
     uint32_t n = FLIGHT_WAYPOINTS_MAX;
     if (dur > 0.0 && dur / FLIGHT_BUILTIN_STEP_S < (double)(FLIGHT_WAYPOINTS_MAX - 1u)) {
@@ -747,13 +745,13 @@ ft_status flight_path_builtin(flight_path *p, const flight_builtin_params *bp, f
         return s;
     }
     double step_s = c.duration_s / (double)(n - 1u);
-    double m_per_deg_lat = FLIGHT_EARTH_RADIUS_M * FP_DEG;
-    double m_per_deg_lon = m_per_deg_lat * cos(c.lat0_deg * FP_DEG);
+    double m_per_deg_lat = FLIGHT_EARTH_RADIUS_M * FT_RAD_PER_DEG;
+    double m_per_deg_lon = m_per_deg_lat * cos(c.lat0_deg * FT_RAD_PER_DEG);
     double north = 0.0, east = 0.0, up = 0.0, t_prev = 0.0;
     for (uint32_t i = 0u; i < n; ++i) {
         double t = (i + 1u == n) ? c.duration_s : step_s * (double)i;
         if (c.kind == FLIGHT_ORBIT) {
-            double b = FP_PI + c.speed_m_s / c.radius_m * t;
+            double b = FT_PI + c.speed_m_s / c.radius_m * t;
             north = c.radius_m * cos(b);
             east = c.radius_m * sin(b);
         } else if (i > 0u) {
@@ -775,11 +773,11 @@ ft_status flight_path_builtin(flight_path *p, const flight_builtin_params *bp, f
         w.lat_deg = c.lat0_deg + north / m_per_deg_lat;
         w.lon_deg = ft_wrap_deg_pm180(c.lon0_deg + east / m_per_deg_lon);
         w.alt_m = c.alt0_m + up;
-        w.heading_deg = ft_wrap_deg_0_360(psi * FP_RAD);
-        w.pitch_deg = gamma * FP_RAD;
+        w.heading_deg = ft_wrap_deg_0_360(psi * FT_DEG_PER_RAD);
+        w.pitch_deg = gamma * FT_DEG_PER_RAD;
         /* coordinated turn: lift tilted so its side part is the centripetal
          * force V * turn rate */
-        w.roll_deg = atan(c.speed_m_s * turn / FLIGHT_G_M_S2) * FP_RAD;
+        w.roll_deg = atan(c.speed_m_s * turn / FLIGHT_G_M_S2) * FT_DEG_PER_RAD;
         w.has_attitude = 1u;
         if (c.kind == FLIGHT_DIVE && w.alt_m < DIVE_MIN_ALT_M) {
             return ft_fail(err, FT_ERR_ARG,
@@ -839,7 +837,7 @@ void flightgen_ground_velocity(double v_n_m_s, double v_e_m_s, double *speed_m_s
 {
     *speed_m_s = hypot(v_n_m_s, v_e_m_s);
     /* atan2(0, 0) is 0: a hovering path reports track 000 */
-    *track_deg = ft_wrap_deg_0_360(atan2(v_e_m_s, v_n_m_s) * FP_RAD);
+    *track_deg = ft_wrap_deg_0_360(atan2(v_e_m_s, v_n_m_s) * FT_DEG_PER_RAD);
 }
 
 void flightgen_encode(ft_can_frame *f, uint16_t can_id, uint8_t data_type, uint8_t code,
@@ -1044,7 +1042,7 @@ ft_status flightgen_run(const flight_path *p, const flightgen_options *o, flight
                 if (m == FLIGHTGEN_LAT && t >= o->gps_jump_at_s) {
                     double mer = 0.0;
                     ft_wgs84_radii_m(smp.lat_deg, &mer, NULL);
-                    v += o->gps_jump_m / (mer + smp.alt_m) * FP_RAD;
+                    v += o->gps_jump_m / (mer + smp.alt_m) * FT_DEG_PER_RAD;
                     v = v > 90.0 ? 90.0 : (v < -90.0 ? -90.0 : v);
                     ++st->gps_jumped;
                 }

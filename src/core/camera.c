@@ -385,3 +385,22 @@ double ft_camera_depth_step_m(double near_m, double far_m, uint32_t depth_bits, 
     }
     return step_d * (f - n) * z * z / (f * n);
 }
+
+void ft_view_key_take(ft_view_key *k, const ft_camera *cam)
+{
+    memcpy(k->eye_m, cam->eye_m, sizeof k->eye_m);
+    memcpy(k->forward, cam->forward, sizeof k->forward);
+    memcpy(k->up, cam->up, sizeof k->up);
+    k->fovy_rad = cam->fovy_rad;
+    k->width_px = cam->width_px;
+    k->height_px = cam->height_px;
+    k->valid = 1;
+}
+
+int ft_view_key_matches(const ft_view_key *k, const ft_camera *cam)
+{
+    return k->valid && memcmp(k->eye_m, cam->eye_m, sizeof k->eye_m) == 0 &&
+           memcmp(k->forward, cam->forward, sizeof k->forward) == 0 &&
+           memcmp(k->up, cam->up, sizeof k->up) == 0 && k->fovy_rad == cam->fovy_rad &&
+           k->width_px == cam->width_px && k->height_px == cam->height_px;
+}

@@ -36,6 +36,18 @@ typedef struct ft_camera {
     float view_proj[16];
 } ft_camera;
 
+/* The view a selection was made for. Frames whose camera matches the key
+ * bit for bit (any change of pose or viewport does not) may keep the last
+ * selection; valid = 0 makes the next frame select again. */
+typedef struct ft_view_key {
+    int valid;
+    double eye_m[3], forward[3], up[3], fovy_rad;
+    uint32_t width_px, height_px;
+} ft_view_key;
+
+void ft_view_key_take(ft_view_key *k, const ft_camera *cam);
+int ft_view_key_matches(const ft_view_key *k, const ft_camera *cam);
+
 /* Builds a camera at world position eye_m with the given attitude (radians).
  * near/far are picked by the caller (see ft_camera_pick_depth_range). */
 ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad,

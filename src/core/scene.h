@@ -113,8 +113,7 @@
 #include "core/camera.h"
 #include "core/ft_status.h"
 #include "core/mem_budget.h"
-#include "gpu/gl_api.h"
-#include "gpu/gpu.h"
+#include "core/output.h"
 #include "input/canaero.h"
 #include "terrain/synth_terrain.h"
 

@@ -106,13 +106,6 @@ typedef enum ft_gl_api {
     FT_GL_API_ES3 = 3  /* GLSL ES 3.00 shaders, GLES 3.0 calls */
 } ft_gl_api;
 
-/* How heights reach the vertex shader. */
-typedef enum ft_height_format {
-    FT_HEIGHT_FORMAT_AUTO = 0,
-    FT_HEIGHT_FORMAT_FLOAT,  /* R32F (ES3) or LUMINANCE/FLOAT (ES2 + OES_texture_float) */
-    FT_HEIGHT_FORMAT_PACKED  /* RGBA8, 24-bit fixed point over [min, max] */
-} ft_height_format;
-
 typedef struct ft_gl_caps {
     int max_texture_size;
     int max_vertex_texture_units;

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/units.h"
 #include "gpu/gpu_texture.h"
 #include "gpu/shade.h"
 #include "gpu/shaders.h"
@@ -12,7 +13,6 @@
 #error "FT_GL_ERROR_CHECKS_DEFAULT comes from CMakeLists.txt (0 or 1 by build type)"
 #endif
 
-#define FT_PI 3.14159265358979323846
 #define FT_SHADER_LOG_MAX 1024
 
 /* ---- planning ----------------------------------------------------------- */
@@ -684,7 +684,7 @@ ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fo
     double eye[3];
     ft_terrain_geo_to_world(t, pose->lat_deg, pose->lon_deg, &eye[0], &eye[1]);
     eye[2] = pose->alt_m;
-    const double d2r = FT_PI / 180.0;
+    const double d2r = FT_RAD_PER_DEG;
     const double ty = tan(0.5 * fovy_deg * d2r);
     const double tx = ty * (double)width_px / (double)(height_px > 0u ? height_px : 1u);
     double near_m, far_m;

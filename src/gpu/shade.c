@@ -51,7 +51,7 @@ void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u
 {
     const float gain = st->palette == FT_PALETTE_NIGHT ? FT_NIGHT_BAND_GAIN : 1.0f;
     for (uint32_t i = 0; i < FT_BANDS_MAX - 1u; ++i) {
-        edge_m[i] = i < st->bands.edges ? (float)((double)st->bands.edge_ft[i] * FT_FT_TO_M)
+        edge_m[i] = i < st->bands.edges ? (float)((double)st->bands.edge_ft[i] * FT_M_PER_FT)
                                         : FT_BAND_EDGE_NONE_M;
     }
     for (uint32_t i = 0; i < FT_BANDS_MAX; ++i) {

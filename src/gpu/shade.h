@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "core/scene.h"
+#include "core/units.h"
 
 #define FT_SHADE_AMBIENT 0.35f
 #define FT_SHADE_DIFFUSE 0.65f
@@ -45,7 +46,6 @@ void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4]);
 #define FT_NIGHT_SKY_R 0.02f
 #define FT_NIGHT_SKY_G 0.03f
 #define FT_NIGHT_SKY_B 0.08f
-#define FT_FT_TO_M 0.3048 /* international foot, exact */
 /* Haze (presentation.haze_km = V): the lit colour goes towards the sky
  * colour by FT_HAZE_MAX (1 - exp(-d / V)) at distance d. The cap keeps a
  * quarter of the contrast at any distance, so far ridgelines stay readable

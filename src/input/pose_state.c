@@ -4,14 +4,12 @@
 #include "input/pose_state.h"
 
 #include "core/ft_ns.h"
+#include "core/units.h"
 
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 
-#define FT_PI 3.14159265358979323846
-#define FT_DEG2RAD (FT_PI / 180.0)
-#define FT_RAD2DEG (180.0 / FT_PI)
 #define FT_NS_PER_MS UINT64_C(1000000)
 
 static const char *const k_qty_name[FT_QTY_COUNT] = {
@@ -106,9 +104,9 @@ double ft_wrap_deg_pm180(double a_deg)
 
 ft_quat ft_quat_from_euler_deg(double heading_deg, double pitch_deg, double roll_deg)
 {
-    double hh = 0.5 * heading_deg * FT_DEG2RAD;
-    double hp = 0.5 * pitch_deg * FT_DEG2RAD;
-    double hr = 0.5 * roll_deg * FT_DEG2RAD;
+    double hh = 0.5 * heading_deg * FT_RAD_PER_DEG;
+    double hp = 0.5 * pitch_deg * FT_RAD_PER_DEG;
+    double hr = 0.5 * roll_deg * FT_RAD_PER_DEG;
     double cy = cos(hh), sy = sin(hh);
     double cp = cos(hp), sp = sin(hp);
     double cr = cos(hr), sr = sin(hr);
@@ -149,13 +147,13 @@ void ft_quat_to_euler_deg(ft_quat q, double *heading_deg, double *pitch_deg, dou
         heading = atan2(c21, c11);
     }
     if (heading_deg != NULL) {
-        *heading_deg = ft_wrap_deg_0_360(heading * FT_RAD2DEG);
+        *heading_deg = ft_wrap_deg_0_360(heading * FT_DEG_PER_RAD);
     }
     if (pitch_deg != NULL) {
-        *pitch_deg = pitch * FT_RAD2DEG;
+        *pitch_deg = pitch * FT_DEG_PER_RAD;
     }
     if (roll_deg != NULL) {
-        *roll_deg = ft_wrap_deg_pm180(roll * FT_RAD2DEG);
+        *roll_deg = ft_wrap_deg_pm180(roll * FT_DEG_PER_RAD);
     }
 }
 
@@ -194,7 +192,7 @@ void ft_wgs84_radii_m(double lat_deg, double *meridian_m, double *prime_vertical
      * f = 1 / 298.257223563 */
     const double a = 6378137.0;
     const double e2 = 6.69437999014e-3;
-    const double s = isfinite(lat_deg) ? sin(lat_deg * FT_DEG2RAD) : 0.0;
+    const double s = isfinite(lat_deg) ? sin(lat_deg * FT_RAD_PER_DEG) : 0.0;
     const double w = 1.0 - e2 * s * s; /* >= 1 - e^2 > 0 */
     const double n = a / sqrt(w);
     if (meridian_m != NULL) {
@@ -326,21 +324,21 @@ static void predict_position(const ft_pose_state *ps, uint64_t t_ns, pos_pred *o
         if (t_ns <= h_stop_ns) {
             o->axes |= FT_POSE_PRED_HORIZONTAL;
         }
-        const double track_rad = tr->value * FT_DEG2RAD;
+        const double track_rad = tr->value * FT_RAD_PER_DEG;
         const double v_n_mps = gs->value * cos(track_rad), v_e_mps = gs->value * sin(track_rad);
         const double lat_fix_deg = o->lat_deg;
         double meridian_m = 0.0, normal_m = 0.0;
         ft_wgs84_radii_m(lat_fix_deg, &meridian_m, &normal_m);
         if (la->valid) {
             const double dt_s = extrap_s(la->t_ns, t_end_ns, horizon_ns, o);
-            const double lat_deg = lat_fix_deg + v_n_mps * dt_s / (meridian_m + o->alt_m) * FT_RAD2DEG;
+            const double lat_deg = lat_fix_deg + v_n_mps * dt_s / (meridian_m + o->alt_m) * FT_DEG_PER_RAD;
             o->lat_deg = lat_deg > 90.0 ? 90.0 : (lat_deg < -90.0 ? -90.0 : lat_deg);
         }
-        const double cos_lat = cos(lat_fix_deg * FT_DEG2RAD);
+        const double cos_lat = cos(lat_fix_deg * FT_RAD_PER_DEG);
         if (lo->valid && cos_lat > FT_POSE_POLE_COS_MIN) {
             const double dt_s = extrap_s(lo->t_ns, t_end_ns, horizon_ns, o);
             o->lon_deg = ft_wrap_deg_pm180(
-                o->lon_deg + v_e_mps * dt_s / ((normal_m + o->alt_m) * cos_lat) * FT_RAD2DEG);
+                o->lon_deg + v_e_mps * dt_s / ((normal_m + o->alt_m) * cos_lat) * FT_DEG_PER_RAD);
         }
     }
     if (vs->valid && al->valid) {
@@ -373,10 +371,10 @@ static void metres_to_deg(const pos_pred *o, double north_m, double east_m, doub
 {
     double meridian_m = 0.0, normal_m = 0.0;
     ft_wgs84_radii_m(o->lat_deg, &meridian_m, &normal_m);
-    const double cos_lat = cos(o->lat_deg * FT_DEG2RAD);
-    *dlat_deg = north_m / (meridian_m + o->alt_m) * FT_RAD2DEG;
+    const double cos_lat = cos(o->lat_deg * FT_RAD_PER_DEG);
+    *dlat_deg = north_m / (meridian_m + o->alt_m) * FT_DEG_PER_RAD;
     *dlon_deg = cos_lat > FT_POSE_POLE_COS_MIN
-                    ? east_m / ((normal_m + o->alt_m) * cos_lat) * FT_RAD2DEG
+                    ? east_m / ((normal_m + o->alt_m) * cos_lat) * FT_DEG_PER_RAD
                     : 0.0;
 }
 
@@ -412,15 +410,15 @@ static void position_event(ft_pose_state *ps, const pos_pred *before, uint64_t t
     predict_position(ps, te, &after);
     double meridian_m = 0.0, normal_m = 0.0;
     ft_wgs84_radii_m(after.lat_deg, &meridian_m, &normal_m);
-    const double cos_lat = cos(after.lat_deg * FT_DEG2RAD);
+    const double cos_lat = cos(after.lat_deg * FT_RAD_PER_DEG);
     const int horiz = (before->axes & FT_POSE_PRED_HORIZONTAL) != 0;
     const int vert = (before->axes & FT_POSE_PRED_VERTICAL) != 0;
     double d_m[3] = {0.0, 0.0, 0.0};
     if (horiz && before->valid[0] && after.valid[0]) {
-        d_m[0] = (before->lat_deg - after.lat_deg) * FT_DEG2RAD * (meridian_m + after.alt_m);
+        d_m[0] = (before->lat_deg - after.lat_deg) * FT_RAD_PER_DEG * (meridian_m + after.alt_m);
     }
     if (horiz && before->valid[1] && after.valid[1] && cos_lat > FT_POSE_POLE_COS_MIN) {
-        d_m[1] = ft_wrap_deg_pm180(before->lon_deg - after.lon_deg) * FT_DEG2RAD *
+        d_m[1] = ft_wrap_deg_pm180(before->lon_deg - after.lon_deg) * FT_RAD_PER_DEG *
                  (normal_m + after.alt_m) * cos_lat;
     }
     if (vert && before->valid[2] && after.valid[2]) {
@@ -589,8 +587,8 @@ void ft_pose_state_estimate(const ft_pose_state *ps, uint64_t t_ns, ft_pose_esti
     if (have_attitude && rates_ok && ps->horizon_ms > 0u) {
         const double p = ps->s[FT_QTY_ROLL_RATE].value, q_ = ps->s[FT_QTY_PITCH_RATE].value,
                      r = ps->s[FT_QTY_YAW_RATE].value;
-        const double sphi = sin(roll * FT_DEG2RAD), cphi = cos(roll * FT_DEG2RAD);
-        const double cth = cos(pitch * FT_DEG2RAD), tth = tan(pitch * FT_DEG2RAD);
+        const double sphi = sin(roll * FT_RAD_PER_DEG), cphi = cos(roll * FT_RAD_PER_DEG);
+        const double cth = cos(pitch * FT_RAD_PER_DEG), tth = tan(pitch * FT_RAD_PER_DEG);
         if (fabs(cth) > FT_POSE_ALIGN_COS_MIN) {
             const double roll_rate = p + (q_ * sphi + r * cphi) * tth; /* deg/s */
             const double pitch_rate = q_ * cphi - r * sphi;
@@ -620,9 +618,9 @@ void ft_pose_state_estimate(const ft_pose_state *ps, uint64_t t_ns, ft_pose_esti
             dt_ns = horizon_ns;
             out->horizon_clamped = 1;
         }
-        double omega[3] = {ps->s[FT_QTY_ROLL_RATE].value * FT_DEG2RAD,
-                           ps->s[FT_QTY_PITCH_RATE].value * FT_DEG2RAD,
-                           ps->s[FT_QTY_YAW_RATE].value * FT_DEG2RAD};
+        double omega[3] = {ps->s[FT_QTY_ROLL_RATE].value * FT_RAD_PER_DEG,
+                           ps->s[FT_QTY_PITCH_RATE].value * FT_RAD_PER_DEG,
+                           ps->s[FT_QTY_YAW_RATE].value * FT_RAD_PER_DEG};
         out->predict_s = (double)dt_ns * 1e-9;
         q = ft_quat_integrate_body_rate(q, omega, out->predict_s);
         out->predicted = 1;

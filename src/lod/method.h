@@ -63,10 +63,9 @@ typedef struct ft_bintree_method {
     ft_scalar_format err_fmt;
     uint64_t gpu_bytes;
     /* the last selection and the view it was made for */
-    int have_selection, uploaded;
+    ft_view_key sel_view;
+    int uploaded;
     ft_bt_select_stats sel;
-    double sel_eye_m[3], sel_fwd[3], sel_up[3], sel_fovy;
-    uint32_t sel_w, sel_h;
 } ft_bintree_method;
 
 /* Persistent grid mapping (src/lod/pgm.h, shaders/pgm.vert.glsl). The grid is
@@ -84,10 +83,8 @@ typedef struct ft_pgm_method {
     ft_scalar_format atlas_fmt;
     uint64_t gpu_bytes;
     /* the last sampling set-up and the view it was made for */
-    int have_sampling;
+    ft_view_key sel_view;
     ft_pgm_sampling sampling;
-    double sel_eye_m[3], sel_fwd[3], sel_up[3], sel_fovy;
-    uint32_t sel_w, sel_h;
 } ft_pgm_method;
 
 /* Error-bounded projective grid (src/lod/pgrid.h): the pgm grid (reused: its

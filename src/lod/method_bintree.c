@@ -201,17 +201,9 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     return ft_gl_check(gl, "bintree init (template, instance buffer, error texture)", err);
 }
 
-static int same_view(const ft_bintree_method *m, const ft_camera *cam)
-{
-    return m->have_selection && memcmp(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m) == 0 &&
-           memcmp(m->sel_fwd, cam->forward, sizeof m->sel_fwd) == 0 &&
-           memcmp(m->sel_up, cam->up, sizeof m->sel_up) == 0 && m->sel_fovy == cam->fovy_rad &&
-           m->sel_w == cam->width_px && m->sel_h == cam->height_px;
-}
-
 void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
 {
-    if (same_view(m, cam)) {
+    if (ft_view_key_matches(&m->sel_view, cam)) {
         return;
     }
     ft_bt_view v;
@@ -228,13 +220,7 @@ void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const f
         o[4] = (float)tile->right[0];
         o[5] = (float)tile->right[1];
     }
-    memcpy(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m);
-    memcpy(m->sel_fwd, cam->forward, sizeof m->sel_fwd);
-    memcpy(m->sel_up, cam->up, sizeof m->sel_up);
-    m->sel_fovy = cam->fovy_rad;
-    m->sel_w = cam->width_px;
-    m->sel_h = cam->height_px;
-    m->have_selection = 1;
+    ft_view_key_take(&m->sel_view, cam);
     m->uploaded = 0;
 }
 
@@ -243,7 +229,7 @@ void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale)
     const double s = scale < 1.0 ? 1.0 : scale;
     if (s != m->lod_scale) {
         m->lod_scale = s;
-        m->have_selection = 0; /* select again for the same view */
+        m->sel_view.valid = 0; /* select again for the same view */
     }
 }
 

@@ -228,27 +228,13 @@ uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b)
     return (total - first < m->band_rows) ? total - first : m->band_rows;
 }
 
-static int same_view(const ft_pgm_method *m, const ft_camera *cam)
-{
-    return m->have_sampling && memcmp(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m) == 0 &&
-           memcmp(m->sel_fwd, cam->forward, sizeof m->sel_fwd) == 0 &&
-           memcmp(m->sel_up, cam->up, sizeof m->sel_up) == 0 && m->sel_fovy == cam->fovy_rad &&
-           m->sel_w == cam->width_px && m->sel_h == cam->height_px;
-}
-
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
-    if (same_view(m, cam)) {
+    if (ft_view_key_matches(&m->sel_view, cam)) {
         return;
     }
     ft_pgm_setup(&m->sampling, cam, t);
-    memcpy(m->sel_eye_m, cam->eye_m, sizeof m->sel_eye_m);
-    memcpy(m->sel_fwd, cam->forward, sizeof m->sel_fwd);
-    memcpy(m->sel_up, cam->up, sizeof m->sel_up);
-    m->sel_fovy = cam->fovy_rad;
-    m->sel_w = cam->width_px;
-    m->sel_h = cam->height_px;
-    m->have_sampling = 1;
+    ft_view_key_take(&m->sel_view, cam);
 }
 
 void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,

@@ -24,7 +24,7 @@ double ft_pgm_sampling_depression(double view_depression_rad, double half_angle_
     if (!(dep >= half_angle_rad + eps_rad)) {
         dep = half_angle_rad + eps_rad;
     }
-    return (dep < 0.5 * FT_PGM_PI) ? dep : 0.5 * FT_PGM_PI;
+    return (dep < 0.5 * FT_PI) ? dep : 0.5 * FT_PI;
 }
 
 double ft_pgm_gamma(double h_m, double m_m, double r_m, double room_rad)
@@ -333,7 +333,7 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
      * above that ray, so out of the view) */
     const double beta = dep + a;
     double gamma = 0.0;
-    if (0.5 * FT_PGM_PI - beta > 1e-9 && !s->mirrored) {
+    if (0.5 * FT_PI - beta > 1e-9 && !s->mirrored) {
         const double xc0 = x_cap(dep, s->eps_rad, -s->half_y_tan, y1);
         const double txp = (tx_cov < xc0) ? tx_cov : xc0;
         s->near_ground_m = h / tan(beta);
@@ -409,7 +409,7 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
                     x = (m >= h) ? x0 : INFINITY;
                 } else {
                     const double beta_v = atan(tan_bv[k]);
-                    const double room_v = 0.5 * FT_PGM_PI - beta_v;
+                    const double room_v = 0.5 * FT_PI - beta_v;
                     const double g = ft_pgm_gamma(h, m, h / tan_bv[k], room_v);
                     x = (g >= room_v) ? 0.0 : h / tan(beta_v + g);
                 }
@@ -450,11 +450,11 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
      * needed to reach the nadir, where the sampling camera is nearly level)
      * nor so far past the nadir that it looks flatter than eps behind */
     double bot_a = a + gamma;
-    const double cap = (0.5 * FT_PGM_PI - dep > FT_PGM_HALF_ANGLE_MAX_RAD)
-                           ? 0.5 * FT_PGM_PI - dep
+    const double cap = (0.5 * FT_PI - dep > FT_PGM_HALF_ANGLE_MAX_RAD)
+                           ? 0.5 * FT_PI - dep
                            : FT_PGM_HALF_ANGLE_MAX_RAD;
     bot_a = (bot_a < cap) ? bot_a : cap;
-    const double behind = FT_PGM_PI - s->eps_rad - dep;
+    const double behind = FT_PI - s->eps_rad - dep;
     bot_a = (bot_a < behind) ? bot_a : behind;
     const double y0 = -tan(bot_a);
     const double xc = x_cap(dep, s->eps_rad, y0, y1);

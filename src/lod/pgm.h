@@ -97,18 +97,18 @@
 #include <stdint.h>
 
 #include "core/camera.h"
+#include "core/units.h"
 #include "terrain/terrain.h"
 
 #define FT_PGM_GRID_SIDE_MIN 2u
 #define FT_PGM_GRID_SIDE_MAX 8192u
 /* 16-bit indices: a band of rows holds at most this many vertices. */
 #define FT_PGM_BAND_VERTICES_MAX 65536u
-#define FT_PGM_PI 3.14159265358979323846
 /* Smallest depression of the sampling camera's top edge (0.01 deg: the ray
  * meets a plane 1 km below at 5700 km). */
-#define FT_PGM_EPS_MIN_RAD (0.01 * FT_PGM_PI / 180.0)
+#define FT_PGM_EPS_MIN_RAD (0.01 * FT_PI / 180.0)
 /* Largest half angle of the sampling rectangle (tan 88 deg = 28.6). */
-#define FT_PGM_HALF_ANGLE_MAX_RAD (88.0 * FT_PGM_PI / 180.0)
+#define FT_PGM_HALF_ANGLE_MAX_RAD (88.0 * FT_PI / 180.0)
 /* The columns are widened for the view's rays up to this factor of the
  * view's own half width (pgm.c, columns_for_view). */
 #define FT_PGM_COLUMNS_WIDEN_MAX 1.5

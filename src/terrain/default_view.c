@@ -2,7 +2,7 @@
 
 #include <math.h>
 
-#define FT_RAD_TO_DEG (180.0 / 3.14159265358979323846)
+#include "core/units.h"
 
 /* World metres back to geodetic degrees. ft_terrain_geo_to_world is affine
  * in (lon, lat) separately, so two evaluations give its exact inverse
@@ -42,8 +42,8 @@ void ft_default_view_pose(const ft_terrain *t, ft_pose *out)
     out->lat_deg = lat;
     out->lon_deg = lon;
     out->alt_m = alt_m;
-    out->heading_deg = atan2(half_w, half_h) * FT_RAD_TO_DEG; /* clockwise from north */
-    out->pitch_deg = -atan2(alt_m - (h_mid - drop_m), dist_m) * FT_RAD_TO_DEG;
+    out->heading_deg = atan2(half_w, half_h) * FT_DEG_PER_RAD; /* clockwise from north */
+    out->pitch_deg = -atan2(alt_m - (h_mid - drop_m), dist_m) * FT_DEG_PER_RAD;
     out->roll_deg = 0.0;
 }
 

@@ -3,11 +3,11 @@
 #include <math.h>
 #include <string.h>
 
-#define FT_PI 3.14159265358979323846
+#include "core/units.h"
 
 static double m_per_deg_lat(void)
 {
-    return FT_EARTH_RADIUS_M * FT_PI / 180.0;
+    return FT_EARTH_RADIUS_M * FT_RAD_PER_DEG;
 }
 
 /* Latitude of the grid's middle row: the equirectangular plane keeps
@@ -78,7 +78,7 @@ ft_status ft_terrain_derive_frame(ft_terrain *t, ft_error *err)
             return ft_fail(err, FT_ERR_FORMAT, "terrain latitude %.3f too close to a pole", lat);
         }
         t->cell_y_m = t->spacing_y * m_per_deg_lat();
-        t->cell_x_m = t->spacing_x * m_per_deg_lat() * cos(lat * FT_PI / 180.0);
+        t->cell_x_m = t->spacing_x * m_per_deg_lat() * cos(lat * FT_RAD_PER_DEG);
         t->origin_world_x_m = 0.0;
         t->origin_world_y_m = 0.0;
         t->anchor_lat_deg = t->origin_y;
@@ -200,7 +200,7 @@ void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg
                              double *y_m)
 {
     double lat_ref = lat_ref_deg(t);
-    double mx = m_per_deg_lat() * cos(lat_ref * FT_PI / 180.0);
+    double mx = m_per_deg_lat() * cos(lat_ref * FT_RAD_PER_DEG);
     *x_m = t->origin_world_x_m + (lon_deg - t->anchor_lon_deg) * mx;
     *y_m = t->origin_world_y_m + (lat_deg - t->anchor_lat_deg) * m_per_deg_lat();
 }

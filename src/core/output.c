@@ -1,4 +1,4 @@
-#include "gpu/gpu.h"
+#include "core/output.h"
 
 #include <stdlib.h>
 #include <string.h>

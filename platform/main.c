@@ -168,6 +168,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
         " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu, \"unmeasured_px\": %llu,"
+        " \"internal_fault\": %d,"
         " \"tau_achieved_px\": %s, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
@@ -179,7 +180,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         t->void_count, t->crs, cam->eye_m[0], cam->eye_m[1], cam->eye_m[2],
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
-        (unsigned long long)last->terrain_px, (unsigned long long)last->unmeasured_px, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
+        (unsigned long long)last->terrain_px, (unsigned long long)last->unmeasured_px,
+        last->internal_fault, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
@@ -945,34 +947,6 @@ static void print_budget_help(void)
            "any budget is exceeded (the message names it), 2 for a usage error.\n");
 }
 
-/* Worst case over every view, from the method's fixed capacities. */
-static uint64_t worst_triangles(const ft_app *app, const char **rule)
-{
-    const ft_method *m = &app->renderer.method;
-    const ft_terrain *t = &app->terrain;
-    (void)t; /* used by the brute case only */
-    switch (m->kind) {
-#if FT_WITH_METHOD_BRUTE
-    case FT_METHOD_BRUTE: {
-        /* the window (brute.max_vertices) rounded up to whole patches */
-        const uint64_t p = m->u.brute.patch_cells, win = m->u.brute.window_side;
-        const uint64_t w = (t->width < win ? t->width : win) - 1u;
-        const uint64_t h = (t->height < win ? t->height : win) - 1u;
-        *rule = "whole patches covering the drawn window, 2 per cell";
-        return ((w + p - 1u) / p) * ((h + p - 1u) / p) * p * p * 2u;
-    }
-#endif
-#if FT_WITH_METHOD_BINTREE
-    case FT_METHOD_BINTREE:
-        *rule = "bintree.tiles_max x 4^template_k";
-        return (uint64_t)m->u.bintree.bt.tiles_max * m->u.bintree.triangles_per_tile;
-#endif
-    default:
-        *rule = "not known for this method";
-        return 0u;
-    }
-}
-
 /* "#define A 1\n#define B 0\n" -> "A=1 B=0" (or "none"). */
 static void print_defines(const char *defines)
 {
@@ -1059,11 +1033,11 @@ static int cmd_budget(int argc, char **argv)
            (unsigned long long)g_app.renderer.gpu_bytes,
            (unsigned long long)scene.gpu_texture_bytes);
     print_shader_variants(&scene, &g_app.terrain, g_app.gpu.gl.api == FT_GL_API_ES3);
-    const char *rule = "";
-    const uint64_t tris = worst_triangles(&g_app, &rule);
-    printf("worst-case triangles per frame: %llu (%s)\n", (unsigned long long)tris, rule);
-    printf("worst-case ray-cast pixels per frame: 0 (no ray casting in method %s)\n",
-           ft_method_name(scene.method));
+    ft_method_worst worst;
+    ft_method_worst_case(&g_app.renderer.method, &g_app.terrain, &worst);
+    printf("worst-case triangles per frame: %llu\n", (unsigned long long)worst.triangles);
+    printf("worst-case ray-cast pixels per frame: %llu\n", (unsigned long long)worst.raycast_px);
+    printf("worst case: %s\n", worst.rule);
     printf("budget: every pool and the GPU memory fit\n");
     ft_app_shutdown(&g_app);
     return FT_EXIT_OK;

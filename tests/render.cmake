@@ -125,3 +125,13 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_X11 AND FT_XVFB_RUN
   set_tests_properties(window_x11_gles2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
   set_tests_properties(window_x11_gles3 window_x11_gles2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
+
+# A broken invariant ends in the fail-safe annunciation (src/core/invariant.h).
+if(TARGET ft_app AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_BRUTE)
+  add_executable(test_invariant test_invariant.c)
+  target_compile_options(test_invariant PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_invariant PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_invariant PRIVATE ft_app)
+  add_test(NAME invariant_failsafe COMMAND test_invariant egl-gles3)
+  set_tests_properties(invariant_failsafe PROPERTIES TIMEOUT 300)
+endif()

@@ -49,6 +49,11 @@ expect 1 "the limit is 65535 bytes" -- "$bin" render --scene "$out/ok.ini"
 # fixterrain budget: the table and worst cases; an exceeded budget exits 1 naming it.
 expect 0 "worst-case triangles per frame: 2097152" -- "$bin" budget --method brute
 expect 0 "binary static footprint" -- "$bin" budget --method bintree
+expect 0 "worst-case triangles per frame: 1048576" -- "$bin" budget --method bintree
+# pgrid's late decision can ray cast the whole image (800 x 600) for one frame;
+# without ray casting (GLES 2) none
+expect 0 "worst-case ray-cast pixels per frame: 480000" -- "$bin" budget --method pgrid
+expect 0 "worst-case ray-cast pixels per frame: 0" -- "$bin" budget --method pgrid --backend egl-gles2
 printf '[scene]\nmethod = bintree\n[budget]\nmethod_bytes = 64K\n' > "$out/bmem.ini"
 expect 1 "OVER BUDGET" -- "$bin" budget --scene "$out/bmem.ini"
 expect 1 "method_bytes" -- "$bin" budget --scene "$out/bmem.ini"

@@ -3,10 +3,15 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/invariant.h"
 #include "terrain/dem_hgt.h"
 #include "terrain/pyramid.h"
 #include "terrain/synth_terrain.h"
 #include "terrain/terrain_file.h"
+
+/* Annunciation reasons are shown whole. */
+_Static_assert(FT_FAULT_TEXT_MAX <= FT_OVERLAY_TEXT_MAX, "fault text longer than the overlay's");
+_Static_assert(FT_POSE_REASON_MAX <= FT_OVERLAY_TEXT_MAX, "pose reason longer than the overlay's");
 
 /* deflate at level 6, windowBits 15, memLevel 8: (1 << 17) + (1 << 17) bytes,
  * plus zlib's state and libpng's row, previous-row and filter buffers (about
@@ -266,6 +271,13 @@ ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char
     ft_renderer_select(&app->renderer, cam); /* CPU LOD selection, its own stage */
     uint64_t t0 = ft_plat_monotonic_ns();
     s = ft_renderer_draw(&app->renderer, cam, st, err);
+    /* a broken invariant (core/invariant.h), this frame's or an earlier
+     * one's, puts the fail-safe annunciation over this and every later frame */
+    char fault_text[FT_FAULT_TEXT_MAX];
+    st->internal_fault = (ft_fault_latched() != NULL);
+    if (st->internal_fault) {
+        reason = ft_fault_text(fault_text);
+    }
     if (s == FT_OK && reason != NULL) {
         s = ft_renderer_draw_annunciation(&app->renderer, reason, err);
     }

@@ -5,6 +5,10 @@
 #include <string.h>
 
 #include "core/ft_ns.h"
+#include "input/debounce.h"
+
+/* One debounce slot per GPIO input line. */
+_Static_assert(FT_DEBOUNCE_SLOTS_MAX == FT_GPIO_LINES_MAX, "debounce slots vs GPIO lines");
 
 static ft_status write_pose_row(void *ctx, const void *row, size_t bytes)
 {

@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "core/invariant.h"
+
 void ft_jobs_init(ft_jobs *q)
 {
     memset(q, 0, sizeof *q);
@@ -38,6 +40,7 @@ ft_status ft_jobs_push(ft_jobs *q, ft_job_fn fn, void *ctx, uint64_t cost_ns, co
 ft_status ft_jobs_run(ft_jobs *q, uint64_t (*now)(void), uint64_t deadline_ns, int force,
                       ft_error *err)
 {
+    FT_INVARIANT(q->count <= FT_JOBS_MAX && q->head < FT_JOBS_MAX, "job ring out of its bounds");
     /* bounded: at most the jobs queued now */
     for (uint32_t n = q->count; n > 0u; --n) {
         ft_job *j = &q->ring[q->head];

@@ -501,10 +501,10 @@ static int on_key(void *user, const char *section, const char *key, const char *
         }
     } else if (strcmp(section, "view") == 0) {
         if (strcmp(key, "width_px") == 0) {
-            return RANGE(parse_u32(value, 16, 8192, &s->width_px), "expected 16..8192");
+            return RANGE(parse_u32(value, FT_VIEW_SIDE_MIN_PX, FT_VIEW_SIDE_MAX_PX, &s->width_px), "expected 16..8192");
         }
         if (strcmp(key, "height_px") == 0) {
-            return RANGE(parse_u32(value, 16, 8192, &s->height_px), "expected 16..8192");
+            return RANGE(parse_u32(value, FT_VIEW_SIDE_MIN_PX, FT_VIEW_SIDE_MAX_PX, &s->height_px), "expected 16..8192");
         }
         if (strcmp(key, "fovy_deg") == 0) {
             return RANGE(parse_f64(value, 1.0, 170.0, &s->fovy_deg), "expected 1..170");

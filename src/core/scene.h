@@ -122,6 +122,8 @@
 #define FT_SCENE_PATH_MAX 512u
 #define FT_CAN_IFACE_NAME_MAX 16u /* IFNAMSIZ: 15 characters + NUL */
 #define FT_GPIO_CHIP_NAME_MAX 64u
+#define FT_VIEW_SIDE_MIN_PX 16u   /* view.width_px, view.height_px */
+#define FT_VIEW_SIDE_MAX_PX 8192u
 #define FT_GPIO_LINE_MAX 511
 
 #define FT_BUILD_INPUT_REPLAY 1u

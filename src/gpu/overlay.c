@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/invariant.h"
 #include "gpu/renderer.h" /* ft_renderer_link_program: the one shader compile/link path */
 
 #define FT_OVERLAY_PAD_GLYPH_PX 2u /* box padding around the text, in glyph pixels */
@@ -98,7 +99,8 @@ typedef struct vbuild {
 
 static void put(vbuild *b, int32_t x, int32_t y)
 {
-    if (b->n < b->cap) { /* cannot fail: each capacity is its worst case */
+    FT_INVARIANT(b->n < b->cap, "overlay vertices over their worst case");
+    if (b->n < b->cap) {
         b->v[b->n][0] = (int16_t)x;
         b->v[b->n][1] = (int16_t)y;
         b->n += 1u;

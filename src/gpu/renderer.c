@@ -9,6 +9,10 @@
 #include "gpu/shade.h"
 #include "gpu/shaders.h"
 
+/* The annunciation's vertices are int16 pixels: every view the scene
+ * accepts fits. */
+_Static_assert(FT_VIEW_SIDE_MAX_PX <= FT_OVERLAY_VIEW_MAX_PX, "a view larger than the overlay's");
+
 #ifndef FT_GL_ERROR_CHECKS_DEFAULT
 #error "FT_GL_ERROR_CHECKS_DEFAULT comes from CMakeLists.txt (0 or 1 by build type)"
 #endif

@@ -88,6 +88,7 @@ typedef struct ft_frame_stats {
     uint32_t tiles;         /* bintree: tiles drawn (0 for other methods) */
     uint64_t raycast_px;    /* pgrid: pixels ray cast this frame */
     uint64_t unmeasured_px; /* pixels showing void-filled (invented) terrain */
+    int internal_fault;     /* an invariant failed (core/invariant.h): annunciated */
     uint64_t terrain_px;    /* pgrid: terrain pixels of the error buffer (its mesh
                                and envelopes): raycast_px's denominator */
     double tau_achieved_px; /* bintree: screen-space bound the selection meets */

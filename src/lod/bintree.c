@@ -5,8 +5,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/invariant.h"
 #include "core/view_scale.h"
 #include "lod/bintree_template.h"
+
+/* The lattice has 2^N + 1 samples a side: the largest grid a terrain has. */
+_Static_assert((1u << FT_BT_N_MAX) + 1u == FT_GRID_SIDE_MAX, "bintree levels vs the grid side");
 
 /* ---- sizes ---------------------------------------------------------------- */
 
@@ -1003,7 +1007,8 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
     }
     /* Last resort (tiles_max >= 2): the two roots, bound = their projected error. */
     st->attempts += 1u;
-    (void)select_once(bt, v, INFINITY, st);
+    const int roots_fit = select_once(bt, v, INFINITY, st);
+    FT_INVARIANT(roots_fit, "bintree: the two root tiles over bintree.tiles_max");
     st->budget_hit = 1;
     const int32_t root_c[2] = {(int32_t)bt->fine_side / 2, (int32_t)bt->fine_side / 2};
     float b[FT_BT_BOX_FLOATS];

@@ -1,238 +1,119 @@
 #include "lod/method.h"
 
+#include <stdio.h>
 #include <string.h>
+
+/* One entry per FT_METHOD_LIST name; a method the build leaves out
+ * (FIXTERRAIN_WITH_METHOD_*) has none, and a scene naming it fails at init. */
+static const ft_method_ops *const k_ops[FT_METHOD_COUNT] = {
+#if FT_WITH_METHOD_BRUTE
+    [FT_METHOD_BRUTE] = &ft_brute_ops,
+#endif
+#if FT_WITH_METHOD_BINTREE
+    [FT_METHOD_BINTREE] = &ft_bintree_ops,
+#endif
+#if FT_WITH_METHOD_PGM
+    [FT_METHOD_PGM] = &ft_pgm_ops,
+#endif
+#if FT_WITH_METHOD_PGRID
+    [FT_METHOD_PGRID] = &ft_pgrid_ops,
+#endif
+};
+
+const ft_method_ops *ft_method_ops_of(ft_method_kind kind)
+{
+    return ((unsigned)kind < FT_METHOD_COUNT) ? k_ops[kind] : NULL;
+}
 
 const char *ft_method_vertex_shader(ft_method_kind m)
 {
-    switch (m) {
-    case FT_METHOD_BINTREE:
-        return "bintree.vert.glsl";
-    case FT_METHOD_PGM:
-        return "pgm.vert.glsl";
-    case FT_METHOD_PGRID:
-        return "pgrid.vert.glsl";
-    default:
-        return "terrain.vert.glsl";
-    }
+    const ft_method_ops *o = ft_method_ops_of(m);
+    return (o != NULL) ? o->vertex_shader : "terrain.vert.glsl";
 }
 
 const char *ft_method_vertex_defines(const ft_scene *s, int es3)
 {
-    if (s->method != FT_METHOD_BINTREE) {
-        return "";
-    }
-    const int sub = s->bintree_subsample_levels > 0u;
-    const int vtx = es3 && s->bintree_vertex_table;
-    static const char *const k_bintree[2][2] = {
-        {"#define FT_BT_SUB 0\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n"},
-        {"#define FT_BT_SUB 1\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 1\n#define FT_BT_VTX 1\n"},
-    };
-    return k_bintree[sub][vtx];
+    const ft_method_ops *o = ft_method_ops_of(s->method);
+    return (o != NULL && o->vertex_defines != NULL) ? o->vertex_defines(s, es3) : "";
 }
 
 const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3)
 {
-    if (s->method != FT_METHOD_BINTREE || s->bintree_subsample_levels == 0u || !es3 ||
-        !s->bintree_vertex_table) {
-        return NULL;
-    }
-    return "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n";
+    const ft_method_ops *o = ft_method_ops_of(s->method);
+    return (o != NULL && o->vertex_defines_coarse != NULL) ? o->vertex_defines_coarse(s, es3)
+                                                           : NULL;
 }
 
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
-    (void)t;
-    switch (s->method) {
-    case FT_METHOD_BRUTE:
-#if FT_WITH_METHOD_BRUTE
-        ft_brute_plan(s, a);
-#endif
-        break;
-    case FT_METHOD_BINTREE:
-#if FT_WITH_METHOD_BINTREE
-        ft_bintree_method_plan(s, t, a);
-#endif
-        break;
-    case FT_METHOD_PGM:
-#if FT_WITH_METHOD_PGM
-        ft_pgm_method_plan(s, t, a);
-#endif
-        break;
-    case FT_METHOD_PGRID:
-#if FT_WITH_METHOD_PGRID
-        ft_pgrid_method_plan(s, t, a);
-#endif
-        break;
-    default:
-        break;
+    const ft_method_ops *o = ft_method_ops_of(s->method);
+    if (o != NULL) {
+        o->plan(s, t, a);
     }
-    (void)a;
 }
 
 ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                          ft_arena *a, ft_error *err)
 {
     m->kind = s->method;
-    switch (s->method) {
-    case FT_METHOD_BRUTE:
-#if FT_WITH_METHOD_BRUTE
-        return ft_brute_init(&m->u.brute, gl, s, t, a, err);
-#else
-        break;
-#endif
-    case FT_METHOD_BINTREE:
-#if FT_WITH_METHOD_BINTREE
-        return ft_bintree_method_init(&m->u.bintree, gl, s, t, a, err);
-#else
-        break;
-#endif
-    case FT_METHOD_PGM:
-#if FT_WITH_METHOD_PGM
-        return ft_pgm_method_init(&m->u.pgm, gl, s, t, a, err);
-#else
-        break;
-#endif
-    case FT_METHOD_PGRID:
-#if FT_WITH_METHOD_PGRID
-        return ft_pgrid_method_init(&m->u.pgrid, gl, s, t, a, err);
-#else
-        break;
-#endif
-    default:
-        break;
+    const ft_method_ops *o = ft_method_ops_of(s->method);
+    if (o == NULL) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "method '%s' was left out of this build (FIXTERRAIN_WITH_METHOD_* options)",
+                       ft_method_name(s->method));
     }
-    (void)gl;
-    (void)t;
-    (void)a;
-    return ft_fail(err, FT_ERR_UNSUPPORTED,
-                   "method '%s' was left out of this build (FIXTERRAIN_WITH_METHOD_* options)",
-                   ft_method_name(s->method));
+    return o->init(m, gl, s, t, a, err);
 }
 
 void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
     memset(st, 0, sizeof *st);
-    switch (m->kind) {
-    case FT_METHOD_BRUTE:
-#if FT_WITH_METHOD_BRUTE
-        ft_brute_draw(&m->u.brute, gl, p, t, cam, st);
-#endif
-        break;
-    case FT_METHOD_BINTREE:
-#if FT_WITH_METHOD_BINTREE
-        ft_bintree_method_draw(&m->u.bintree, gl, p, t, cam, st);
-#endif
-        break;
-    case FT_METHOD_PGM:
-#if FT_WITH_METHOD_PGM
-        ft_pgm_method_draw(&m->u.pgm, gl, p, t, cam, st);
-#endif
-        break;
-    case FT_METHOD_PGRID:
-#if FT_WITH_METHOD_PGRID
-        ft_pgrid_method_draw(&m->u.pgrid, gl, p, t, cam, st);
-#endif
-        break;
-    default:
-        break;
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    if (o != NULL) {
+        o->draw(m, gl, p, t, cam, st);
     }
-    (void)gl;
-    (void)p;
-    (void)t;
-    (void)cam;
 }
 
 int ft_method_set_lod_scale(ft_method *m, double scale)
 {
-    switch (m->kind) {
-    case FT_METHOD_BINTREE:
-#if FT_WITH_METHOD_BINTREE
-        ft_bintree_method_set_lod_scale(&m->u.bintree, scale);
-        return 1;
-#else
-        break;
-#endif
-    case FT_METHOD_PGRID:
-#if FT_WITH_METHOD_PGRID
-        ft_pgrid_method_set_lod_scale(&m->u.pgrid, scale);
-        return 1;
-#else
-        break;
-#endif
-    default:
-        break;
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    if (o == NULL || o->set_lod_scale == NULL) {
+        return 0;
     }
-    (void)scale;
-    return 0;
+    o->set_lod_scale(m, scale);
+    return 1;
 }
 
 void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
 {
-    switch (m->kind) {
-    case FT_METHOD_BINTREE:
-#if FT_WITH_METHOD_BINTREE
-        ft_bintree_method_select(&m->u.bintree, t, cam);
-#endif
-        break;
-    case FT_METHOD_PGM:
-#if FT_WITH_METHOD_PGM
-        ft_pgm_method_select(&m->u.pgm, t, cam);
-#endif
-        break;
-    case FT_METHOD_PGRID:
-#if FT_WITH_METHOD_PGRID
-        ft_pgrid_method_select(&m->u.pgrid, t, cam);
-#endif
-        break;
-    default:
-        break;
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    if (o != NULL && o->select != NULL) {
+        o->select(m, t, cam);
     }
-    (void)t;
-    (void)cam;
 }
 
 uint64_t ft_method_gpu_bytes(const ft_method *m)
 {
-    switch (m->kind) {
-    case FT_METHOD_BRUTE:
-        return m->u.brute.gpu_bytes;
-    case FT_METHOD_BINTREE:
-        return m->u.bintree.gpu_bytes;
-    case FT_METHOD_PGM:
-        return m->u.pgm.gpu_bytes;
-    case FT_METHOD_PGRID:
-        return m->u.pgrid.gpu_bytes + m->u.pgrid.pgm.gpu_bytes;
-    default:
-        return 0;
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    return (o != NULL) ? o->gpu_bytes(m) : 0u;
+}
+
+void ft_method_worst_case(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
+{
+    memset(w, 0, sizeof *w);
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    if (o != NULL) {
+        o->worst(m, t, w);
+    } else {
+        (void)snprintf(w->rule, sizeof w->rule, "method left out of this build");
     }
 }
 
 void ft_method_shutdown(ft_method *m, const ft_gl *gl)
 {
-    switch (m->kind) {
-    case FT_METHOD_BRUTE:
-#if FT_WITH_METHOD_BRUTE
-        ft_brute_shutdown(&m->u.brute, gl);
-#endif
-        break;
-    case FT_METHOD_BINTREE:
-#if FT_WITH_METHOD_BINTREE
-        ft_bintree_method_shutdown(&m->u.bintree, gl);
-#endif
-        break;
-    case FT_METHOD_PGM:
-#if FT_WITH_METHOD_PGM
-        ft_pgm_method_shutdown(&m->u.pgm, gl);
-#endif
-        break;
-    case FT_METHOD_PGRID:
-#if FT_WITH_METHOD_PGRID
-        ft_pgrid_method_shutdown(&m->u.pgrid, gl);
-#endif
-        break;
-    default:
-        break;
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    if (o != NULL) {
+        o->shutdown(m, gl);
     }
-    (void)gl;
 }

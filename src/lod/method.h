@@ -148,6 +148,39 @@ typedef struct ft_method {
     } u;
 } ft_method;
 
+/* What one frame of a method can cost at most, from its fixed capacities
+ * (printed by `fixterrain budget`). */
+typedef struct ft_method_worst {
+    uint64_t triangles;  /* every triangle submitted in a frame, all passes */
+    uint64_t raycast_px; /* pixels ray cast in a frame */
+    char rule[256];      /* how the numbers follow from the capacities */
+} ft_method_worst;
+
+/* One method's code behind the name the scene selects (FT_METHOD_LIST): a
+ * table of entry points each method file defines. NULL entries: select
+ * (nothing to select per frame), set_lod_scale (no LOD knob),
+ * vertex_defines (one shader variant), vertex_defines_coarse (one program). */
+typedef struct ft_method_ops {
+    const char *vertex_shader; /* embedded name */
+    const char *(*vertex_defines)(const ft_scene *s, int es3);
+    const char *(*vertex_defines_coarse)(const ft_scene *s, int es3);
+    void (*plan)(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+    ft_status (*init)(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                      ft_arena *a, ft_error *err);
+    void (*select)(ft_method *m, const ft_terrain *t, const ft_camera *cam);
+    void (*draw)(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                 const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
+    void (*set_lod_scale)(ft_method *m, double scale);
+    uint64_t (*gpu_bytes)(const ft_method *m);
+    void (*worst)(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
+    void (*shutdown)(ft_method *m, const ft_gl *gl);
+} ft_method_ops;
+
+/* The method's table, NULL when this build left the method out. */
+const ft_method_ops *ft_method_ops_of(ft_method_kind kind);
+
+/* The calls below go through the table of the scene's (or m's) method. */
+
 /* The vertex shader (embedded name) the method draws with. */
 const char *ft_method_vertex_shader(ft_method_kind m);
 /* Lines placed before the vertex shader's body: the compile-time variant
@@ -160,9 +193,10 @@ const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3);
 
 /* CPU pool needs (FT_POOL_METHOD) of the scene's method. */
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+/* FT_ERR_UNSUPPORTED when the build left the scene's method out. */
 ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                          ft_arena *a, ft_error *err);
-/* Binds the method's vertex state; the program is already in use. */
+/* Binds the method's vertex state and draws; the program is already in use. */
 void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 /* Per-frame LOD selection for the camera (no-op when the view is unchanged
@@ -174,31 +208,17 @@ void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam);
  * knob (brute, pgm: the scale is then ignored). */
 int ft_method_set_lod_scale(ft_method *m, double scale);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
+void ft_method_worst_case(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);
 
-#if FT_WITH_METHOD_BRUTE
-void ft_brute_plan(const ft_scene *s, ft_arena *a);
-ft_status ft_brute_init(ft_brute *b, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
-                        ft_arena *a, ft_error *err);
-void ft_brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program *p,
-                   const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
-void ft_brute_shutdown(ft_brute *b, const ft_gl *gl);
-#endif
+/* The per-method tables (each file defines its own). */
+extern const ft_method_ops ft_brute_ops;
+extern const ft_method_ops ft_bintree_ops;
+extern const ft_method_ops ft_pgm_ops;
+extern const ft_method_ops ft_pgrid_ops;
 
-#if FT_WITH_METHOD_BINTREE
-void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
-ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
-                                 const ft_terrain *t, ft_arena *a, ft_error *err);
-void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam);
-void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale);
-void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale);
-void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
-                            const struct ft_terrain_program *p, const ft_terrain *t,
-                            const ft_camera *cam, ft_method_draw_stats *st);
-void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl);
-#endif
-
-#if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID /* pgrid draws with the pgm grid */
+/* pgrid draws with the pgm grid: pgm's entry points, typed. */
+#if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID
 void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
 ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
                              const ft_terrain *t, ft_arena *a, ft_error *err);
@@ -212,17 +232,6 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
 void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                         const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);
-#endif
-
-#if FT_WITH_METHOD_PGRID
-void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
-ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
-                               const ft_terrain *t, ft_arena *a, ft_error *err);
-void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam);
-void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl,
-                          const struct ft_terrain_program *p, const ft_terrain *t,
-                          const ft_camera *cam, ft_method_draw_stats *st);
-void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl);
 #endif
 
 #endif

@@ -12,6 +12,7 @@
  * Grids that are not (2^n+1)^2 are padded by clamping (see bintree.h): the
  * vertex shader clamps grid coordinates into the real grid, so the padded
  * area collapses onto the grid's edge and is never drawn. */
+#include <stdio.h>
 #include <math.h>
 #include <string.h>
 
@@ -26,7 +27,7 @@
  * FT_POOL_GPU_STAGING (width * rows * 16 bytes), not in one copy of the grid. */
 #define FT_BT_VTX_STRIP_ROWS 8u
 
-void ft_bintree_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     uint32_t k = s->bintree_template_k;
     if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
@@ -84,8 +85,8 @@ static ft_status upload_vertex_table(ft_bintree_method *m, const ft_gl *gl, ft_a
     return ft_gl_check(gl, "bintree vertex table upload", err);
 }
 
-ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
-                                 const ft_terrain *t, ft_arena *a, ft_error *err)
+static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                              const ft_terrain *t, ft_arena *a, ft_error *err)
 {
     const uint32_t k = s->bintree_template_k;
     memset(m, 0, sizeof *m);
@@ -201,7 +202,7 @@ ft_status ft_bintree_method_init(ft_bintree_method *m, const ft_gl *gl, const ft
     return ft_gl_check(gl, "bintree init (template, instance buffer, error texture)", err);
 }
 
-void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
+static void bintree_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     if (ft_view_key_matches(&m->sel_view, cam)) {
         return;
@@ -224,7 +225,7 @@ void ft_bintree_method_select(ft_bintree_method *m, const ft_terrain *t, const f
     m->uploaded = 0;
 }
 
-void ft_bintree_method_set_lod_scale(ft_bintree_method *m, double scale)
+static void bintree_set_lod_scale(ft_bintree_method *m, double scale)
 {
     const double s = scale < 1.0 ? 1.0 : scale;
     if (s != m->lod_scale) {
@@ -280,11 +281,11 @@ static void draw_instances(const ft_bintree_method *m, const ft_gl *gl, uint32_t
                               (const void *)0, (GLsizei)count);
 }
 
-void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
-                            const struct ft_terrain_program *p, const ft_terrain *t,
-                            const ft_camera *cam, ft_method_draw_stats *st)
+static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
+                         const struct ft_terrain_program *p, const ft_terrain *t,
+                         const ft_camera *cam, ft_method_draw_stats *st)
 {
-    ft_bintree_method_select(m, t, cam);
+    bintree_select(m, t, cam);
     gl->ActiveTexture(GL_TEXTURE1);
     gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
     if (m->bt.sub > 0u) {
@@ -357,7 +358,7 @@ void ft_bintree_method_draw(ft_bintree_method *m, const ft_gl *gl,
     st->budget_hit = m->sel.budget_hit;
 }
 
-void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl)
+static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)
 {
     if (m->vbo) gl->DeleteBuffers(1, &m->vbo);
     if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
@@ -367,3 +368,80 @@ void ft_bintree_method_shutdown(ft_bintree_method *m, const ft_gl *gl)
     if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
     m->vbo = m->ibo = m->inst_vbo = m->err_tex = m->twist_tex = m->vtx_tex = 0u;
 }
+
+/* ---- the method table ---------------------------------------------------------- */
+
+/* The compile-time vertex shader variant: sub-sample levels, vertex table. */
+static const char *ops_vertex_defines(const ft_scene *s, int es3)
+{
+    const int sub = s->bintree_subsample_levels > 0u;
+    const int vtx = es3 && s->bintree_vertex_table;
+    static const char *const k_variant[2][2] = {
+        {"#define FT_BT_SUB 0\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n"},
+        {"#define FT_BT_SUB 1\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 1\n#define FT_BT_VTX 1\n"},
+    };
+    return k_variant[sub][vtx];
+}
+
+/* Tiles with every vertex on a sample get a program without sub-sample code
+ * (GLES 3, sub-sample levels and the vertex table). */
+static const char *ops_vertex_defines_coarse(const ft_scene *s, int es3)
+{
+    if (s->bintree_subsample_levels == 0u || !es3 || !s->bintree_vertex_table) {
+        return NULL;
+    }
+    return "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n";
+}
+
+static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                          ft_arena *a, ft_error *err)
+{
+    return bintree_init(&m->u.bintree, gl, s, t, a, err);
+}
+
+static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    bintree_select(&m->u.bintree, t, cam);
+}
+
+static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    bintree_draw(&m->u.bintree, gl, p, t, cam, st);
+}
+
+static void ops_set_lod_scale(ft_method *m, double scale)
+{
+    bintree_set_lod_scale(&m->u.bintree, scale);
+}
+
+static uint64_t ops_gpu_bytes(const ft_method *m)
+{
+    return m->u.bintree.gpu_bytes;
+}
+
+static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
+{
+    (void)t;
+    w->triangles = (uint64_t)m->u.bintree.bt.tiles_max * m->u.bintree.triangles_per_tile;
+    (void)snprintf(w->rule, sizeof w->rule, "bintree.tiles_max x 4^template_k");
+}
+
+static void ops_shutdown(ft_method *m, const ft_gl *gl)
+{
+    bintree_shutdown(&m->u.bintree, gl);
+}
+
+const ft_method_ops ft_bintree_ops = {
+    .vertex_shader = "bintree.vert.glsl",
+    .vertex_defines = ops_vertex_defines,
+    .vertex_defines_coarse = ops_vertex_defines_coarse,
+    .plan = bintree_plan,
+    .init = ops_init,
+    .select = ops_select,
+    .draw = ops_draw,
+    .set_lod_scale = ops_set_lod_scale,
+    .gpu_bytes = ops_gpu_bytes,
+    .worst = ops_worst,
+    .shutdown = ops_shutdown,
+};

@@ -10,6 +10,7 @@
  * When the grid has more samples than brute.max_vertices, a square window
  * of samples centred under the eye is drawn (clamped into the grid). */
 #include <math.h>
+#include <stdio.h>
 
 #include "gpu/renderer.h"
 #include "lod/method.h"
@@ -24,15 +25,16 @@ static uint32_t index_count(uint32_t p)
     return p * p * 6u;
 }
 
-void ft_brute_plan(const ft_scene *s, ft_arena *a)
+static void brute_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
+    (void)t;
     uint32_t p = s->brute_patch_cells;
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)vertex_count(p) * 2u * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)index_count(p) * sizeof(uint16_t));
 }
 
-ft_status ft_brute_init(ft_brute *b, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
-                        ft_arena *a, ft_error *err)
+static ft_status brute_init(ft_brute *b, const ft_gl *gl, const ft_scene *s,
+                            const ft_terrain *t, ft_arena *a, ft_error *err)
 {
     uint32_t p = s->brute_patch_cells;
     float *uv = NULL;
@@ -106,8 +108,8 @@ static void pick_window(const ft_brute *b, const ft_terrain *t, const ft_camera 
     *y1 = *y0 + side_y - 1u;
 }
 
-void ft_brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program *p,
-                   const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+static void brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program *p,
+                       const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
     uint32_t x0, x1, y0, y1;
     pick_window(b, t, cam, &x0, &x1, &y0, &y1);
@@ -134,7 +136,7 @@ void ft_brute_draw(ft_brute *b, const ft_gl *gl, const struct ft_terrain_program
     }
 }
 
-void ft_brute_shutdown(ft_brute *b, const ft_gl *gl)
+static void brute_shutdown(ft_brute *b, const ft_gl *gl)
 {
     if (b->vbo != 0u) {
         gl->DeleteBuffers(1, &b->vbo);
@@ -144,3 +146,48 @@ void ft_brute_shutdown(ft_brute *b, const ft_gl *gl)
     }
     b->vbo = b->ibo = 0u;
 }
+
+/* ---- the method table ---------------------------------------------------------- */
+
+static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                          ft_arena *a, ft_error *err)
+{
+    return brute_init(&m->u.brute, gl, s, t, a, err);
+}
+
+static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    brute_draw(&m->u.brute, gl, p, t, cam, st);
+}
+
+static uint64_t ops_gpu_bytes(const ft_method *m)
+{
+    return m->u.brute.gpu_bytes;
+}
+
+/* The window (brute.max_vertices) rounded up to whole patches. */
+static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
+{
+    const uint64_t p = m->u.brute.patch_cells, win = m->u.brute.window_side;
+    const uint64_t cw = (t->width < win ? t->width : win) - 1u;
+    const uint64_t ch = (t->height < win ? t->height : win) - 1u;
+    w->triangles = ((cw + p - 1u) / p) * ((ch + p - 1u) / p) * p * p * 2u;
+    (void)snprintf(w->rule, sizeof w->rule,
+                   "whole patches covering the drawn window, 2 per cell");
+}
+
+static void ops_shutdown(ft_method *m, const ft_gl *gl)
+{
+    brute_shutdown(&m->u.brute, gl);
+}
+
+const ft_method_ops ft_brute_ops = {
+    .vertex_shader = "terrain.vert.glsl",
+    .plan = brute_plan,
+    .init = ops_init,
+    .draw = ops_draw,
+    .gpu_bytes = ops_gpu_bytes,
+    .worst = ops_worst,
+    .shutdown = ops_shutdown,
+};

@@ -19,12 +19,18 @@
  *    heights texture. Vertex texture units needed: 2.
  * The CPU side per frame is the sampling camera (ft_pgm_setup: O(pyramid
  * levels), no allocation), recomputed only when the view changes. */
+#include <stdio.h>
 #include <math.h>
 #include <string.h>
 
 #include "gpu/gpu_texture.h"
 #include "gpu/renderer.h"
 #include "lod/method.h"
+
+/* A band's vertices are indexed by 16 bits, and a band holds at least 8
+ * vertex rows of the widest grid. */
+_Static_assert(FT_PGM_BAND_VERTICES_MAX <= 65536u, "band indices are 16-bit");
+_Static_assert(FT_PGM_BAND_VERTICES_MAX / FT_PGM_GRID_SIDE_MAX >= 8u, "bands of 8 rows or more");
 
 typedef struct pgm_shape {
     uint32_t vrows;      /* vertex rows in the template band */
@@ -292,3 +298,50 @@ void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
     if (m->atlas_tex) gl->DeleteTextures(1, &m->atlas_tex);
     m->vbo = m->ibo = m->atlas_tex = 0u;
 }
+
+/* ---- the method table ---------------------------------------------------------- */
+
+static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                          ft_arena *a, ft_error *err)
+{
+    return ft_pgm_method_init(&m->u.pgm, gl, s, t, a, err);
+}
+
+static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    ft_pgm_method_select(&m->u.pgm, t, cam);
+}
+
+static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    ft_pgm_method_draw(&m->u.pgm, gl, p, t, cam, st);
+}
+
+static uint64_t ops_gpu_bytes(const ft_method *m)
+{
+    return m->u.pgm.gpu_bytes;
+}
+
+static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
+{
+    (void)t;
+    w->triangles = 2ull * (m->u.pgm.cols - 1u) * (m->u.pgm.rows - 1u);
+    (void)snprintf(w->rule, sizeof w->rule, "the grid, (cols - 1) x (rows - 1) x 2, every frame");
+}
+
+static void ops_shutdown(ft_method *m, const ft_gl *gl)
+{
+    ft_pgm_method_shutdown(&m->u.pgm, gl);
+}
+
+const ft_method_ops ft_pgm_ops = {
+    .vertex_shader = "pgm.vert.glsl",
+    .plan = ft_pgm_method_plan,
+    .init = ops_init,
+    .select = ops_select,
+    .draw = ops_draw,
+    .gpu_bytes = ops_gpu_bytes,
+    .worst = ops_worst,
+    .shutdown = ops_shutdown,
+};

@@ -83,7 +83,7 @@ static void pgm_scene(const ft_scene *s, ft_scene *out)
     out->pgm_grid_rows = s->pgrid_grid_rows;
 }
 
-void ft_pgrid_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+static void pgrid_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     static ft_scene ps; /* init-time only; too large for a small stack */
     pgm_scene(s, &ps);
@@ -352,8 +352,8 @@ static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error
     return FT_OK;
 }
 
-ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
-                               const ft_terrain *t, ft_arena *a, ft_error *err)
+static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                            const ft_terrain *t, ft_arena *a, ft_error *err)
 {
     static ft_scene ps;
     memset(m, 0, sizeof *m);
@@ -465,7 +465,7 @@ ft_status ft_pgrid_method_init(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
 }
 
-void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale)
+static void pgrid_set_lod_scale(ft_pgrid_method *m, double scale)
 {
     const double s = scale < 1.0 ? 1.0 : scale;
     if (s != m->lod_scale) {
@@ -474,7 +474,7 @@ void ft_pgrid_method_set_lod_scale(ft_pgrid_method *m, double scale)
     }
 }
 
-void ft_pgrid_method_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam)
+static void pgrid_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     ft_pgm_method_select(&m->pgm, t, cam);
 }
@@ -716,8 +716,8 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     gl->DepthFunc(GL_LESS);
 }
 
-void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
-                          const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                       const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
     GLint fb = 0;
     gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
@@ -793,7 +793,7 @@ void ft_pgrid_method_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_t
     st->budget_hit = m->budget_hit;
 }
 
-void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
+static void pgrid_shutdown(ft_pgrid_method *m, const ft_gl *gl)
 {
     ft_pgm_method_shutdown(&m->pgm, gl);
     if (m->mm_tex) gl->DeleteTextures(1, &m->mm_tex);
@@ -822,3 +822,82 @@ void ft_pgrid_method_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;
     m->err_prog_built = 0;
 }
+
+/* ---- the method table ---------------------------------------------------------- */
+
+static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
+                          ft_arena *a, ft_error *err)
+{
+    return pgrid_init(&m->u.pgrid, gl, s, t, a, err);
+}
+
+static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    pgrid_select(&m->u.pgrid, t, cam);
+}
+
+static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    pgrid_draw(&m->u.pgrid, gl, p, t, cam, st);
+}
+
+static void ops_set_lod_scale(ft_method *m, double scale)
+{
+    pgrid_set_lod_scale(&m->u.pgrid, scale);
+}
+
+static uint64_t ops_gpu_bytes(const ft_method *m)
+{
+    return m->u.pgrid.gpu_bytes + m->u.pgrid.pgm.gpu_bytes;
+}
+
+/* The grid goes through the pipeline once for the picture, once into the
+ * error buffer and, with ray casting, twice more as the envelopes. With the
+ * late decision a frame's ray-cast count is set from the previous frame's
+ * buffer, so the first frame and one frame after an abrupt view change may
+ * ray cast every pixel over gamma: the worst case is the whole image. */
+static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
+{
+    (void)t;
+    const ft_pgrid_method *g = &m->u.pgrid;
+    const uint64_t grid = 2ull * (g->pgm.cols - 1u) * (g->pgm.rows - 1u);
+    const uint64_t image = (uint64_t)g->w_px * g->h_px;
+    const uint64_t passes = g->ray_casting ? 4u : 2u;
+    /* plus 2 triangles a full-target pass: the tight bound's 2, ray casting */
+    w->triangles = grid * passes + (g->tight ? 4u : 0u) + (g->ray_casting ? 2u : 0u);
+    if (!g->ray_casting) {
+        w->raycast_px = 0u;
+        (void)snprintf(w->rule, sizeof w->rule,
+                       "the grid drawn twice (picture, error buffer); no ray casting");
+    } else if (g->late) {
+        w->raycast_px = image;
+        (void)snprintf(w->rule, sizeof w->rule,
+                       "the grid drawn 4 times (picture, error buffer, 2 envelopes); ray casting "
+                       "within pgrid.raycast_max_px = %llu but the whole image on a first or "
+                       "abruptly changed view (the count is a frame late)",
+                       (unsigned long long)g->raycast_max_px);
+    } else {
+        w->raycast_px = g->raycast_max_px < image ? g->raycast_max_px : image;
+        (void)snprintf(w->rule, sizeof w->rule,
+                       "the grid drawn 4 times (picture, error buffer, 2 envelopes); ray casting "
+                       "within pgrid.raycast_max_px");
+    }
+}
+
+static void ops_shutdown(ft_method *m, const ft_gl *gl)
+{
+    pgrid_shutdown(&m->u.pgrid, gl);
+}
+
+const ft_method_ops ft_pgrid_ops = {
+    .vertex_shader = "pgrid.vert.glsl",
+    .plan = pgrid_plan,
+    .init = ops_init,
+    .select = ops_select,
+    .draw = ops_draw,
+    .set_lod_scale = ops_set_lod_scale,
+    .gpu_bytes = ops_gpu_bytes,
+    .worst = ops_worst,
+    .shutdown = ops_shutdown,
+};

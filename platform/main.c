@@ -552,6 +552,7 @@ static void print_replay_help(void)
 }
 
 static ft_pose_feed g_feed;
+static ft_replay_io g_replay_io; /* the replay's files and line reader */
 
 /* The position prediction's counters and the rejects per quantity, as JSON
  * members (replay and run share them). Returns 0 when cap is too small. */
@@ -698,7 +699,7 @@ static int cmd_replay(int argc, char **argv)
         return FT_EXIT_ERROR;
     }
     static ft_replay_result r;
-    ft_status st = ft_app_replay(&g_app, &d, &g_feed, &r, &err);
+    ft_status st = ft_app_replay(&g_app, &d, &g_feed, &g_replay_io, &r, &err);
     for (uint32_t i = 0; i < r.errors_kept; ++i) {
         fprintf(stderr, "fixterrain replay: rejected %s\n", r.errors[i]);
     }

@@ -93,6 +93,7 @@ static const char k_scene[] =
 
 static ft_app g_app;
 static ft_pose_feed g_feed;
+static ft_replay_io g_replay_io; /* the replay's files and line reader */
 static ft_replay_result g_res;
 
 /* A 4 s CANaerospace log (attitude, rates 80 Hz; altitude, lat/lon FLOAT and
@@ -200,7 +201,7 @@ int main(int argc, char **argv)
         write_log(log); /* test set-up, not the renderer */
         g_counting = 1;
         ft_replay_desc d = {log, dir, csv, 0};
-        rs = ft_app_replay(&g_app, &d, &g_feed, &g_res, &err);
+        rs = ft_app_replay(&g_app, &d, &g_feed, &g_replay_io, &g_res, &err);
         if (rs != FT_OK) fprintf(stderr, "replay: %s\n", err.text);
     }
     /* A request to the locked arena is refused, not served from the heap. */

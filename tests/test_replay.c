@@ -38,6 +38,7 @@
 
 static ft_app g_app;
 static ft_pose_feed g_feed;
+static ft_replay_io g_replay_io; /* the replay's files and line reader */
 static ft_replay_result g_res;
 
 static const char k_scene[] =
@@ -155,7 +156,7 @@ static int run_replay(const char *log, const char *poses, ft_status *st_out, ft_
     memset(&d, 0, sizeof d);
     d.log_path = log;
     d.poses_path = poses;
-    *st_out = ft_app_replay(&g_app, &d, &g_feed, &g_res, err);
+    *st_out = ft_app_replay(&g_app, &d, &g_feed, &g_replay_io, &g_res, err);
     return *st_out == FT_OK;
 }
 

@@ -215,6 +215,7 @@ static void on_frame(void *ctx, const ft_renderer *r)
 
 static ft_app g_app;
 static ft_pose_feed g_feed;
+static ft_replay_io g_replay_io; /* the replay's files and line reader */
 static ft_replay_result g_res;
 static soak_state g_soak;
 
@@ -268,7 +269,7 @@ int main(int argc, char **argv)
     const uint64_t t_start = ft_plat_monotonic_ns();
     ft_replay_desc d = {log, NULL, NULL, 0};
     ft_error err;
-    ft_status st = ft_app_replay(&g_app, &d, &g_feed, &g_res, &err);
+    ft_status st = ft_app_replay(&g_app, &d, &g_feed, &g_replay_io, &g_res, &err);
     const double wall_s = (double)(ft_plat_monotonic_ns() - t_start) * 1e-9;
     struct rusage ru;
     double cpu_s = -1.0;

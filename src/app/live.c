@@ -176,14 +176,13 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
     if (st == FT_OK) {
         st = open_inputs(lv, s, err);
     }
-    static ft_file pose_file;
     int poses = 0;
     if (st == FT_OK && d->poses_path != NULL) {
-        st = ft_plat_file_open_write(&pose_file, d->poses_path, err);
+        st = ft_plat_file_open_write(&lv->pose_file, d->poses_path, err);
         if (st == FT_OK) {
             poses = 1;
             static const char header[] = FT_POSE_ROW_HEADER;
-            st = pose_file.writer.write(pose_file.writer.ctx, header, sizeof header - 1u);
+            st = lv->pose_file.writer.write(lv->pose_file.writer.ctx, header, sizeof header - 1u);
         }
     }
     /* Warm-up frame before the schedule starts: drivers compile shaders at
@@ -312,10 +311,10 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
                                           scale_drawn, fs.tau_achieved_px);
             if (n == 0u) {
                 st = ft_fail(err, FT_ERR_OVERSIZED, "pose row too long");
-            } else if (ft_jobs_push(&lv->jobs, write_pose_row, &pose_file.writer,
+            } else if (ft_jobs_push(&lv->jobs, write_pose_row, &lv->pose_file.writer,
                                     FT_LIVE_JOB_COST_NS, row, n, NULL) != FT_OK) {
                 /* the queue is full: write now rather than lose the row */
-                st = pose_file.writer.write(pose_file.writer.ctx, row, n);
+                st = lv->pose_file.writer.write(lv->pose_file.writer.ctx, row, n);
             }
         }
         if (st == FT_OK) {
@@ -344,9 +343,9 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
     r->jobs_high_water = lv->jobs.high_water;
     if (poses) {
         if (st == FT_OK) {
-            st = ft_plat_file_finish_write(&pose_file, err);
+            st = ft_plat_file_finish_write(&lv->pose_file, err);
         }
-        ft_plat_file_close(&pose_file);
+        ft_plat_file_close(&lv->pose_file);
     }
     close_inputs(lv);
     return st;

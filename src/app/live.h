@@ -91,6 +91,7 @@ typedef struct ft_live {
     ft_can_frame hold[2][FT_LIVE_HOLD]; /* standby port's newest frames */
     uint32_t hold_next[2], hold_count[2];
     ft_gpio_edge edges[FT_GPIO_EVENTS_MAX];
+    ft_file pose_file; /* the pose record (live_desc.poses_path) */
 } ft_live;
 
 ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_pose_feed *feed,

@@ -138,7 +138,7 @@ static ft_status write_row(ft_writer *w, uint32_t frame, uint64_t t_ns, const ft
 }
 
 ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed,
-                        ft_replay_result *r, ft_error *err)
+                        ft_replay_io *io, ft_replay_result *r, ft_error *err)
 {
     memset(r, 0, sizeof *r);
     r->first_annunciated = UINT32_MAX;
@@ -167,23 +167,23 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
                     s->frame_degrade_max_scale);
     (void)ft_method_set_lod_scale(&app->renderer.method, 1.0);
     const uint64_t gap_ns = (uint64_t)(FT_REPLAY_GAP_MAX_S * 1e9);
-    static ft_file log_file, pose_file; /* static: ft_file holds a path buffer */
-    static ft_line_reader lr;           /* 5 KiB of buffers: not on the stack */
-    st = ft_plat_file_open_read(&log_file, d->log_path, err);
+    ft_file *const log_file = &io->log_file, *const pose_file = &io->pose_file;
+    ft_line_reader *const lr = &io->lr;
+    st = ft_plat_file_open_read(log_file, d->log_path, err);
     if (st != FT_OK) {
         return st;
     }
-    ft_line_reader_init(&lr, &log_file.reader);
+    ft_line_reader_init(lr, &log_file->reader);
     int poses = 0;
     if (d->poses_path != NULL) {
-        st = ft_plat_file_open_write(&pose_file, d->poses_path, err);
+        st = ft_plat_file_open_write(pose_file, d->poses_path, err);
         if (st != FT_OK) {
-            ft_plat_file_close(&log_file);
+            ft_plat_file_close(log_file);
             return st;
         }
         poses = 1;
         static const char header[] = FT_POSE_ROW_HEADER;
-        st = pose_file.writer.write(pose_file.writer.ctx, header, sizeof header - 1u);
+        st = pose_file->writer.write(pose_file->writer.ctx, header, sizeof header - 1u);
     }
 
     ft_candump_record rec;
@@ -191,7 +191,7 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
     memset(&tl, 0, sizeof tl);
     int have = 0;
     if (st == FT_OK) {
-        st = next_record(&lr, d->log_path, r, &tl, &rec, &have, err);
+        st = next_record(lr, d->log_path, r, &tl, &rec, &have, err);
     }
     if (st == FT_OK && !have) {
         st = ft_fail(err, FT_ERR_FORMAT,
@@ -210,7 +210,7 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         while (have && rec.frame.t_ns <= t_display) {
             ft_pose_feed_frame(feed, &rec.frame);
             t_last = rec.frame.t_ns > t_last ? rec.frame.t_ns : t_last;
-            st = next_record(&lr, d->log_path, r, &tl, &rec, &have, err);
+            st = next_record(lr, d->log_path, r, &tl, &rec, &have, err);
             if (st != FT_OK) {
                 break;
             }
@@ -256,7 +256,7 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         }
         r->last_view = v;
         if (poses) {
-            st = write_row(&pose_file.writer, k, t_display, &v, scale_drawn, fs.tau_achieved_px,
+            st = write_row(&pose_file->writer, k, t_display, &v, scale_drawn, fs.tau_achieved_px,
                            err);
         }
         if (st == FT_OK && d->frames_dir != NULL) {
@@ -284,10 +284,10 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
     r->log_last_s = (double)t_last * 1e-9;
     if (poses) {
         if (st == FT_OK) {
-            st = ft_plat_file_finish_write(&pose_file, err);
+            st = ft_plat_file_finish_write(pose_file, err);
         }
-        ft_plat_file_close(&pose_file);
+        ft_plat_file_close(pose_file);
     }
-    ft_plat_file_close(&log_file);
+    ft_plat_file_close(log_file);
     return st;
 }

@@ -39,6 +39,8 @@
 #include <stdint.h>
 
 #include "app/app.h"
+#include "core/line_reader.h"
+#include "core/platform_api.h"
 #include "input/pose_feed.h"
 #include "lod/degrade.h"
 
@@ -100,9 +102,16 @@ typedef struct ft_replay_timeline {
 
 ft_replay_ts ft_replay_timeline_accept(ft_replay_timeline *tl, uint64_t t_ns);
 
-/* Runs the replay on an initialised app. feed is caller storage (it holds
- * the decoder counters afterwards). */
+/* The replay's files and line reader (about 5 KiB of buffers): caller
+ * storage, like the feed. */
+typedef struct ft_replay_io {
+    ft_file log_file, pose_file;
+    ft_line_reader lr;
+} ft_replay_io;
+
+/* Runs the replay on an initialised app. feed and io are caller storage
+ * (feed holds the decoder counters afterwards). */
 ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed,
-                        ft_replay_result *out, ft_error *err);
+                        ft_replay_io *io, ft_replay_result *out, ft_error *err);
 
 #endif

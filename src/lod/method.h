@@ -219,8 +219,14 @@ extern const ft_method_ops ft_pgrid_ops;
 
 /* pgrid draws with the pgm grid: pgm's entry points, typed. */
 #if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID
-void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
-ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+/* The grid pgm draws: from pgm's keys, or pgrid's (pgrid.grid). */
+typedef struct ft_pgm_grid_desc {
+    uint32_t cols, rows;            /* grid vertices */
+    ft_height_format height_format; /* gpu.height_format: the avg atlas's too */
+} ft_pgm_grid_desc;
+
+void ft_pgm_method_plan(const ft_pgm_grid_desc *g, const ft_terrain *t, ft_arena *a);
+ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_grid_desc *g,
                              const ft_terrain *t, ft_arena *a, ft_error *err);
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
 /* Cell rows drawn by band b (the last band may be shorter). */

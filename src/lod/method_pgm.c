@@ -39,10 +39,10 @@ typedef struct pgm_shape {
     uint32_t atlas_w, atlas_h;
 } pgm_shape;
 
-static void shape_of(const ft_scene *s, const ft_terrain *t, pgm_shape *sh)
+static void shape_of(const ft_pgm_grid_desc *g, const ft_terrain *t, pgm_shape *sh)
 {
     uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
-    const uint32_t cols = s->pgm_grid_cols, rows = s->pgm_grid_rows;
+    const uint32_t cols = g->cols, rows = g->rows;
     uint32_t vrows = FT_PGM_BAND_VERTICES_MAX / cols; /* >= 8: cols <= 8192 */
     vrows = (vrows < rows) ? vrows : rows;
     sh->vrows = vrows;
@@ -53,35 +53,35 @@ static void shape_of(const ft_scene *s, const ft_terrain *t, pgm_shape *sh)
     }
 }
 
-static size_t vbo_bytes(const ft_scene *s, const pgm_shape *sh)
+static size_t vbo_bytes(const ft_pgm_grid_desc *g, const pgm_shape *sh)
 {
-    return (size_t)sh->vrows * s->pgm_grid_cols * 2u * sizeof(float);
+    return (size_t)sh->vrows * g->cols * 2u * sizeof(float);
 }
 
-static size_t ibo_bytes(const ft_scene *s, const pgm_shape *sh)
+static size_t ibo_bytes(const ft_pgm_grid_desc *g, const pgm_shape *sh)
 {
-    return (size_t)sh->band_rows * (s->pgm_grid_cols - 1u) * 6u * sizeof(uint16_t);
+    return (size_t)sh->band_rows * (g->cols - 1u) * 6u * sizeof(uint16_t);
 }
 
-void ft_pgm_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+void ft_pgm_method_plan(const ft_pgm_grid_desc *g, const ft_terrain *t, ft_arena *a)
 {
-    if (s->pgm_grid_cols < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_cols > FT_PGM_GRID_SIDE_MAX ||
-        s->pgm_grid_rows < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_rows > FT_PGM_GRID_SIDE_MAX) {
+    if (g->cols < FT_PGM_GRID_SIDE_MIN || g->cols > FT_PGM_GRID_SIDE_MAX ||
+        g->rows < FT_PGM_GRID_SIDE_MIN || g->rows > FT_PGM_GRID_SIDE_MAX) {
         return; /* init reports it */
     }
     pgm_shape sh;
-    shape_of(s, t, &sh);
+    shape_of(g, t, &sh);
     /* Init scratch, used one after the other and given back in between: the
      * atlas floats, then the band's vertices, then its indices. */
     size_t need = (size_t)sh.atlas_w * sh.atlas_h * sizeof(float);
-    need = (vbo_bytes(s, &sh) > need) ? vbo_bytes(s, &sh) : need;
-    need = (ibo_bytes(s, &sh) > need) ? ibo_bytes(s, &sh) : need;
+    need = (vbo_bytes(g, &sh) > need) ? vbo_bytes(g, &sh) : need;
+    need = (ibo_bytes(g, &sh) > need) ? ibo_bytes(g, &sh) : need;
     ft_arena_plan(a, FT_POOL_METHOD, need);
 }
 
 /* The avg levels 1.. copied into one w x h float image, then uploaded in
  * the format of the heights texture. */
-static ft_status upload_atlas(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+static ft_status upload_atlas(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_grid_desc *g,
                               const ft_terrain *t, ft_arena *a, ft_error *err)
 {
     uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
@@ -98,7 +98,7 @@ static ft_status upload_atlas(ft_pgm_method *m, const ft_gl *gl, const ft_scene 
                        "pgm: the avg-pyramid atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", w, h,
                        gl->caps.max_texture_size);
     }
-    ft_height_format f = s->height_format;
+    ft_height_format f = g->height_format;
     if (f == FT_HEIGHT_FORMAT_AUTO) { /* the renderer's rule for the heights */
         f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
     }
@@ -136,13 +136,13 @@ static ft_status upload_atlas(ft_pgm_method *m, const ft_gl *gl, const ft_scene 
     return st;
 }
 
-static ft_status upload_band(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+static ft_status upload_band(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_grid_desc *g,
                              const pgm_shape *sh, ft_arena *a, ft_error *err)
 {
     const uint32_t cols = m->cols;
     const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
     float *uv = NULL;
-    ft_status st = ft_arena_take(a, FT_POOL_METHOD, vbo_bytes(s, sh), (void **)&uv, err);
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, vbo_bytes(g, sh), (void **)&uv, err);
     if (st != FT_OK) {
         return st;
     }
@@ -154,11 +154,11 @@ static ft_status upload_band(ft_pgm_method *m, const ft_gl *gl, const ft_scene *
     }
     gl->GenBuffers(1, &m->vbo);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)vbo_bytes(s, sh), uv, GL_STATIC_DRAW);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)vbo_bytes(g, sh), uv, GL_STATIC_DRAW);
     ft_arena_reset(a, FT_POOL_METHOD, mark);
 
     uint16_t *idx = NULL;
-    st = ft_arena_take(a, FT_POOL_METHOD, ibo_bytes(s, sh), (void **)&idx, err);
+    st = ft_arena_take(a, FT_POOL_METHOD, ibo_bytes(g, sh), (void **)&idx, err);
     if (st != FT_OK) {
         return st;
     }
@@ -174,20 +174,20 @@ static ft_status upload_band(ft_pgm_method *m, const ft_gl *gl, const ft_scene *
     }
     gl->GenBuffers(1, &m->ibo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
-    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)ibo_bytes(s, sh), idx, GL_STATIC_DRAW);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)ibo_bytes(g, sh), idx, GL_STATIC_DRAW);
     ft_arena_reset(a, FT_POOL_METHOD, mark);
-    m->gpu_bytes += vbo_bytes(s, sh) + ibo_bytes(s, sh);
+    m->gpu_bytes += vbo_bytes(g, sh) + ibo_bytes(g, sh);
     return FT_OK;
 }
 
-ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *s,
+ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_grid_desc *g,
                              const ft_terrain *t, ft_arena *a, ft_error *err)
 {
     memset(m, 0, sizeof *m);
-    if (s->pgm_grid_cols < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_cols > FT_PGM_GRID_SIDE_MAX ||
-        s->pgm_grid_rows < FT_PGM_GRID_SIDE_MIN || s->pgm_grid_rows > FT_PGM_GRID_SIDE_MAX) {
+    if (g->cols < FT_PGM_GRID_SIDE_MIN || g->cols > FT_PGM_GRID_SIDE_MAX ||
+        g->rows < FT_PGM_GRID_SIDE_MIN || g->rows > FT_PGM_GRID_SIDE_MAX) {
         return ft_fail(err, FT_ERR_CONFIG, "pgm: grid %u x %u outside %u..%u per side",
-                       s->pgm_grid_cols, s->pgm_grid_rows, FT_PGM_GRID_SIDE_MIN,
+                       g->cols, g->rows, FT_PGM_GRID_SIDE_MIN,
                        FT_PGM_GRID_SIDE_MAX);
     }
     const ft_pyramid *p = &t->pyr;
@@ -209,15 +209,15 @@ ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_scene *
                        gl->caps.max_vertex_texture_units);
     }
     pgm_shape sh;
-    shape_of(s, t, &sh);
-    m->cols = s->pgm_grid_cols;
-    m->rows = s->pgm_grid_rows;
+    shape_of(g, t, &sh);
+    m->cols = g->cols;
+    m->rows = g->rows;
     m->band_rows = sh.band_rows;
     m->band_count = sh.band_count;
     m->levels = p->avg_levels;
-    ft_status st = upload_atlas(m, gl, s, t, a, err);
+    ft_status st = upload_atlas(m, gl, g, t, a, err);
     if (st == FT_OK) {
-        st = upload_band(m, gl, s, &sh, a, err);
+        st = upload_band(m, gl, g, &sh, a, err);
     }
     if (st != FT_OK) {
         return st;
@@ -301,10 +301,24 @@ void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
 
 /* ---- the method table ---------------------------------------------------------- */
 
+/* pgm's own keys (pgrid draws the same grid from its own) */
+static ft_pgm_grid_desc grid_of(const ft_scene *s)
+{
+    const ft_pgm_grid_desc g = {s->pgm_grid_cols, s->pgm_grid_rows, s->height_format};
+    return g;
+}
+
+static void ops_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+{
+    const ft_pgm_grid_desc g = grid_of(s);
+    ft_pgm_method_plan(&g, t, a);
+}
+
 static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                           ft_arena *a, ft_error *err)
 {
-    return ft_pgm_method_init(&m->u.pgm, gl, s, t, a, err);
+    const ft_pgm_grid_desc g = grid_of(s);
+    return ft_pgm_method_init(&m->u.pgm, gl, &g, t, a, err);
 }
 
 static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
@@ -337,7 +351,7 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
 
 const ft_method_ops ft_pgm_ops = {
     .vertex_shader = "pgm.vert.glsl",
-    .plan = ft_pgm_method_plan,
+    .plan = ops_plan,
     .init = ops_init,
     .select = ops_select,
     .draw = ops_draw,

@@ -76,18 +76,17 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
     }
 }
 
-static void pgm_scene(const ft_scene *s, ft_scene *out)
+/* pgrid's grid (pgrid.grid), drawn by pgm's code */
+static ft_pgm_grid_desc pgm_grid(const ft_scene *s)
 {
-    *out = *s;
-    out->pgm_grid_cols = s->pgrid_grid_cols;
-    out->pgm_grid_rows = s->pgrid_grid_rows;
+    const ft_pgm_grid_desc g = {s->pgrid_grid_cols, s->pgrid_grid_rows, s->height_format};
+    return g;
 }
 
 static void pgrid_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
-    static ft_scene ps; /* init-time only; too large for a small stack */
-    pgm_scene(s, &ps);
-    ft_pgm_method_plan(&ps, t, a);
+    const ft_pgm_grid_desc g = pgm_grid(s);
+    ft_pgm_method_plan(&g, t, a);
     uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], hw = 1u, h = 1u;
     if (t->pyr.minmax_levels > 0u) {
         ft_pgrid_minmax_layout(t, origin, &hw, &h);
@@ -355,7 +354,6 @@ static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error
 static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
                             const ft_terrain *t, ft_arena *a, ft_error *err)
 {
-    static ft_scene ps;
     memset(m, 0, sizeof *m);
     if (t->pyr.minmax_levels < 1u) {
         return ft_fail(err, FT_ERR_ARG, "pgrid needs the terrain's min/max pyramid in memory");
@@ -366,8 +364,8 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
                        "it needs 3 vertex texture units, this device has %d",
                        gl->caps.max_vertex_texture_units);
     }
-    pgm_scene(s, &ps);
-    ft_status st = ft_pgm_method_init(&m->pgm, gl, &ps, t, a, err);
+    const ft_pgm_grid_desc g = pgm_grid(s);
+    ft_status st = ft_pgm_method_init(&m->pgm, gl, &g, t, a, err);
     if (st != FT_OK) {
         return st;
     }

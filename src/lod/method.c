@@ -5,19 +5,31 @@
 
 /* One entry per FT_METHOD_LIST name; a method the build leaves out
  * (FIXTERRAIN_WITH_METHOD_*) has none, and a scene naming it fails at init. */
-static const ft_method_ops *const k_ops[FT_METHOD_COUNT] = {
 #if FT_WITH_METHOD_BRUTE
-    [FT_METHOD_BRUTE] = &ft_brute_ops,
+#define FT_OPS_BRUTE (&ft_brute_ops)
+#else
+#define FT_OPS_BRUTE NULL
 #endif
 #if FT_WITH_METHOD_BINTREE
-    [FT_METHOD_BINTREE] = &ft_bintree_ops,
+#define FT_OPS_BINTREE (&ft_bintree_ops)
+#else
+#define FT_OPS_BINTREE NULL
 #endif
 #if FT_WITH_METHOD_PGM
-    [FT_METHOD_PGM] = &ft_pgm_ops,
+#define FT_OPS_PGM (&ft_pgm_ops)
+#else
+#define FT_OPS_PGM NULL
 #endif
 #if FT_WITH_METHOD_PGRID
-    [FT_METHOD_PGRID] = &ft_pgrid_ops,
+#define FT_OPS_PGRID (&ft_pgrid_ops)
+#else
+#define FT_OPS_PGRID NULL
 #endif
+static const ft_method_ops *const k_ops[FT_METHOD_COUNT] = {
+    [FT_METHOD_BRUTE] = FT_OPS_BRUTE,
+    [FT_METHOD_BINTREE] = FT_OPS_BINTREE,
+    [FT_METHOD_PGM] = FT_OPS_PGM,
+    [FT_METHOD_PGRID] = FT_OPS_PGRID,
 };
 
 const ft_method_ops *ft_method_ops_of(ft_method_kind kind)

@@ -18,10 +18,11 @@
 
 #include "app/app.h"
 #include "core/invariant.h"
-#include "test_util.h"
+#include "test_app_util.h"
 
-static const char k_scene[] =
-    "[scene]\nname = invariant-test\nmethod = brute\n"
+/* %s: the backend */
+static const char k_scene_fmt[] =
+    "[scene]\nname = invariant-test\nmethod = brute\nbackend = %s\n"
     "[view]\nwidth_px = 160\nheight_px = 120\nfovy_deg = 60\n"
     "[pose]\nlat_deg = 46.5035\nlon_deg = 8.0501\nalt_m = 2600\n"
     "heading_deg = 30\npitch_deg = -12\nroll_deg = 0\n"
@@ -59,10 +60,7 @@ static void count_red(uint32_t *all, uint32_t *diag_a, uint32_t *diag_b)
 static void frame(ft_frame_stats *fs)
 {
     ft_camera cam;
-    ft_error err;
-    ft_status st = ft_app_render(&g_app, &g_app.scene.pose, &cam, fs, &err);
-    if (st != FT_OK) fprintf(stderr, "frame: %s\n", err.text);
-    REQUIRE(st == FT_OK);
+    ft_test_frame(&g_app, &g_app.scene.pose, &cam, fs);
 }
 
 static void test_latch(void)
@@ -104,14 +102,9 @@ static void test_abort(void)
 
 static void test_annunciation(const char *backend)
 {
-    ft_scene s;
-    ft_error err;
-    ft_scene_defaults(&s);
-    REQUIRE(ft_scene_parse(&s, k_scene, "k_scene", &err) == FT_OK);
-    REQUIRE(ft_backend_from_name(backend, &s.backend));
-    ft_status st = ft_app_init(&g_app, &s, &err);
-    if (st != FT_OK) fprintf(stderr, "init: %s\n", err.text);
-    REQUIRE(st == FT_OK);
+    static char text[sizeof k_scene_fmt + 32];
+    REQUIRE(snprintf(text, sizeof text, k_scene_fmt, backend) < (int)sizeof text);
+    ft_test_app_init(&g_app, text, backend);
     ft_fault_clear_for_test();
 
     ft_frame_stats fs;

@@ -58,22 +58,6 @@ static void print_render_help(void)
            "  --quiet             do not print the memory table\n");
 }
 
-static void print_help(void)
-{
-    printf("usage: fixterrain COMMAND [options]   (fixterrain COMMAND --help for details)\n\n"
-           "commands:\n"
-           "  render    render one frame of a scene offscreen to PNG\n"
-           "  replay    render a candump log of CANaerospace pose messages\n"
-           "  run       live: pose from CAN and GPIO, frames at the scene's rate\n"
-           "  budget    static memory, GPU memory and worst-case work against the budgets\n"
-           "  bench     error against run time: every method and setting over flight paths\n"
-           "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file\n"
-           "  help      this text\n\n"
-           "bench and import are tools: this runtime runs fixterrain-tools for them.\n"
-           "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
-           "0.1.0");
-}
-
 static int parse_size(const char *text, uint32_t *w, uint32_t *h)
 {
     char *end = NULL;
@@ -1072,32 +1056,91 @@ static int forward_to_tools(const char *cmd, char **argv)
     return FT_EXIT_ERROR;
 }
 
+/* fixterrain keys: every scene key, what it accepts, its default and meaning,
+ * printed from the schema the parser uses (src/core/scene.h). */
+static int cmd_keys(int argc, char **argv)
+{
+    if (argc > 1) {
+        if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+            printf("usage: fixterrain keys\nLists every scene key: section.key, what it "
+                   "accepts, its default and what it means.\n");
+            return FT_EXIT_OK;
+        }
+        fprintf(stderr, "fixterrain keys: takes no options (see --help)\n");
+        return FT_EXIT_USAGE;
+    }
+    size_t n = 0u;
+    const ft_scene_key *k = ft_scene_keys(&n);
+    for (size_t i = 0; i < n; ++i) {
+        char accepts[512];
+        printf("%s.%s\n    %s\n", k[i].section, k[i].key,
+               k[i].kind == FT_KEY_LIST ? k[i].doc
+                                        : ft_scene_key_accepts(&k[i], accepts, sizeof accepts));
+        if (k[i].def != NULL) {
+            printf("    default: %s\n", k[i].def[0] != '\0' ? k[i].def : "(empty)");
+        }
+        if (k[i].kind != FT_KEY_LIST) {
+            printf("    %s\n", k[i].doc);
+        }
+    }
+    return FT_EXIT_OK;
+}
+
+#if FT_WITH_CAN && FT_WITH_GPIO
+#define FT_CMD_RUN cmd_run
+#else
+static int cmd_run_left_out(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    fprintf(stderr, "fixterrain: 'run' was left out of this build "
+                    "(FIXTERRAIN_WITH_CAN and FIXTERRAIN_WITH_GPIO are needed)\n");
+    return FT_EXIT_ERROR;
+}
+#define FT_CMD_RUN cmd_run_left_out
+#endif
+
+typedef struct command {
+    const char *name;
+    int (*fn)(int argc, char **argv); /* argv[0] is the command's name; NULL: a tool */
+    const char *what;
+} command;
+
+static const command k_commands[] = {
+    {"render", cmd_render, "render one frame of a scene offscreen to PNG"},
+    {"replay", cmd_replay, "render a candump log of CANaerospace pose messages"},
+    {"run", FT_CMD_RUN, "live: pose from CAN and GPIO, frames at the scene's rate"},
+    {"budget", cmd_budget, "static memory, GPU memory and worst-case work against the budgets"},
+    {"keys", cmd_keys, "every scene key: what it accepts, its default, what it means"},
+    {"bench", NULL, "error against run time: every method and setting over flight paths"},
+    {"import", NULL, "convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file"},
+};
+#define FT_COMMAND_COUNT (sizeof k_commands / sizeof k_commands[0])
+
+static void print_help(void)
+{
+    printf("usage: fixterrain COMMAND [options]   (fixterrain COMMAND --help for details)\n\n"
+           "commands:\n");
+    for (size_t i = 0; i < FT_COMMAND_COUNT; ++i) {
+        printf("  %-9s %s\n", k_commands[i].name, k_commands[i].what);
+    }
+    printf("  help      this text\n\n"
+           "bench and import are tools: this runtime runs fixterrain-tools for them.\n"
+           "fixterrain %s: fixed-resource terrain renderer (OpenGL ES 2/3 via EGL, OSMesa).\n",
+           "0.1.0");
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
         return cmd_render(1, argv); /* no arguments: the embedded default scene */
     }
     const char *cmd = argv[1];
-    if (strcmp(cmd, "render") == 0) {
-        return cmd_render(argc - 1, argv + 1);
-    }
-    if (strcmp(cmd, "replay") == 0) {
-        return cmd_replay(argc - 1, argv + 1);
-    }
-    if (strcmp(cmd, "budget") == 0) {
-        return cmd_budget(argc - 1, argv + 1);
-    }
-    if (strcmp(cmd, "run") == 0) {
-#if FT_WITH_CAN && FT_WITH_GPIO
-        return cmd_run(argc - 1, argv + 1);
-#else
-        fprintf(stderr, "fixterrain: 'run' was left out of this build "
-                        "(FIXTERRAIN_WITH_CAN and FIXTERRAIN_WITH_GPIO are needed)\n");
-        return FT_EXIT_ERROR;
-#endif
-    }
-    if (strcmp(cmd, "bench") == 0 || strcmp(cmd, "import") == 0) {
-        return forward_to_tools(cmd, argv);
+    for (size_t i = 0; i < FT_COMMAND_COUNT; ++i) {
+        if (strcmp(cmd, k_commands[i].name) == 0) {
+            return k_commands[i].fn != NULL ? k_commands[i].fn(argc - 1, argv + 1)
+                                            : forward_to_tools(cmd, argv);
+        }
     }
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
         print_help();

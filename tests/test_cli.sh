@@ -9,6 +9,11 @@ mkdir -p "$out"; rm -f "$out"/*
 expect 0 "usage: fixterrain COMMAND" -- "$bin" help
 expect 0 "usage: fixterrain render" -- "$bin" render --help
 expect 2 "unknown command" -- "$bin" frobnicate
+# every scene key from the schema the parser uses, with its range and default
+expect 0 "view.width_px" -- "$bin" keys
+expect 0 "16..8192 px" -- "$bin" keys
+expect 0 "can_map.*" -- "$bin" keys
+expect 2 "takes no options" -- "$bin" keys --bogus
 expect 2 "unknown option" -- "$bin" render --bogus 1
 expect 2 "needs a value" -- "$bin" render --out
 expect 2 "--size wants WxH" -- "$bin" render --size 10x10

@@ -92,6 +92,79 @@ int main(void)
         }
     }
     CHECK(a.dem_path[0] == '\0');
+    /* ... and the whole struct: config/default.ini states every key */
+    b.pose_given = 1; /* the file has a [pose] section; the defaults do not */
+    CHECK(memcmp(&a, &b, sizeof a) == 0);
+
+    /* The schema: no key twice, every default accepted by its own row, a
+     * row for every memory pool and every discrete input, and what each
+     * kind of row accepts in words. */
+    if (ft_scene_schema_check(&a, &err) != FT_OK) {
+        fprintf(stderr, "%s\n", err.text);
+        CHECK(0);
+    }
+    size_t nkeys = 0u;
+    const ft_scene_key *keys = ft_scene_keys(&nkeys);
+    CHECK(nkeys > 80u);
+    for (int i = 0; i < FT_POOL_COUNT + FT_GPIO_INPUT_COUNT; ++i) {
+        char want[64];
+        const char *section = i < FT_POOL_COUNT ? "budget" : "gpio";
+        if (i < FT_POOL_COUNT) {
+            (void)snprintf(want, sizeof want, "%s", ft_pool_key((ft_pool_id)i));
+        } else {
+            (void)snprintf(want, sizeof want, "%s_line",
+                           ft_gpio_input_name((ft_gpio_input)(i - FT_POOL_COUNT)));
+        }
+        int rows = 0;
+        for (size_t k = 0; k < nkeys; ++k) {
+            rows += strcmp(keys[k].section, section) == 0 && strcmp(keys[k].key, want) == 0;
+        }
+        if (rows != 1) {
+            fprintf(stderr, "%s.%s: %d schema rows\n", section, want, rows);
+            CHECK(0);
+        }
+    }
+    {
+        char text[256];
+        int seen = 0;
+        for (size_t k = 0; k < nkeys; ++k) {
+            const char *t = ft_scene_key_accepts(&keys[k], text, sizeof text);
+            if (strcmp(keys[k].key, "width_px") == 0) {
+                CHECK(strcmp(t, "16..8192 px") == 0);
+                ++seen;
+            } else if (strcmp(keys[k].key, "curvature") == 0) {
+                CHECK(strcmp(t, "auto, sphere or flat") == 0);
+                ++seen;
+            } else if (strcmp(keys[k].key, "inputs") == 0) {
+                CHECK(strcmp(t, "a comma list of replay, can, gpio") == 0);
+                ++seen;
+            } else if (strcmp(keys[k].key, "haze_km") == 0) {
+                CHECK(strcmp(t, "0 (off) or 1..1000 km") == 0);
+                ++seen;
+            }
+        }
+        CHECK(seen == 4);
+    }
+    /* validate holds every row's range, whatever set the field */
+    ft_scene_defaults(&a);
+    a.present_haze_km = 0.5;
+    CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG &&
+          strstr(err.text, "presentation.haze_km = 0.5") != NULL);
+    ft_scene_defaults(&a);
+    a.build_inputs = 0u;
+    CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG && strstr(err.text, "build.inputs") != NULL);
+    ft_scene_defaults(&a);
+    a.method = FT_METHOD_COUNT;
+    CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG && strstr(err.text, "scene.method") != NULL);
+    ft_scene_defaults(&a);
+    a.gpio_input_line[FT_GPIO_NIGHT] = 512;
+    CHECK(ft_scene_validate(&a, &err) == FT_ERR_CONFIG && strstr(err.text, "gpio.night_line") != NULL);
+    ft_scene_defaults(&a);
+    CHECK(ft_scene_validate(&a, &err) == FT_OK);
+    CHECK(a.pose_horizon_ms == FT_POSE_HORIZON_DEFAULT_MS &&
+          a.pose_converge_ms == FT_POSE_CONVERGE_DEFAULT_MS &&
+          a.pose_snap_m == FT_POSE_SNAP_DEFAULT_M);
+    CHECK(a.bintree_split_fraction == FT_BT_SPLIT_FRACTION);
 
     /* Suffixes and overrides. */
     CHECK(parse("[budget]\nheights_bytes = 3M\npng_bytes=512K\n[view]\nwidth_px=640\n", &a, &err) ==

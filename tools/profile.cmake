@@ -27,7 +27,8 @@ if(FIXTERRAIN_PROFILE)
   pkg_check_modules(FT_PROFILE_INIH REQUIRED inih)
   # the parser and what it links, nothing else (no GL, no driver)
   set(_p_sources tools/scene_options.c src/core/scene.c src/core/output.c src/input/canaero.c src/input/pose_state.c
-                 src/core/mem_budget.c src/core/ft_status.c src/core/io.c platform/file_posix.c)
+                 src/core/mem_budget.c src/core/ft_status.c src/core/invariant.c src/core/io.c
+                 platform/file_posix.c)
   list(TRANSFORM _p_sources PREPEND "${CMAKE_SOURCE_DIR}/")
   set(_p_dir "${CMAKE_BINARY_DIR}/profile")
   set(_p_tool "${_p_dir}/fixterrain-scene-options${CMAKE_EXECUTABLE_SUFFIX}")

@@ -3,9 +3,12 @@
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/invariant.h"
 
 static const char *const k_method_name[FT_METHOD_COUNT] = {
 #define FT_METHOD_NAME(id, name, what) name,
@@ -41,7 +44,7 @@ const char *ft_gpio_input_name(ft_gpio_input i)
 }
 
 static const ft_pose_range k_pose_range[FT_POSE_FIELD_COUNT] = {
-#define FT_POSE_FIELD_RANGE(id, field, lo, hi, unit) [id] = {#field, lo, hi, unit},
+#define FT_POSE_FIELD_RANGE(id, field, lo, hi, unit, def) [id] = {#field, lo, hi, unit},
     FT_POSE_FIELD_LIST(FT_POSE_FIELD_RANGE)
 #undef FT_POSE_FIELD_RANGE
 };
@@ -54,7 +57,7 @@ const ft_pose_range *ft_pose_range_of(ft_pose_field f)
 double *ft_pose_field_ptr(ft_pose *p, ft_pose_field f)
 {
     switch (f) {
-#define FT_POSE_FIELD_CASE(id, field, lo, hi, unit) \
+#define FT_POSE_FIELD_CASE(id, field, lo, hi, unit, def) \
     case id: return &p->field;
         FT_POSE_FIELD_LIST(FT_POSE_FIELD_CASE)
 #undef FT_POSE_FIELD_CASE
@@ -65,7 +68,7 @@ double *ft_pose_field_ptr(ft_pose *p, ft_pose_field f)
 double ft_pose_get(const ft_pose *p, ft_pose_field f)
 {
     switch (f) {
-#define FT_POSE_FIELD_GET(id, field, lo, hi, unit) \
+#define FT_POSE_FIELD_GET(id, field, lo, hi, unit, def) \
     case id: return p->field;
         FT_POSE_FIELD_LIST(FT_POSE_FIELD_GET)
 #undef FT_POSE_FIELD_GET
@@ -121,144 +124,12 @@ static void can_map_to_pose_ranges(ft_can_map *m)
     }
 }
 
-/* TAWS practice (e.g. the FAA's Advanced Avionics Handbook): terrain more
- * than 1000 ft below the aircraft as it is, 1000 to 100 ft below yellow,
- * within 100 ft below or above red; painted over the terrain colour at 60%
- * and 70% so the relief stays readable (config/default.ini says the same). */
-void ft_scene_default_bands(ft_bands *b)
-{
-    static const float rgba[3][4] = {
-        {0.0f, 0.0f, 0.0f, 0.0f},
-        {1.0f, 204.0f / 255.0f, 0.0f, 153.0f / 255.0f}, /* FFCC0099 */
-        {1.0f, 0.0f, 0.0f, 179.0f / 255.0f}};           /* FF0000B3 */
-    memset(b, 0, sizeof *b);
-    b->edges = 2u;
-    b->edge_ft[0] = -1000.0f;
-    b->edge_ft[1] = -100.0f;
-    b->colours = 3u;
-    memcpy(b->rgba, rgba, sizeof rgba);
-}
-
-void ft_scene_defaults(ft_scene *s)
-{
-    memset(s, 0, sizeof *s);
-    (void)snprintf(s->name, sizeof s->name, "%s", "default");
-    s->method = FT_METHOD_PGRID;
-    s->backend = FT_BACKEND_EGL_GLES3;
-    s->display = FT_DISPLAY_NONE;
-    s->width_px = 800;
-    s->height_px = 600;
-    s->fovy_deg = 60.0;
-    s->synth.side = 1025;
-    s->synth.spacing_m = 30.0;
-    s->synth.relief_m = 2400.0;
-    s->synth.seed = 1;
-    s->synth.octaves = 9;
-    s->synth.anchor_lat_deg = 46.5;
-    s->synth.anchor_lon_deg = 8.0;
-    s->pose.lat_deg = 46.52698;
-    s->pose.lon_deg = 8.200674;
-    s->pose.alt_m = 4200.0;
-    s->pose.heading_deg = 10.0;
-    s->pose.pitch_deg = -18.0;
-    s->pose.roll_deg = 0.0;
-    s->curvature = FT_CURVATURE_AUTO;
-    s->height_format = FT_HEIGHT_FORMAT_AUTO;
-    s->gpu_texture_bytes = 64ull << 20;
-    s->brute_patch_cells = 64;
-    s->brute_max_vertices = 4200000;
-    s->bintree_template_k = 3;
-    s->bintree_tiles_max = 16384;
-    s->bintree_tau_px = 1.0;
-    s->bintree_morph = 1;
-    s->bintree_subsample_levels = 0;
-    s->bintree_vertex_table = 1;
-    s->bintree_split_fraction = FT_BT_SPLIT_FRACTION;
-    s->pgm_grid_cols = 430;
-    s->pgm_grid_rows = 430;
-    s->pgrid_grid_cols = 200;
-    s->pgrid_grid_rows = 800;
-    s->pgrid_view_distribution = 1;
-    s->pgrid_ray_casting = 1;
-    s->pgrid_gamma_px = 1.0;
-    s->pgrid_raycast_max_px = 262144;
-    s->present_relative = 0;
-    s->present_palette = FT_PALETTE_DAY;
-    ft_scene_default_bands(&s->present_bands);
-    s->present_horizon = 0;
-    s->present_haze_km = 0.0;
-    s->present_grid_m = 0.0;
-    s->metric_enabled = 0;
-    s->frame_period_ms = 16.667;
-    s->frame_budget_ms = 0.0;
-    s->frame_degrade = 0;
-    s->frame_degrade_max_scale = 8.0;
-    s->pose_horizon_ms = FT_POSE_HORIZON_DEFAULT_MS;
-    s->pose_velocity_required = 0;
-    s->pose_converge_ms = FT_POSE_CONVERGE_DEFAULT_MS;
-    s->pose_snap_m = FT_POSE_SNAP_DEFAULT_M;
-    (void)snprintf(s->can_iface, sizeof s->can_iface, "%s", "vcan0");
-    s->can_backup_iface[0] = '\0';
-    s->can_failover_ms = 200;
-    ft_canaero_default_map(&s->can_map);
-    can_map_to_pose_ranges(&s->can_map);
-    s->gpio_chip[0] = '\0';
-    for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
-        s->gpio_input_line[i] = -1;
-    }
-    s->gpio_heartbeat_line = -1;
-    s->gpio_active_low = 0;
-    s->gpio_debounce_ms = 10;
-    s->build_inputs = FT_BUILD_INPUT_REPLAY | FT_BUILD_INPUT_CAN | FT_BUILD_INPUT_GPIO;
-    s->build_png = 1;
-    /* Budgets of config/default.ini (tests/test_scene.c checks they agree). */
-    s->budget_bytes[FT_POOL_HEIGHTS] = 6ull << 20;
-    s->budget_bytes[FT_POOL_PYRAMIDS] = 18ull << 20;
-    s->budget_bytes[FT_POOL_DEM_IO] = 2ull << 20;
-    s->budget_bytes[FT_POOL_FRAME_RGBA] = 5ull << 20;
-    s->budget_bytes[FT_POOL_GPU_STAGING] = 6ull << 20;
-    s->budget_bytes[FT_POOL_METHOD] = 4ull << 20;
-    s->budget_bytes[FT_POOL_PNG] = 512ull << 10;
-}
-
-typedef struct parse_ctx {
-    ft_scene *scene;
-    ft_error *err;
-    ft_status status;
-    const char *source;
-    char first_error[200];
-} parse_ctx;
-
-/* Records the first failure only; libinih goes on parsing and reports the
- * line number of the first failing line, which ft_scene_parse prepends. */
-static int fail_key(parse_ctx *c, const char *section, const char *key, const char *value,
-                    const char *why)
-{
-    if (c->status == FT_OK) {
-        c->status = FT_ERR_CONFIG;
-        (void)snprintf(c->first_error, sizeof c->first_error, "%s.%s = '%.60s': %s", section,
-                       key, value, why);
-    }
-    return 0;
-}
-
 static int parse_f64(const char *v, double lo, double hi, double *out)
 {
     char *end = NULL;
     errno = 0;
     double d = strtod(v, &end);
     if (end == v || *end != '\0' || errno != 0 || !isfinite(d) || d < lo || d > hi) {
-        return 0;
-    }
-    *out = d;
-    return 1;
-}
-
-/* 0 (the part is off) or a number in [lo, hi]. */
-static int parse_off_or_f64(const char *v, double lo, double hi, double *out)
-{
-    double d;
-    if (!parse_f64(v, 0.0, hi, &d) || (d > 0.0 && d < lo)) {
         return 0;
     }
     *out = d;
@@ -295,17 +166,6 @@ static int parse_u64(const char *v, uint64_t lo, uint64_t hi, uint64_t *out)
     return 1;
 }
 
-static int parse_u32(const char *v, uint32_t lo, uint32_t hi, uint32_t *out)
-{
-    uint64_t u;
-    if (!parse_u64(v, lo, hi, &u)) {
-        return 0;
-    }
-    *out = (uint32_t)u;
-    return 1;
-}
-
-/* A 0|1 switch into an int. */
 /* "E1, E2, ...": 1..FT_BANDS_MAX-1 numbers in ft, strictly increasing. */
 static int parse_band_edges(const char *v, ft_bands *b)
 {
@@ -371,16 +231,6 @@ static int parse_band_rgba(const char *v, ft_bands *b)
         ++p;
     }
     return 0;
-}
-
-static int parse_flag(const char *v, int *out)
-{
-    uint32_t u;
-    if (!parse_u32(v, 0, 1, &u)) {
-        return 0;
-    }
-    *out = (int)u;
-    return 1;
 }
 
 static const char *const k_can_qty_key[FT_QTY_COUNT] = {
@@ -453,396 +303,475 @@ static ft_status can_map_upsert(ft_can_map *m, const ft_can_map_entry *e, ft_err
     return st;
 }
 
-#define RANGE(expr, why) ((expr) ? 1 : fail_key(c, section, key, value, why))
+/* ---- list keys: values with their own syntax (FT_SCENE_LIST_KEYS) ---- */
 
+static int parse_display(ft_scene *s, const char *key, const char *value, char *why, size_t cap)
+{
+    (void)key;
+    if (!ft_display_parse(value, &s->display, s->display_device, sizeof s->display_device)) {
+        (void)snprintf(why, cap, "unknown display (none, x11, kms, kms:/dev/dri/cardN)");
+        return 0;
+    }
+    return 1;
+}
+
+static int parse_display_mode(ft_scene *s, const char *key, const char *value, char *why,
+                              size_t cap)
+{
+    (void)key;
+    ft_display_mode m;
+    if (strlen(value) >= sizeof s->display_mode) {
+        (void)snprintf(why, cap, "longer than %zu characters", sizeof s->display_mode - 1u);
+        return 0;
+    }
+    if (value[0] != '\0' && !ft_display_mode_parse(value, &m)) {
+        (void)snprintf(why, cap, "expected WxH, WxH@HZ or preferred");
+        return 0;
+    }
+    (void)snprintf(s->display_mode, sizeof s->display_mode, "%s", value);
+    return 1;
+}
+
+static int parse_band_edges_key(ft_scene *s, const char *key, const char *value, char *why,
+                                size_t cap)
+{
+    (void)key;
+    if (!parse_band_edges(value, &s->present_bands)) {
+        (void)snprintf(why, cap, "expected 1 to 5 comma-separated heights in ft relative to the "
+                                 "aircraft, strictly increasing, within +-60000");
+        return 0;
+    }
+    return 1;
+}
+
+static int parse_band_rgba_key(ft_scene *s, const char *key, const char *value, char *why,
+                               size_t cap)
+{
+    (void)key;
+    if (!parse_band_rgba(value, &s->present_bands)) {
+        (void)snprintf(why, cap, "expected 2 to 6 comma-separated colours RRGGBBAA (hex)");
+        return 0;
+    }
+    return 1;
+}
+
+/* Only the CAN map: the keys a file set before this line keep their values. */
+static int parse_can_map_defaults(ft_scene *s, const char *key, const char *value, char *why,
+                                  size_t cap)
+{
+    (void)key;
+    uint64_t v;
+    if (!parse_u64(value, 0u, 1u, &v)) {
+        (void)snprintf(why, cap, "expected 0 or 1");
+        return 0;
+    }
+    if (v != 0u) {
+        ft_canaero_default_map(&s->can_map);
+        can_map_to_pose_ranges(&s->can_map);
+    } else {
+        memset(&s->can_map, 0, sizeof s->can_map);
+    }
+    return 1;
+}
+
+static int parse_can_map_entry(ft_scene *s, const char *key, const char *value, char *why,
+                               size_t cap)
+{
+    for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
+        if (strcmp(key, k_can_qty_key[q]) != 0) {
+            continue;
+        }
+        ft_can_map_entry e;
+        memset(&e, 0, sizeof e);
+        e.qty = (ft_pose_qty)q;
+        if (!parse_can_entry(value, &e)) {
+            (void)snprintf(why, cap, "expected ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY] "
+                                     "(id 0..2047, timeout 1..60000 ms, priority 0..255)");
+            return 0;
+        }
+        const int f = can_qty_pose_field(e.qty);
+        if (f >= 0 && (e.min_value < k_pose_range[f].min || e.max_value > k_pose_range[f].max)) {
+            (void)snprintf(why, cap, "MIN,MAX must lie within pose.%s [%g, %g] %s",
+                           k_pose_range[f].key, k_pose_range[f].min, k_pose_range[f].max,
+                           k_pose_range[f].unit);
+            return 0;
+        }
+        ft_error e2;
+        if (can_map_upsert(&s->can_map, &e, &e2) != FT_OK) {
+            (void)snprintf(why, cap, "%s", e2.text);
+            return 0;
+        }
+        return 1;
+    }
+    (void)snprintf(why, cap, "unknown section or key");
+    return 0;
+}
+
+/* ---- the schema ---- */
+
+typedef int (*list_parse_fn)(ft_scene *s, const char *key, const char *value, char *why,
+                             size_t cap);
+
+/* The field size each kind writes (0: any size, TEXT). */
+#define FT_KEY_SIZE_U32 sizeof(uint32_t)
+#define FT_KEY_SIZE_U64 sizeof(uint64_t)
+#define FT_KEY_SIZE_F64 sizeof(double)
+#define FT_KEY_SIZE_FLAG sizeof(int)
+#define FT_KEY_SIZE_OFF_F64 sizeof(double)
+#define FT_KEY_SIZE_ENUM sizeof(int)
+#define FT_KEY_SIZE_BITS sizeof(unsigned)
+#define FT_KEY_SIZE_LINE sizeof(int)
+#define FT_KEY_SIZE_TEXT 0u
+
+#define FT_FIELD_SIZE(field) sizeof(((ft_scene *)0)->field)
+#define FT_KEY_CHECK(section, key, kind, field, lo, hi, choices, def, unit, doc)               \
+    _Static_assert(FT_KEY_SIZE_##kind == 0u || FT_KEY_SIZE_##kind == FT_FIELD_SIZE(field),   \
+                   #section "." #key ": the field's size is not what its kind writes");
+FT_SCENE_KEYS(FT_KEY_CHECK)
+#undef FT_KEY_CHECK
+/* ENUM rows write an int into enum-typed fields: same size, and the
+ * enumerators are the small non-negative positions in `choices`. */
+_Static_assert(sizeof(ft_method_kind) == sizeof(int) && sizeof(ft_backend) == sizeof(int) &&
+                   sizeof(ft_curvature) == sizeof(int) && sizeof(ft_height_format) == sizeof(int) &&
+                   sizeof(ft_palette) == sizeof(int),
+               "ENUM keys write an int");
+_Static_assert(FT_GPIO_INPUT_COUNT == 4, "one gpio.<name>_line row per discrete input");
+
+#define FT_KEY_ROW(section, key, kind, field, lo, hi, choices, def, unit, doc)                  \
+    {#section, #key, FT_KEY_##kind, offsetof(ft_scene, field), FT_FIELD_SIZE(field),          \
+     (double)(lo), (double)(hi), choices, def, unit, doc},
+#define FT_POSE_ROW(id, field, lo, hi, unit, def)                                             \
+    {"pose", #field, FT_KEY_F64, offsetof(ft_scene, pose.field), sizeof(double), lo, hi,      \
+     NULL, def, unit, "the pose drawn until an input gives one (same range as --pose)"},
+#define FT_LIST_ROW(section, key, parser, def, doc)                                           \
+    {#section, #key, FT_KEY_LIST, 0u, 0u, 0.0, 0.0, NULL, def, "", doc},
+#define FT_LIST_FN(section, key, parser, def, doc) parser,
+
+static const ft_scene_key k_keys[] = {
+    FT_SCENE_KEYS(FT_KEY_ROW) FT_POSE_FIELD_LIST(FT_POSE_ROW) FT_SCENE_LIST_KEYS(FT_LIST_ROW)};
+static const list_parse_fn k_list_parse[] = {FT_SCENE_LIST_KEYS(FT_LIST_FN)};
+#define FT_KEY_COUNT (sizeof k_keys / sizeof k_keys[0])
+#define FT_LIST_COUNT (sizeof k_list_parse / sizeof k_list_parse[0])
+#define FT_LIST_FIRST (FT_KEY_COUNT - FT_LIST_COUNT) /* list rows come last */
+
+const ft_scene_key *ft_scene_keys(size_t *count)
+{
+    *count = FT_KEY_COUNT;
+    return k_keys;
+}
+
+/* The row for section.key: its own row, else the section's `*` row. */
+static const ft_scene_key *find_key(const char *section, const char *key)
+{
+    const ft_scene_key *any = NULL;
+    for (size_t i = 0; i < FT_KEY_COUNT; ++i) {
+        const ft_scene_key *k = &k_keys[i];
+        if (strcmp(k->section, section) != 0) {
+            continue;
+        }
+        if (strcmp(k->key, key) == 0) {
+            return k;
+        }
+        if (strcmp(k->key, "*") == 0) {
+            any = k;
+        }
+    }
+    return any;
+}
+
+/* Name i of "a|b|c|" into out; 0 past the last. */
+static int choice_at(const char *choices, uint32_t i, char *out, size_t cap)
+{
+    const char *p = choices;
+    for (uint32_t n = 0u; n < 32u; ++n) {
+        const char *bar = strchr(p, '|');
+        if (bar == NULL) {
+            return 0;
+        }
+        if (n == i) {
+            (void)snprintf(out, cap, "%.*s", (int)(bar - p), p);
+            return 1;
+        }
+        p = bar + 1;
+    }
+    return 0;
+}
+
+/* Position of the name (length n) in choices, or -1. */
+static int choice_index(const char *choices, const char *name, size_t n)
+{
+    char c[64];
+    for (uint32_t i = 0u; choice_at(choices, i, c, sizeof c); ++i) {
+        if (strlen(c) == n && strncmp(c, name, n) == 0) {
+            return (int)i;
+        }
+    }
+    return -1;
+}
+
+static uint32_t choice_count(const char *choices)
+{
+    char c[64];
+    uint32_t n = 0u;
+    while (n < 32u && choice_at(choices, n, c, sizeof c)) ++n;
+    return n;
+}
+
+/* A limit as people write it, exactly: 8192, 0.1, 1e+06, 1048576. */
+static void put_number(char *out, size_t cap, double v)
+{
+    (void)snprintf(out, cap, "%g", v);
+    if (strtod(out, NULL) != v) {
+        (void)snprintf(out, cap, v == floor(v) && fabs(v) < 1e15 ? "%.0f" : "%.17g", v);
+    }
+}
+
+const char *ft_scene_key_accepts(const ft_scene_key *k, char *text, size_t cap)
+{
+    char lo[32], hi[32], names[256] = "";
+    put_number(lo, sizeof lo, k->min);
+    put_number(hi, sizeof hi, k->max);
+    const char *sp = k->unit[0] != '\0' ? " " : "";
+    if (k->choices != NULL) {
+        const uint32_t n = choice_count(k->choices);
+        size_t used = 0u;
+        for (uint32_t i = 0u; i < n && used < sizeof names; ++i) {
+            char c[64];
+            (void)choice_at(k->choices, i, c, sizeof c);
+            const char *sep = i == 0u ? "" : (i + 1u == n && k->kind == FT_KEY_ENUM) ? " or " : ", ";
+            int w = snprintf(names + used, sizeof names - used, "%s%s", sep, c);
+            used += w > 0 ? (size_t)w : 0u;
+        }
+    }
+    switch (k->kind) {
+    case FT_KEY_U32:
+    case FT_KEY_F64: (void)snprintf(text, cap, "%s..%s%s%s", lo, hi, sp, k->unit); break;
+    case FT_KEY_U64:
+        (void)snprintf(text, cap, "a byte count %s..%s (suffix K, M or G allowed)", lo, hi);
+        break;
+    case FT_KEY_FLAG: (void)snprintf(text, cap, "0 or 1"); break;
+    case FT_KEY_OFF_F64:
+        (void)snprintf(text, cap, "0 (off) or %s..%s%s%s", lo, hi, sp, k->unit);
+        break;
+    case FT_KEY_ENUM: (void)snprintf(text, cap, "%s", names); break;
+    case FT_KEY_BITS: (void)snprintf(text, cap, "a comma list of %s", names); break;
+    case FT_KEY_LINE: (void)snprintf(text, cap, "-1 (none) or a line 0..%s", hi); break;
+    case FT_KEY_TEXT: (void)snprintf(text, cap, "at most %zu characters", k->size - 1u); break;
+    case FT_KEY_LIST: (void)snprintf(text, cap, "%s", k->doc); break;
+    }
+    return text;
+}
+
+static int key_why(const ft_scene_key *k, const char *prefix, char *why, size_t cap)
+{
+    char accepts[256];
+    (void)snprintf(why, cap, "%s%s", prefix, ft_scene_key_accepts(k, accepts, sizeof accepts));
+    return 0;
+}
+
+/* Parses value for row k into s (key: the key as written, for `*` rows).
+ * Returns 1, or 0 with the reason in why. */
+static int set_key(ft_scene *s, const ft_scene_key *k, const char *key, const char *value,
+                   char *why, size_t cap)
+{
+    unsigned char *field = (unsigned char *)s + k->offset;
+    uint64_t u;
+    double d;
+    int i;
+    switch (k->kind) {
+    case FT_KEY_U32:
+    case FT_KEY_U64:
+        if (!parse_u64(value, (uint64_t)k->min, (uint64_t)k->max, &u)) {
+            return key_why(k, "expected ", why, cap);
+        }
+        if (k->kind == FT_KEY_U32) {
+            const uint32_t u32 = (uint32_t)u;
+            memcpy(field, &u32, sizeof u32);
+        } else {
+            memcpy(field, &u, sizeof u);
+        }
+        return 1;
+    case FT_KEY_F64:
+    case FT_KEY_OFF_F64:
+        if (!parse_f64(value, k->kind == FT_KEY_OFF_F64 ? 0.0 : k->min, k->max, &d) ||
+            (k->kind == FT_KEY_OFF_F64 && d > 0.0 && d < k->min)) {
+            return key_why(k, "expected ", why, cap);
+        }
+        memcpy(field, &d, sizeof d);
+        return 1;
+    case FT_KEY_FLAG:
+        if (!parse_u64(value, 0u, 1u, &u)) {
+            return key_why(k, "expected ", why, cap);
+        }
+        i = (int)u;
+        memcpy(field, &i, sizeof i);
+        return 1;
+    case FT_KEY_LINE:
+        if (!parse_f64(value, -1.0, k->max, &d) || d != floor(d)) {
+            return key_why(k, "expected ", why, cap);
+        }
+        i = (int)d;
+        memcpy(field, &i, sizeof i);
+        return 1;
+    case FT_KEY_ENUM:
+        i = choice_index(k->choices, value, strlen(value));
+        if (i < 0) {
+            char prefix[64];
+            (void)snprintf(prefix, sizeof prefix, "unknown %s: expected ", k->key);
+            return key_why(k, prefix, why, cap);
+        }
+        memcpy(field, &i, sizeof i);
+        return 1;
+    case FT_KEY_BITS: {
+        /* bounded by the value's length (< the INI line limit) */
+        unsigned bits = 0u;
+        const char *p = value;
+        for (int guard = 0; guard < 16 && *p != '\0'; ++guard) {
+            const size_t n = strcspn(p, ",");
+            const int b = choice_index(k->choices, p, n);
+            if (b < 0) {
+                return key_why(k, "expected ", why, cap);
+            }
+            bits |= 1u << (unsigned)b;
+            p += n;
+            if (*p == ',') ++p;
+        }
+        if (bits == 0u || *p != '\0') {
+            return key_why(k, "expected ", why, cap);
+        }
+        memcpy(field, &bits, sizeof bits);
+        return 1;
+    }
+    case FT_KEY_TEXT:
+        if (strlen(value) >= k->size) {
+            (void)snprintf(why, cap, "longer than %zu characters", k->size - 1u);
+            return 0;
+        }
+        (void)snprintf((char *)field, k->size, "%s", value);
+        return 1;
+    case FT_KEY_LIST:
+        return k_list_parse[(size_t)(k - k_keys) - FT_LIST_FIRST](s, key, value, why, cap);
+    }
+    return 0;
+}
+
+/* 1 when the field of row k holds a value the row accepts; its text in text. */
+static int key_value_ok(const ft_scene *s, const ft_scene_key *k, char *text, size_t cap)
+{
+    const unsigned char *field = (const unsigned char *)s + k->offset;
+    uint32_t u32;
+    uint64_t u64;
+    double d;
+    int i;
+    unsigned bits;
+    switch (k->kind) {
+    case FT_KEY_U32:
+        memcpy(&u32, field, sizeof u32);
+        (void)snprintf(text, cap, "%u", u32);
+        return (double)u32 >= k->min && (double)u32 <= k->max;
+    case FT_KEY_U64:
+        memcpy(&u64, field, sizeof u64);
+        (void)snprintf(text, cap, "%llu", (unsigned long long)u64);
+        return (double)u64 >= k->min && (double)u64 <= k->max;
+    case FT_KEY_F64:
+    case FT_KEY_OFF_F64:
+        memcpy(&d, field, sizeof d);
+        (void)snprintf(text, cap, "%g", d);
+        return isfinite(d) && ((d >= k->min && d <= k->max) || (k->kind == FT_KEY_OFF_F64 && d == 0.0));
+    case FT_KEY_FLAG:
+    case FT_KEY_LINE:
+    case FT_KEY_ENUM:
+        memcpy(&i, field, sizeof i);
+        (void)snprintf(text, cap, "%d", i);
+        if (k->kind == FT_KEY_FLAG) return i == 0 || i == 1;
+        if (k->kind == FT_KEY_LINE) return i >= -1 && (double)i <= k->max;
+        return i >= 0 && (uint32_t)i < choice_count(k->choices);
+    case FT_KEY_BITS:
+        memcpy(&bits, field, sizeof bits);
+        (void)snprintf(text, cap, "0x%x", bits);
+        return bits != 0u && bits < (1u << choice_count(k->choices));
+    case FT_KEY_TEXT:
+        (void)snprintf(text, cap, "(text)");
+        return memchr(field, '\0', k->size) != NULL;
+    case FT_KEY_LIST:
+        return 1; /* checked where parsed, and across fields in ft_scene_validate */
+    }
+    return 0;
+}
+
+void ft_scene_defaults(ft_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    for (size_t i = 0; i < FT_KEY_COUNT; ++i) {
+        const ft_scene_key *k = &k_keys[i];
+        char why[256];
+        if (k->def != NULL) {
+            FT_INVARIANT(set_key(s, k, k->key, k->def, why, sizeof why), "a scene default parses");
+        }
+    }
+}
+
+ft_status ft_scene_schema_check(ft_scene *scratch, ft_error *err)
+{
+    memset(scratch, 0, sizeof *scratch);
+    for (size_t i = 0; i < FT_KEY_COUNT; ++i) {
+        const ft_scene_key *k = &k_keys[i];
+        char why[256], text[64];
+        for (size_t j = 0; j < i; ++j) {
+            if (strcmp(k_keys[j].section, k->section) == 0 && strcmp(k_keys[j].key, k->key) == 0) {
+                return ft_fail(err, FT_ERR_CONFIG, "scene schema: %s.%s has two rows",
+                               k->section, k->key);
+            }
+        }
+        if (k->def != NULL && (!set_key(scratch, k, k->key, k->def, why, sizeof why) ||
+                               !key_value_ok(scratch, k, text, sizeof text))) {
+            return ft_fail(err, FT_ERR_CONFIG, "scene schema: %s.%s default '%s' is refused: %s",
+                           k->section, k->key, k->def, why);
+        }
+        if (k->def == NULL && strcmp(k->key, "*") != 0) {
+            return ft_fail(err, FT_ERR_CONFIG, "scene schema: %s.%s has no default", k->section,
+                           k->key);
+        }
+    }
+    return FT_OK;
+}
+
+typedef struct parse_ctx {
+    ft_scene *scene;
+    ft_status status;
+    char first_error[512];
+} parse_ctx;
+
+/* Records the first failure only; libinih goes on parsing and reports the
+ * line number of the first failing line, which ft_scene_parse prepends. */
 static int on_key(void *user, const char *section, const char *key, const char *value)
 {
     parse_ctx *c = (parse_ctx *)user;
-    ft_scene *s = c->scene;
-    if (strcmp(section, "scene") == 0) {
-        if (strcmp(key, "name") == 0) {
-            if (strlen(value) >= sizeof s->name) {
-                return fail_key(c, section, key, value, "longer than 63 characters");
-            }
-            (void)snprintf(s->name, sizeof s->name, "%s", value);
-            return 1;
-        }
-        if (strcmp(key, "method") == 0) {
-            return RANGE(ft_method_from_name(value, &s->method),
-                         "unknown method (built in: see 'fixterrain render --help')");
-        }
-        if (strcmp(key, "display") == 0) {
-            return RANGE(ft_display_parse(value, &s->display, s->display_device,
-                                          sizeof s->display_device),
-                         "unknown display (none, x11, kms, kms:/dev/dri/cardN)");
-        }
-        if (strcmp(key, "backend") == 0) {
-            return RANGE(ft_backend_from_name(value, &s->backend),
-                         "unknown backend (egl-gles3, egl-gles2, osmesa)");
-        }
-    } else if (strcmp(section, "display") == 0) {
-        if (strcmp(key, "connector") == 0) {
-            if (strlen(value) >= sizeof s->display_connector) {
-                return fail_key(c, section, key, value, "longer than 31 characters");
-            }
-            (void)snprintf(s->display_connector, sizeof s->display_connector, "%s", value);
-            return 1;
-        }
-        if (strcmp(key, "mode") == 0) {
-            ft_display_mode m;
-            if (strlen(value) >= sizeof s->display_mode) {
-                return fail_key(c, section, key, value, "longer than 31 characters");
-            }
-            if (value[0] != '\0' && !ft_display_mode_parse(value, &m)) {
-                return fail_key(c, section, key, value, "expected WxH, WxH@HZ or preferred");
-            }
-            (void)snprintf(s->display_mode, sizeof s->display_mode, "%s", value);
-            return 1;
-        }
-    } else if (strcmp(section, "view") == 0) {
-        if (strcmp(key, "width_px") == 0) {
-            return RANGE(parse_u32(value, FT_VIEW_SIDE_MIN_PX, FT_VIEW_SIDE_MAX_PX, &s->width_px), "expected 16..8192");
-        }
-        if (strcmp(key, "height_px") == 0) {
-            return RANGE(parse_u32(value, FT_VIEW_SIDE_MIN_PX, FT_VIEW_SIDE_MAX_PX, &s->height_px), "expected 16..8192");
-        }
-        if (strcmp(key, "fovy_deg") == 0) {
-            return RANGE(parse_f64(value, 1.0, 170.0, &s->fovy_deg), "expected 1..170");
-        }
-    } else if (strcmp(section, "pose") == 0) {
-        s->pose_given = 1;
-        for (int f = 0; f < FT_POSE_FIELD_COUNT; ++f) {
-            const ft_pose_range *r = &k_pose_range[f];
-            if (strcmp(key, r->key) != 0) {
-                continue;
-            }
-            char why[96];
-            (void)snprintf(why, sizeof why, "expected %g..%g %s", r->min, r->max, r->unit);
-            return RANGE(parse_f64(value, r->min, r->max, ft_pose_field_ptr(&s->pose, (ft_pose_field)f)),
-                         why);
-        }
-    } else if (strcmp(section, "terrain") == 0) {
-        if (strcmp(key, "dem") == 0) {
-            if (strlen(value) >= sizeof s->dem_path) {
-                return fail_key(c, section, key, value, "path too long");
-            }
-            (void)snprintf(s->dem_path, sizeof s->dem_path, "%s", value);
-            return 1;
-        }
-        if (strcmp(key, "curvature") == 0) {
-            if (strcmp(value, "auto") == 0) s->curvature = FT_CURVATURE_AUTO;
-            else if (strcmp(value, "sphere") == 0) s->curvature = FT_CURVATURE_SPHERE;
-            else if (strcmp(value, "flat") == 0) s->curvature = FT_CURVATURE_FLAT;
-            else return fail_key(c, section, key, value, "expected auto, sphere or flat");
-            return 1;
-        }
-        if (strcmp(key, "synth_side") == 0) {
-            return RANGE(parse_u32(value, 3, 16385, &s->synth.side), "expected 3..16385");
-        }
-        if (strcmp(key, "synth_spacing_m") == 0) {
-            return RANGE(parse_f64(value, 1e-3, 1e5, &s->synth.spacing_m), "expected 0.001..1e5");
-        }
-        if (strcmp(key, "synth_relief_m") == 0) {
-            return RANGE(parse_f64(value, 0.0, 9000.0, &s->synth.relief_m), "expected 0..9000");
-        }
-        if (strcmp(key, "synth_seed") == 0) {
-            return RANGE(parse_u32(value, 0, UINT32_MAX, &s->synth.seed), "expected a uint32");
-        }
-        if (strcmp(key, "synth_octaves") == 0) {
-            return RANGE(parse_u32(value, 1, 16, &s->synth.octaves), "expected 1..16");
-        }
-        if (strcmp(key, "synth_anchor_lat_deg") == 0) {
-            return RANGE(parse_f64(value, -89.0, 89.0, &s->synth.anchor_lat_deg),
-                         "expected -89..89");
-        }
-        if (strcmp(key, "synth_anchor_lon_deg") == 0) {
-            return RANGE(parse_f64(value, -360.0, 360.0, &s->synth.anchor_lon_deg),
-                         "expected -360..360");
-        }
-    } else if (strcmp(section, "gpu") == 0) {
-        if (strcmp(key, "height_format") == 0) {
-            if (strcmp(value, "auto") == 0) s->height_format = FT_HEIGHT_FORMAT_AUTO;
-            else if (strcmp(value, "float") == 0) s->height_format = FT_HEIGHT_FORMAT_FLOAT;
-            else if (strcmp(value, "packed") == 0) s->height_format = FT_HEIGHT_FORMAT_PACKED;
-            else return fail_key(c, section, key, value, "expected auto, float or packed");
-            return 1;
-        }
-        if (strcmp(key, "pyramid_textures") == 0) {
-            return RANGE(parse_flag(value, &s->pyramid_textures), "expected 0 or 1");
-        }
-        if (strcmp(key, "texture_bytes") == 0) {
-            return RANGE(parse_u64(value, 0, 1ull << 40, &s->gpu_texture_bytes),
-                         "expected a byte count (suffix K/M/G allowed)");
-        }
-    } else if (strcmp(section, "brute") == 0) {
-        if (strcmp(key, "patch_cells") == 0) {
-            return RANGE(parse_u32(value, 1, 180, &s->brute_patch_cells), "expected 1..180");
-        }
-        if (strcmp(key, "max_vertices") == 0) {
-            return RANGE(parse_u32(value, 4, UINT32_MAX, &s->brute_max_vertices),
-                         "expected >= 4");
-        }
-    } else if (strcmp(section, "bintree") == 0) {
-        if (strcmp(key, "template_k") == 0) {
-            return RANGE(parse_u32(value, 1, 6, &s->bintree_template_k), "expected 1..6");
-        }
-        if (strcmp(key, "tiles_max") == 0) {
-            return RANGE(parse_u32(value, 2, 1048576, &s->bintree_tiles_max),
-                         "expected 2..1048576");
-        }
-        if (strcmp(key, "tau_px") == 0) {
-            return RANGE(parse_f64(value, 0.0, 1000.0, &s->bintree_tau_px), "expected 0..1000");
-        }
-        if (strcmp(key, "morph") == 0) {
-            return RANGE(parse_flag(value, &s->bintree_morph), "expected 0 or 1");
-        }
-        if (strcmp(key, "subsample_levels") == 0) {
-            return RANGE(parse_u32(value, 0, 4, &s->bintree_subsample_levels),
-                         "expected 0..4");
-        }
-        if (strcmp(key, "split_fraction") == 0) {
-            return RANGE(parse_f64(value, FT_BT_SPLIT_FRACTION, FT_BT_SPLIT_FRACTION_MAX,
-                                   &s->bintree_split_fraction),
-                         "expected 0.5..0.95");
-        }
-        if (strcmp(key, "vertex_table") == 0) {
-            return RANGE(parse_flag(value, &s->bintree_vertex_table), "expected 0 or 1");
-        }
-    } else if (strcmp(section, "pgm") == 0) {
-        if (strcmp(key, "grid_cols") == 0) {
-            return RANGE(parse_u32(value, 2, 8192, &s->pgm_grid_cols), "expected 2..8192");
-        }
-        if (strcmp(key, "grid_rows") == 0) {
-            return RANGE(parse_u32(value, 2, 8192, &s->pgm_grid_rows), "expected 2..8192");
-        }
-    } else if (strcmp(section, "pgrid") == 0) {
-        if (strcmp(key, "grid_cols") == 0) {
-            return RANGE(parse_u32(value, 2, 8192, &s->pgrid_grid_cols), "expected 2..8192");
-        }
-        if (strcmp(key, "grid_rows") == 0) {
-            return RANGE(parse_u32(value, 2, 8192, &s->pgrid_grid_rows), "expected 2..8192");
-        }
-        if (strcmp(key, "distribution") == 0) {
-            if (strcmp(value, "uniform") == 0 || strcmp(value, "view") == 0) {
-                s->pgrid_view_distribution = (strcmp(value, "view") == 0);
-                return 1;
-            }
-            return fail_key(c, section, key, value, "expected uniform or view");
-        }
-        if (strcmp(key, "error_bound") == 0) {
-            if (strcmp(value, "relief") == 0 || strcmp(value, "residual") == 0) {
-                s->pgrid_residual_bound = (strcmp(value, "residual") == 0);
-                return 1;
-            }
-            return fail_key(c, section, key, value, "expected relief or residual");
-        }
-        if (strcmp(key, "ray_casting") == 0) {
-            return RANGE(parse_flag(value, &s->pgrid_ray_casting), "expected 0 or 1");
-        }
-        if (strcmp(key, "gamma_px") == 0) {
-            return RANGE(parse_f64(value, 0.1, 100.0, &s->pgrid_gamma_px), "expected 0.1..100");
-        }
-        if (strcmp(key, "raycast_max_px") == 0) {
-            return RANGE(parse_u32(value, 0, 67108864, &s->pgrid_raycast_max_px),
-                         "expected 0..67108864");
-        }
-    } else if (strcmp(section, "frame") == 0) {
-        if (strcmp(key, "period_ms") == 0) {
-            return RANGE(parse_f64(value, 1.0, 1000.0, &s->frame_period_ms), "expected 1..1000");
-        }
-        if (strcmp(key, "budget_ms") == 0) {
-            return RANGE(parse_f64(value, 0.0, 1000.0, &s->frame_budget_ms), "expected 0..1000");
-        }
-        if (strcmp(key, "degrade") == 0) {
-            return RANGE(parse_flag(value, &s->frame_degrade), "expected 0 or 1");
-        }
-        if (strcmp(key, "degrade_max_scale") == 0) {
-            return RANGE(parse_f64(value, 1.0, 64.0, &s->frame_degrade_max_scale),
-                         "expected 1..64");
-        }
-    } else if (strcmp(section, "pose_input") == 0) {
-        if (strcmp(key, "horizon_ms") == 0) {
-            return RANGE(parse_u32(value, 0, FT_POSE_HORIZON_MAX_MS, &s->pose_horizon_ms),
-                         "expected 0..1000");
-        }
-        if (strcmp(key, "velocity_required") == 0) {
-            return RANGE(parse_flag(value, &s->pose_velocity_required), "expected 0 or 1");
-        }
-        if (strcmp(key, "converge_ms") == 0) {
-            return RANGE(parse_u32(value, 0, FT_POSE_CONVERGE_MAX_MS, &s->pose_converge_ms),
-                         "expected 0..10000");
-        }
-        if (strcmp(key, "snap_m") == 0) {
-            return RANGE(parse_f64(value, FT_POSE_SNAP_MIN_M, FT_POSE_SNAP_MAX_M, &s->pose_snap_m),
-                         "expected 1..100000");
-        }
-    } else if (strcmp(section, "can") == 0) {
-        char *dst = NULL;
-        if (strcmp(key, "interface") == 0) dst = s->can_iface;
-        if (strcmp(key, "backup_interface") == 0) dst = s->can_backup_iface;
-        if (dst != NULL) {
-            if (strlen(value) >= FT_CAN_IFACE_NAME_MAX) {
-                return fail_key(c, section, key, value, "interface name longer than 15");
-            }
-            (void)snprintf(dst, FT_CAN_IFACE_NAME_MAX, "%s", value);
-            return 1;
-        }
-        if (strcmp(key, "failover_ms") == 0) {
-            return RANGE(parse_u32(value, 1, 10000, &s->can_failover_ms), "expected 1..10000");
-        }
-    } else if (strcmp(section, "gpio") == 0) {
-        if (strcmp(key, "chip") == 0) {
-            if (strlen(value) >= FT_GPIO_CHIP_NAME_MAX) {
-                return fail_key(c, section, key, value, "longer than 63 characters");
-            }
-            (void)snprintf(s->gpio_chip, sizeof s->gpio_chip, "%s", value);
-            return 1;
-        }
-        int *line = NULL;
-        char want[32];
-        for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) {
-            (void)snprintf(want, sizeof want, "%s_line", k_gpio_input_name[i]);
-            if (strcmp(key, want) == 0) line = &s->gpio_input_line[i];
-        }
-        if (strcmp(key, "heartbeat_line") == 0) line = &s->gpio_heartbeat_line;
-        if (line != NULL) {
-            double d;
-            if (!parse_f64(value, -1.0, (double)FT_GPIO_LINE_MAX, &d) || d != floor(d)) {
-                return fail_key(c, section, key, value, "expected -1 (none) or a line 0..511");
-            }
-            *line = (int)d;
-            return 1;
-        }
-        if (strcmp(key, "active_low") == 0) {
-            return RANGE(parse_flag(value, &s->gpio_active_low), "expected 0 or 1");
-        }
-        if (strcmp(key, "debounce_ms") == 0) {
-            return RANGE(parse_u32(value, 0, 1000, &s->gpio_debounce_ms), "expected 0..1000");
-        }
-    } else if (strcmp(section, "build") == 0) {
-        if (strcmp(key, "inputs") == 0) {
-            /* comma list; bounded by the value's length (< the INI line limit) */
-            unsigned bits = 0;
-            const char *p = value;
-            for (int guard = 0; guard < 16 && *p != '\0'; ++guard) {
-                size_t n = strcspn(p, ",");
-                if (n == 6 && strncmp(p, "replay", 6) == 0) bits |= FT_BUILD_INPUT_REPLAY;
-                else if (n == 3 && strncmp(p, "can", 3) == 0) bits |= FT_BUILD_INPUT_CAN;
-                else if (n == 4 && strncmp(p, "gpio", 4) == 0) bits |= FT_BUILD_INPUT_GPIO;
-                else return fail_key(c, section, key, value, "expected a comma list of replay, can, gpio");
-                p += n;
-                if (*p == ',') ++p;
-            }
-            if (bits == 0u) {
-                return fail_key(c, section, key, value, "expected a comma list of replay, can, gpio");
-            }
-            s->build_inputs = bits;
-            return 1;
-        }
-        if (strcmp(key, "png") == 0) {
-            return RANGE(parse_flag(value, &s->build_png), "expected 0 or 1");
-        }
-    } else if (strcmp(section, "can_map") == 0) {
-        if (strcmp(key, "defaults") == 0) {
-            uint32_t v;
-            if (!parse_u32(value, 0, 1, &v)) {
-                return fail_key(c, section, key, value, "expected 0 or 1");
-            }
-            if (v) {
-                /* only the CAN map: [gpio], [build] and the rest keep what
-                 * the file said before this line */
-                ft_canaero_default_map(&s->can_map);
-                can_map_to_pose_ranges(&s->can_map);
-            } else {
-                memset(&s->can_map, 0, sizeof s->can_map);
-            }
-            return 1;
-        }
-        for (int q = 0; q < (int)FT_QTY_COUNT; ++q) {
-            if (strcmp(key, k_can_qty_key[q]) != 0) {
-                continue;
-            }
-            ft_can_map_entry e;
-            memset(&e, 0, sizeof e);
-            e.qty = (ft_pose_qty)q;
-            if (!parse_can_entry(value, &e)) {
-                return fail_key(c, section, key, value,
-                                "expected ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY] "
-                                "(id 0..2047, timeout 1..60000 ms, priority 0..255)");
-            }
-            const int f = can_qty_pose_field(e.qty);
-            if (f >= 0 && (e.min_value < k_pose_range[f].min || e.max_value > k_pose_range[f].max)) {
-                char why[128];
-                (void)snprintf(why, sizeof why, "MIN,MAX must lie within pose.%s [%g, %g] %s",
-                               k_pose_range[f].key, k_pose_range[f].min, k_pose_range[f].max,
-                               k_pose_range[f].unit);
-                return fail_key(c, section, key, value, why);
-            }
-            ft_error e2;
-            if (can_map_upsert(&s->can_map, &e, &e2) != FT_OK) {
-                return fail_key(c, section, key, value, e2.text);
-            }
-            return 1;
-        }
-    } else if (strcmp(section, "presentation") == 0) {
-        if (strcmp(key, "colouring") == 0) {
-            if (strcmp(value, "absolute") == 0 || strcmp(value, "relative") == 0) {
-                s->present_relative = (value[0] == 'r');
-                return 1;
-            }
-            return fail_key(c, section, key, value, "expected absolute or relative");
-        }
-        if (strcmp(key, "palette") == 0) {
-            if (strcmp(value, "day") == 0 || strcmp(value, "night") == 0) {
-                s->present_palette = value[0] == 'n' ? FT_PALETTE_NIGHT : FT_PALETTE_DAY;
-                return 1;
-            }
-            return fail_key(c, section, key, value, "expected day or night");
-        }
-        if (strcmp(key, "horizon") == 0) {
-            return RANGE(parse_flag(value, &s->present_horizon), "expected 0 or 1");
-        }
-        if (strcmp(key, "haze_km") == 0) {
-            return RANGE(parse_off_or_f64(value, FT_HAZE_KM_MIN, FT_HAZE_KM_MAX,
-                                          &s->present_haze_km),
-                         "expected 0 (no haze) or a visibility of 1 to 1000 km");
-        }
-        if (strcmp(key, "grid_m") == 0) {
-            return RANGE(parse_off_or_f64(value, FT_GRID_M_MIN, FT_GRID_M_MAX,
-                                          &s->present_grid_m),
-                         "expected 0 (no grid) or a spacing of 10 to 10000 m");
-        }
-        if (strcmp(key, "band_edges_ft") == 0) {
-            return RANGE(parse_band_edges(value, &s->present_bands),
-                         "expected 1 to 5 comma-separated heights in ft relative to the "
-                         "aircraft, strictly increasing, within +-60000");
-        }
-        if (strcmp(key, "band_rgba") == 0) {
-            return RANGE(parse_band_rgba(value, &s->present_bands),
-                         "expected 2 to 6 comma-separated colours RRGGBBAA (hex)");
-        }
-    } else if (strcmp(section, "metric") == 0) {
-        if (strcmp(key, "enabled") == 0) {
-            return RANGE(parse_flag(value, &s->metric_enabled), "expected 0 or 1");
-        }
-    } else if (strcmp(section, "budget") == 0) {
-        ft_pool_id id;
-        if (ft_pool_from_key(key, &id)) {
-            return RANGE(parse_u64(value, 0, 1ull << 40, &s->budget_bytes[id]),
-                         "expected a byte count (suffix K/M/G allowed)");
-        }
+    if (strcmp(section, "pose") == 0) {
+        c->scene->pose_given = 1;
     }
-    return fail_key(c, section, key, value, "unknown section or key");
+    const ft_scene_key *k = find_key(section, key);
+    char why[256];
+    if (k == NULL) {
+        (void)snprintf(why, sizeof why, "unknown section or key");
+    } else if (set_key(c->scene, k, key, value, why, sizeof why)) {
+        return 1;
+    }
+    if (c->status == FT_OK) {
+        c->status = FT_ERR_CONFIG;
+        (void)snprintf(c->first_error, sizeof c->first_error, "%.60s.%.60s = '%.60s': %s", section,
+                       key, value, why);
+    }
+    return 0;
 }
+
 
 ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name, ft_error *err)
 {
     parse_ctx c;
     memset(&c, 0, sizeof c);
     c.scene = s;
-    c.err = err;
     c.status = FT_OK;
-    c.source = source_name;
     int rc = ini_parse_string(text, on_key, &c);
     if (c.status != FT_OK) {
         return ft_fail(err, c.status, "%s:%d: %s", source_name, rc, c.first_error);
@@ -857,44 +786,26 @@ ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name,
     return ft_scene_validate(s, err);
 }
 
+
 ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
 {
-    if (s->width_px < 16 || s->height_px < 16 || s->width_px > 8192 || s->height_px > 8192) {
-        return ft_fail(err, FT_ERR_CONFIG, "view %ux%u outside 16..8192", s->width_px,
-                       s->height_px);
+    /* every key's range, for what a command line or a tool set after parsing */
+    for (size_t i = 0; i < FT_KEY_COUNT; ++i) {
+        const ft_scene_key *k = &k_keys[i];
+        char value[64], accepts[256];
+        if (!key_value_ok(s, k, value, sizeof value)) {
+            return ft_fail(err, FT_ERR_CONFIG, "%s.%s = %s: expected %s", k->section, k->key,
+                           value, ft_scene_key_accepts(k, accepts, sizeof accepts));
+        }
     }
-    if (!(s->fovy_deg >= 1.0 && s->fovy_deg <= 170.0)) {
-        return ft_fail(err, FT_ERR_CONFIG, "view.fovy_deg %g outside 1..170", s->fovy_deg);
-    }
-    ft_error pose_err;
-    if (ft_pose_check(&s->pose, "scene", &pose_err) != FT_OK) {
-        return ft_fail(err, FT_ERR_CONFIG, "%s", pose_err.text);
-    }
-    if (s->brute_patch_cells < 1 || s->brute_patch_cells > 180) {
-        return ft_fail(err, FT_ERR_CONFIG, "brute.patch_cells %u outside 1..180",
-                       s->brute_patch_cells);
-    }
-    if (!(s->frame_period_ms >= 1.0 && s->frame_period_ms <= 1000.0) ||
-        s->pose_horizon_ms > FT_POSE_HORIZON_MAX_MS) {
-        return ft_fail(err, FT_ERR_CONFIG,
-                       "frame.period_ms %g (1..1000) or pose_input.horizon_ms %u (0..1000) "
-                       "out of range",
-                       s->frame_period_ms, s->pose_horizon_ms);
-    }
-    if (s->pose_converge_ms > FT_POSE_CONVERGE_MAX_MS ||
-        !(s->pose_snap_m >= FT_POSE_SNAP_MIN_M && s->pose_snap_m <= FT_POSE_SNAP_MAX_M)) {
-        return ft_fail(err, FT_ERR_CONFIG,
-                       "pose_input.converge_ms %u (0..10000) or pose_input.snap_m %g "
-                       "(1..100000) out of range",
-                       s->pose_converge_ms, s->pose_snap_m);
-    }
-    if (s->present_bands.colours != s->present_bands.edges + 1u) {
+    /* across keys */
+    if (s->present_bands.edges < 1u || s->present_bands.edges >= FT_BANDS_MAX ||
+        s->present_bands.colours != s->present_bands.edges + 1u) {
         return ft_fail(err, FT_ERR_CONFIG,
                        "presentation: %u band colours (band_rgba) for %u band edges "
                        "(band_edges_ft): a colour for each band, edges + 1",
                        s->present_bands.colours, s->present_bands.edges);
     }
-    /* GPIO lines: each used at most once */
     int used[FT_GPIO_INPUT_COUNT + 1];
     for (int i = 0; i < FT_GPIO_INPUT_COUNT; ++i) used[i] = s->gpio_input_line[i];
     used[FT_GPIO_INPUT_COUNT] = s->gpio_heartbeat_line;
@@ -905,29 +816,9 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err)
             }
         }
     }
-    if (s->bintree_template_k < 1 || s->bintree_template_k > 6 || s->bintree_tiles_max < 2 ||
-        s->bintree_tiles_max > 1048576 || !(s->bintree_tau_px >= 0.0 && s->bintree_tau_px <= 1000.0) ||
-        s->bintree_subsample_levels > 4u) {
-        return ft_fail(err, FT_ERR_CONFIG,
-                       "bintree: template_k %u (1..6), tiles_max %u (2..1048576), tau_px %g "
-                       "(0..1000) or subsample_levels %u (0..4) out of range",
-                       s->bintree_template_k, s->bintree_tiles_max, s->bintree_tau_px,
-                       s->bintree_subsample_levels);
-    }
-    if (s->pgrid_grid_cols < 2 || s->pgrid_grid_cols > 8192 || s->pgrid_grid_rows < 2 ||
-        s->pgrid_grid_rows > 8192 || !(s->pgrid_gamma_px >= 0.1 && s->pgrid_gamma_px <= 100.0)) {
-        return ft_fail(err, FT_ERR_CONFIG,
-                       "pgrid: grid %u x %u outside 2..8192 per side or gamma_px %g outside "
-                       "0.1..100",
-                       s->pgrid_grid_cols, s->pgrid_grid_rows, s->pgrid_gamma_px);
-    }
-    if (s->pgm_grid_cols < 2 || s->pgm_grid_cols > 8192 || s->pgm_grid_rows < 2 ||
-        s->pgm_grid_rows > 8192) {
-        return ft_fail(err, FT_ERR_CONFIG, "pgm: grid %u x %u outside 2..8192 per side",
-                       s->pgm_grid_cols, s->pgm_grid_rows);
-    }
     return FT_OK;
 }
+
 
 ft_status ft_pose_parse(const char *text, ft_pose *out, ft_error *err)
 {

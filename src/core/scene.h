@@ -1,109 +1,11 @@
 /* scene.h - a scene file (INI, parsed with libinih) resolved into one const
- * struct. Zero/absent means "default", resolved once by ft_scene_defaults();
- * shipped files in config/ still set every key. Unknown sections or keys,
- * and values out of range, are errors with the line number: a typo in a
- * budget must never silently fall back to a default.
- *
- * Keys (section.key = meaning [range]):
- *   scene.name            text (<= 63 chars)
- *   scene.method          brute | bintree | pgm | pgrid     (methods built in)
- *   scene.backend         egl-gles3 | egl-gles2 | osmesa
- *   scene.display         none | x11 | kms | kms:/dev/dri/cardN   (where frames are
- *                         shown; none = offscreen; kms = full screen on DRM/KMS)
- *   display.connector     KMS connector: name as the kernel spells it (HDMI-A-1,
- *                         Virtual-1, ...) or its id; empty = the first connected
- *   display.mode          KMS mode: WxH, WxH@HZ or preferred; empty = a mode of the
- *                         view size. Frames are shown 1:1 (never scaled), so the
- *                         mode's size must equal view.width_px x view.height_px
- *   view.width_px, view.height_px   [16, 8192]
- *   view.fovy_deg         [1, 170]
- *   pose.lat_deg [-89,89] pose.lon_deg [-360,360] pose.alt_m [-12000, 1e6]
- *   pose.heading_deg [-1e9,1e9] pose.pitch_deg [-90,90] pose.roll_deg [-1e9,1e9]
- *                         (FT_POSE_FIELD_LIST: the same ranges for --pose, bench
- *                         --centre and the CAN map's position/attitude entries)
- *   terrain.dem           path to .ftt or .hgt, relative to the scene file; empty = synthetic
- *   terrain.synth_side    [3, 16385]   terrain.synth_spacing_m (0, 1e5]
- *   terrain.synth_relief_m [0, 9000]   terrain.synth_seed, terrain.synth_octaves [1,16]
- *   terrain.synth_anchor_lat_deg, terrain.synth_anchor_lon_deg
- *   terrain.curvature     auto | sphere | flat: earth curvature (terrain.h): every
- *                         method, ray caster and the metric's truth lower a point
- *                         d metres from the eye by d^2 / (2 R); auto = sphere for
- *                         a grid in degrees (SRTM, EPSG:4326), flat for one in
- *                         metres (projected or local, e.g. the synthetic terrain)
- *   gpu.height_format     auto | float | packed
- *   gpu.texture_bytes     budget for all GPU textures and buffers
- *   gpu.pyramid_textures  0 | 1: also upload the avg/min/max pyramids as textures
- *   brute.patch_cells     template patch side in cells [1, 180]
- *   brute.max_vertices    most grid vertices brute draws per frame (window)
- *   bintree.template_k    template refinement: 2k bisections, 2^k segments per leg [1, 6]
- *   bintree.tiles_max     tile budget per frame [2, 1048576]
- *   bintree.tau_px        target screen-space error in pixels [0, 1000]
- *   bintree.morph         0 | 1: geomorph split vertices (split at split_fraction x tau)
- *   bintree.split_fraction  [0.5, 0.95]: with morph, a diamond splits at this x tau and
- *                         its vertices morph in before tau (higher: fewer triangles,
- *                         faster morphs)
- *   bintree.subsample_levels  0..4: tiles refine to 2^-S of a cell, their vertices
- *                         on the bilinear surface (the truth), so tau holds near the eye
- *   bintree.vertex_table  0 | 1 (GLES 3): a vertex on a sample reads one RGBA32F texel
- *                         (height, coarse height, diamond error, normal: 16 bytes a
- *                         sample of GPU memory) instead of 8 fetches; 0 saves the memory
- *   pgm.grid_cols         persistent grid columns (vertices across the view) [2, 8192]
- *   pgm.grid_rows         persistent grid rows (vertices from near to far) [2, 8192]
- *                         (pgm uploads its own avg-pyramid atlas: gpu.pyramid_textures
- *                         is not needed; see src/lod/pgm.h)
- *   pgrid.grid_cols, pgrid.grid_rows   the error-bounded projective grid (method pgrid)
- *                         [2, 8192] each (src/lod/pgrid.h)
- *   pgrid.distribution    uniform | view: grid rows evenly on the sampling image plane,
- *                         or evenly in asinh(ground distance / height) (cells close to
- *                         square on the ground)
- *   pgrid.ray_casting     0 | 1: ray cast the pixels whose error exceeds gamma_px
- *                         (GLES 3 only; on GLES 2 pgrid runs without it and says so)
- *   pgrid.gamma_px        screen-space error bound in pixels [0.1, 100]
- *   pgrid.raycast_max_px  most pixels ray cast per frame [0, 67108864]; above it
- *                         gamma is raised for that frame and the error achieved reported
- *   metric.enabled        0 | 1: measure screen-space error against the reference
- *   frame.period_ms       display frame period [1, 1000] (16.667 = 60 Hz); replay
- *                         renders one frame per period of log time
- *   frame.budget_ms       the frame's time budget [0, 1000]; 0 = the period
- *   frame.degrade         0 | 1: coarsen the LOD when frames exceed the budget
- *                         (src/lod/degrade.h; off keeps replay deterministic)
- *   frame.degrade_max_scale  [1, 64]: most the LOD may be coarsened (tau x scale)
- *   pose_input.horizon_ms prediction horizon [0, 1000] (0 = no prediction): attitude
- *                         from the body rates, position from the velocity
- *   pose_input.velocity_required  0 | 1: a stale velocity (ground speed, track,
- *                         altitude rate) raises the annunciation (1) or only stops
- *                         the position prediction (0)
- *   pose_input.converge_ms [0, 10000]: time constant with which the drawn position
- *                         converges to a fix that disagrees with the prediction
- *                         (0 = at once)
- *   pose_input.snap_m     [1, 100000]: a disagreement larger than this is not
- *                         converged but snapped to (and counted)
- *   can.interface, can.backup_interface   SocketCAN interfaces (live input;
- *                         backup empty = none), can.failover_ms [1, 10000]
- *   can_map.defaults      0 | 1: start from the CANaerospace default ids (1) or
- *                         from an empty map (0; put it first in [can_map])
- *   can_map.<quantity>    ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY]: map CAN id ID
- *                         (11-bit) to quantity pitch|roll|heading|lat|lon|alt|
- *                         pitch_rate|roll_rate|yaw_rate|ground_speed|track|
- *                         alt_rate; value = decoded * SCALE,
- *                         valid in [MIN, MAX], stale after TIMEOUT_MS; replaces
- *                         the quantity's entry with the same id or priority (an
- *                         id mapped to another quantity is an error); at most
- *                         FT_CAN_MAP_MAX (24) entries; for lat, lon, alt, heading,
- *                         pitch and roll, [MIN, MAX] lies within the pose range
- *                         table (the default map's latitude is narrowed to +-89)
- *   gpio.chip             gpiochip name or path (live input; empty = no GPIO)
- *   gpio.freeze_line      input: hold the drawn pose while active [-1 = none, 0..511]
- *   gpio.source_line      input: use can.backup_interface while active
- *   gpio.test_line        input: annunciation test (lamp test) while active
- *   gpio.heartbeat_line   output: toggled once per presented frame
- *   gpio.active_low       0 | 1: inputs are active low
- *   gpio.debounce_ms      [0, 1000]: an input level must hold this long
- *   build.inputs          what the scene's pose comes from, for a lean build
- *                         (cmake -DFIXTERRAIN_PROFILE=SCENE.ini): a comma list of
- *                         replay, can, gpio (replay = candump logs only)
- *   build.png             0 | 1: the build needs PNG output
- *   budget.<pool>_bytes   one per pool in mem_budget.h (heights_bytes, ...) */
+ * struct. Every key is one row of one schema (FT_SCENE_KEYS below: section,
+ * key, kind, field, range, default, unit, meaning); the defaults, the parser,
+ * the validator and `fixterrain keys` are all generated from it, so a key
+ * cannot have a range in one place and another elsewhere. The lean-build
+ * profile (tools/profile.cmake) reads a scene with this same parser. Unknown
+ * sections or keys, and values out of range, are errors with the line
+ * number: a typo in a budget must never silently fall back to a default. */
 #ifndef FT_SCENE_H
 #define FT_SCENE_H
 
@@ -253,13 +155,232 @@ typedef struct ft_scene {
     uint64_t budget_bytes[FT_POOL_COUNT];
 } ft_scene;
 
+/* The scene schema: one row per key.
+ *   X(section, key, kind, field of ft_scene, min, max, choices, default, unit, meaning)
+ * kind: U32, U64 (a count that takes a K/M/G suffix, as budgets do), F64,
+ * FLAG (0 | 1), OFF_F64 (0 = the part is off, else min..max), ENUM (one of
+ * `choices`, each name followed by '|'; the value is its position), BITS (a
+ * comma list of `choices`; bit i = name i; at least one), LINE (a GPIO line:
+ * -1 = none, else 0..max), TEXT (at most sizeof field - 1 characters).
+ * Ranges are inclusive. Defaults are written as a scene file would say them
+ * and are parsed by the same code (config/default.ini repeats them; a test
+ * checks the two agree). [pose] keys come from FT_POSE_FIELD_LIST, and a few
+ * keys whose values are lists are parsed by their own code
+ * (FT_SCENE_LIST_KEYS). */
+#define FT_CHOICE(id, name, what) name "|"
+#define FT_SCENE_KEYS(X)                                                                         \
+    X(scene, name, TEXT, name, 0, 0, NULL, "default", "", "the scene's name")                  \
+    X(scene, method, ENUM, method, 0, 0, FT_METHOD_LIST(FT_CHOICE), "pgrid", "",                \
+      "terrain method (a lean build has only its own: fixterrain render --help)")                \
+    X(scene, backend, ENUM, backend, 0, 0, FT_BACKEND_LIST(FT_CHOICE), "egl-gles3", "",          \
+      "GPU backend")                                                                             \
+    X(display, connector, TEXT, display_connector, 0, 0, NULL, "", "",                          \
+      "KMS connector as the kernel names it (HDMI-A-1, Virtual-1) or its id; empty = the first " \
+      "connected one")                                                                           \
+    X(view, width_px, U32, width_px, FT_VIEW_SIDE_MIN_PX, FT_VIEW_SIDE_MAX_PX, NULL, "800", "px", \
+      "image width")                                                                             \
+    X(view, height_px, U32, height_px, FT_VIEW_SIDE_MIN_PX, FT_VIEW_SIDE_MAX_PX, NULL, "600",    \
+      "px", "image height")                                                                      \
+    X(view, fovy_deg, F64, fovy_deg, 1, 170, NULL, "60", "deg", "vertical field of view")        \
+    X(terrain, dem, TEXT, dem_path, 0, 0, NULL, "", "",                                          \
+      "path to a .ftt or .hgt, relative to the scene file; empty = the synthetic terrain")       \
+    X(terrain, curvature, ENUM, curvature, 0, 0, "auto|sphere|flat|", "auto", "",                \
+      "earth curvature: every method, ray caster and the metric's truth lower a point d from "   \
+      "the eye by d^2 / (2 R); auto = sphere for a grid in degrees, flat for one in metres")     \
+    X(terrain, synth_side, U32, synth.side, 3, 16385, NULL, "1025", "samples",                   \
+      "synthetic terrain: samples per side")                                                     \
+    X(terrain, synth_spacing_m, F64, synth.spacing_m, 1e-3, 1e5, NULL, "30", "m",                \
+      "synthetic terrain: sample spacing")                                                       \
+    X(terrain, synth_relief_m, F64, synth.relief_m, 0, 9000, NULL, "2400", "m",                  \
+      "synthetic terrain: highest peak")                                                         \
+    X(terrain, synth_seed, U32, synth.seed, 0, UINT32_MAX, NULL, "1", "",                        \
+      "synthetic terrain: noise seed")                                                           \
+    X(terrain, synth_octaves, U32, synth.octaves, 1, 16, NULL, "9", "",                          \
+      "synthetic terrain: fBm octaves")                                                          \
+    X(terrain, synth_anchor_lat_deg, F64, synth.anchor_lat_deg, -89, 89, NULL, "46.5", "deg",    \
+      "synthetic terrain: latitude of its south-west corner (where --pose lands)")               \
+    X(terrain, synth_anchor_lon_deg, F64, synth.anchor_lon_deg, -360, 360, NULL, "8.0", "deg",   \
+      "synthetic terrain: longitude of its south-west corner")                                   \
+    X(gpu, height_format, ENUM, height_format, 0, 0, "auto|float|packed|", "auto", "",           \
+      "how heights reach the vertex shader: float textures, or RGBA8 24-bit fixed point")        \
+    X(gpu, texture_bytes, U64, gpu_texture_bytes, 0, FT_SCENE_BYTES_MAX, NULL, "64M", "bytes",    \
+      "budget for all GPU textures, render targets and buffers")                                 \
+    X(gpu, pyramid_textures, FLAG, pyramid_textures, 0, 1, NULL, "0", "",                        \
+      "also upload the avg/min/max pyramids as textures")                                        \
+    X(brute, patch_cells, U32, brute_patch_cells, 1, 180, NULL, "64", "cells",                   \
+      "template patch side")                                                                     \
+    X(brute, max_vertices, U32, brute_max_vertices, 4, UINT32_MAX, NULL, "4200000", "vertices",  \
+      "most grid vertices brute draws per frame (a window around the eye)")                      \
+    X(bintree, template_k, U32, bintree_template_k, 1, 6, NULL, "3", "",                         \
+      "tile template: 2k bisections, 2^k segments a leg")                                        \
+    X(bintree, tiles_max, U32, bintree_tiles_max, 2, 1048576, NULL, "16384", "tiles",            \
+      "tile budget per frame")                                                                   \
+    X(bintree, tau_px, F64, bintree_tau_px, 0, 1000, NULL, "1.0", "px",                          \
+      "target screen-space error")                                                               \
+    X(bintree, morph, FLAG, bintree_morph, 0, 1, NULL, "1", "", "geomorph split vertices")       \
+    X(bintree, split_fraction, F64, bintree_split_fraction, FT_BT_SPLIT_FRACTION,                \
+      FT_BT_SPLIT_FRACTION_MAX, NULL, "0.5", "",                                                 \
+      "with morph, a diamond splits at this x tau and its vertices morph in before tau")         \
+    X(bintree, subsample_levels, U32, bintree_subsample_levels, 0, 4, NULL, "0", "",             \
+      "tiles refine to 2^-S of a cell, their vertices on the bilinear surface")                  \
+    X(bintree, vertex_table, FLAG, bintree_vertex_table, 0, 1, NULL, "1", "",                    \
+      "GLES 3: a vertex on a sample reads one RGBA32F texel (16 bytes a sample of GPU memory) "  \
+      "instead of 8 fetches")                                                                    \
+    X(pgm, grid_cols, U32, pgm_grid_cols, 2, 8192, NULL, "430", "vertices",                      \
+      "persistent grid: vertices across the view")                                               \
+    X(pgm, grid_rows, U32, pgm_grid_rows, 2, 8192, NULL, "430", "vertices",                      \
+      "persistent grid: vertices from near to far")                                              \
+    X(pgrid, grid_cols, U32, pgrid_grid_cols, 2, 8192, NULL, "200", "vertices",                  \
+      "error-bounded projective grid: vertices across the view")                                 \
+    X(pgrid, grid_rows, U32, pgrid_grid_rows, 2, 8192, NULL, "800", "vertices",                  \
+      "error-bounded projective grid: vertices from near to far")                                \
+    X(pgrid, distribution, ENUM, pgrid_view_distribution, 0, 0, "uniform|view|", "view", "",     \
+      "grid rows evenly on the image plane, or evenly in asinh(ground distance / height)")       \
+    X(pgrid, error_bound, ENUM, pgrid_residual_bound, 0, 0, "relief|residual|", "relief", "",    \
+      "which bound marks the pixels to ray cast (src/lod/pgrid.h)")                              \
+    X(pgrid, ray_casting, FLAG, pgrid_ray_casting, 0, 1, NULL, "1", "",                          \
+      "ray cast the pixels whose error bound exceeds gamma_px (GLES 3 only)")                    \
+    X(pgrid, gamma_px, F64, pgrid_gamma_px, 0.1, 100, NULL, "1.0", "px",                         \
+      "screen-space error bound")                                                                \
+    X(pgrid, raycast_max_px, U32, pgrid_raycast_max_px, 0, 67108864, NULL, "262144", "px",       \
+      "most pixels ray cast per frame; above it gamma is raised for that frame and reported")    \
+    X(presentation, colouring, ENUM, present_relative, 0, 0, "absolute|relative|", "absolute",   \
+      "", "a height ramp, or bands of height relative to the aircraft painted over it")          \
+    X(presentation, palette, ENUM, present_palette, 0, 0, "day|night|", "day", "",               \
+      "colour palette (a GPIO night line overrides it)")                                         \
+    X(presentation, horizon, FLAG, present_horizon, 0, 1, NULL, "0", "",                         \
+      "draw the conformal zero-pitch line")                                                      \
+    X(presentation, haze_km, OFF_F64, present_haze_km, FT_HAZE_KM_MIN, FT_HAZE_KM_MAX, NULL,     \
+      "0", "km", "distance haze visibility (0 = no haze)")                                       \
+    X(presentation, grid_m, OFF_F64, present_grid_m, FT_GRID_M_MIN, FT_GRID_M_MAX, NULL, "0",    \
+      "m", "ground grid spacing (0 = no grid)")                                                  \
+    X(metric, enabled, FLAG, metric_enabled, 0, 1, NULL, "0", "",                                \
+      "measure the screen-space error against the reference")                                    \
+    X(frame, period_ms, F64, frame_period_ms, 1, 1000, NULL, "16.667", "ms",                     \
+      "display frame period; replay renders one frame per period of log time")                   \
+    X(frame, budget_ms, F64, frame_budget_ms, 0, 1000, NULL, "0", "ms",                          \
+      "the frame's time budget (0 = the period)")                                                \
+    X(frame, degrade, FLAG, frame_degrade, 0, 1, NULL, "0", "",                                  \
+      "coarsen the LOD when frames exceed the budget (off keeps replay deterministic)")          \
+    X(frame, degrade_max_scale, F64, frame_degrade_max_scale, 1, 64, NULL, "8", "",              \
+      "most the LOD may be coarsened (tau x scale)")                                             \
+    X(pose_input, horizon_ms, U32, pose_horizon_ms, 0, FT_POSE_HORIZON_MAX_MS, NULL, "100", "ms", \
+      "prediction horizon: attitude from the body rates, position from the velocity")            \
+    X(pose_input, velocity_required, FLAG, pose_velocity_required, 0, 1, NULL, "0", "",          \
+      "a stale velocity raises the annunciation (1) or only stops position prediction (0)")      \
+    X(pose_input, converge_ms, U32, pose_converge_ms, 0, FT_POSE_CONVERGE_MAX_MS, NULL, "300",   \
+      "ms", "time constant of the drawn position converging to a disagreeing fix (0 = at once)") \
+    X(pose_input, snap_m, F64, pose_snap_m, FT_POSE_SNAP_MIN_M, FT_POSE_SNAP_MAX_M, NULL, "100", \
+      "m", "a disagreement larger than this is snapped to, not converged (and counted)")         \
+    X(can, interface, TEXT, can_iface, 0, 0, NULL, "vcan0", "", "SocketCAN interface (live input)") \
+    X(can, backup_interface, TEXT, can_backup_iface, 0, 0, NULL, "", "",                         \
+      "backup SocketCAN interface; empty = none")                                                \
+    X(can, failover_ms, U32, can_failover_ms, 1, 10000, NULL, "200", "ms",                       \
+      "primary silent this long while the backup is alive: switch to the backup")                \
+    X(gpio, chip, TEXT, gpio_chip, 0, 0, NULL, "", "",                                           \
+      "gpiochip name or path (live input); empty = no GPIO")                                     \
+    X(gpio, freeze_line, LINE, gpio_input_line[FT_GPIO_FREEZE], 0, FT_GPIO_LINE_MAX, NULL, "-1", \
+      "", "input: hold the drawn pose while active")                                             \
+    X(gpio, source_line, LINE, gpio_input_line[FT_GPIO_SOURCE], 0, FT_GPIO_LINE_MAX, NULL, "-1", \
+      "", "input: use can.backup_interface while active")                                        \
+    X(gpio, test_line, LINE, gpio_input_line[FT_GPIO_TEST], 0, FT_GPIO_LINE_MAX, NULL, "-1", "", \
+      "input: annunciation (lamp) test while active")                                            \
+    X(gpio, night_line, LINE, gpio_input_line[FT_GPIO_NIGHT], 0, FT_GPIO_LINE_MAX, NULL, "-1",   \
+      "", "input: night palette while active (else presentation.palette)")                       \
+    X(gpio, heartbeat_line, LINE, gpio_heartbeat_line, 0, FT_GPIO_LINE_MAX, NULL, "-1", "",      \
+      "output: toggled once per presented frame")                                                \
+    X(gpio, active_low, FLAG, gpio_active_low, 0, 1, NULL, "0", "", "inputs are active low")     \
+    X(gpio, debounce_ms, U32, gpio_debounce_ms, 0, 1000, NULL, "10", "ms",                       \
+      "an input level must hold this long")                                                      \
+    X(build, inputs, BITS, build_inputs, 0, 0, "replay|can|gpio|", "replay,can,gpio", "",        \
+      "what the pose comes from, for a lean build (cmake -DFIXTERRAIN_PROFILE=SCENE.ini)")       \
+    X(build, png, FLAG, build_png, 0, 1, NULL, "1", "", "the build needs PNG output")            \
+    FT_SCENE_BUDGET_KEYS(X)
+
+/* budget.<pool>_bytes, one per pool of mem_budget.h (a test checks that
+ * every pool has its row). */
+#define FT_SCENE_BUDGET_KEY(X, pool, key, def)                                                   \
+    X(budget, key, U64, budget_bytes[pool], 0, FT_SCENE_BYTES_MAX, NULL, def, "bytes",            \
+      "memory pool budget (src/core/mem_budget.h)")
+#define FT_SCENE_BUDGET_KEYS(X)                                                                  \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_HEIGHTS, heights_bytes, "6M")                                 \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_PYRAMIDS, pyramids_bytes, "18M")                              \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_DEM_IO, dem_io_bytes, "2M")                                   \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_FRAME_RGBA, frame_rgba_bytes, "5M")                           \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_FRAME_POS, frame_pos_bytes, "0")                              \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_REFERENCE, reference_bytes, "0")                              \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_METRIC, metric_bytes, "0")                                    \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_GPU_STAGING, gpu_staging_bytes, "6M")                         \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_METHOD, method_bytes, "4M")                                   \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_PNG, png_bytes, "512K")
+
+/* Keys whose value is a list or names a device, each parsed by its own
+ * function in scene.c: X(section, key, parser, default, meaning); key `*`
+ * takes every key of the section that has no row of its own. */
+#define FT_SCENE_LIST_KEYS(X)                                                                    \
+    X(scene, display, parse_display, "none",                                                     \
+      "where frames are shown: none (offscreen) | x11 | kms | kms:/dev/dri/cardN")               \
+    X(display, mode, parse_display_mode, "",                                                     \
+      "KMS mode: WxH, WxH@HZ or preferred; empty = a mode of the view size (shown 1:1, never "   \
+      "scaled)")                                                                                 \
+    X(presentation, band_edges_ft, parse_band_edges_key, "-1000, -100",                              \
+      "1 to 5 band edges in ft relative to the aircraft (negative: below it), strictly "         \
+      "increasing, within +-60000")                                                              \
+    X(presentation, band_rgba, parse_band_rgba_key, "00000000, FFCC0099, FF0000B3",                  \
+      "edges + 1 band colours RRGGBBAA: colour and how much of it covers the terrain colour")   \
+    X(can_map, defaults, parse_can_map_defaults, "1",                                            \
+      "start from the CANaerospace default ids (1) or an empty map (0); put it first")           \
+    X(can_map, *, parse_can_map_entry, NULL,                                                     \
+      "<quantity> = ID,SCALE,MIN,MAX,TIMEOUT_MS[,PRIORITY]: map 11-bit CAN id ID to pitch, "     \
+      "roll, heading, lat, lon, alt, pitch_rate, roll_rate, yaw_rate, ground_speed, track or "   \
+      "alt_rate; value = decoded x SCALE, valid in [MIN, MAX] (for pose quantities within the "  \
+      "pose range), stale after TIMEOUT_MS; replaces the entry with the same id or priority; "  \
+      "at most FT_CAN_MAP_MAX entries")
+
+#define FT_SCENE_BYTES_MAX (1ull << 40) /* largest byte count a scene may state */
+
+typedef enum ft_scene_key_kind {
+    FT_KEY_U32,
+    FT_KEY_U64,
+    FT_KEY_F64,
+    FT_KEY_FLAG,
+    FT_KEY_OFF_F64,
+    FT_KEY_ENUM,
+    FT_KEY_BITS,
+    FT_KEY_LINE,
+    FT_KEY_TEXT,
+    FT_KEY_LIST /* FT_SCENE_LIST_KEYS: parsed by its own function */
+} ft_scene_key_kind;
+
+/* One row of the schema, as the parser, validator and key list see it. */
+typedef struct ft_scene_key {
+    const char *section, *key;
+    ft_scene_key_kind kind;
+    size_t offset, size; /* the field in ft_scene (FT_KEY_LIST: 0, 0) */
+    double min, max;
+    const char *choices; /* ENUM, BITS: "a|b|c|" */
+    const char *def;     /* the default as a scene file says it; NULL = none */
+    const char *unit;
+    const char *doc;
+} ft_scene_key;
+
+/* Every row, in file order ([pose] after [view]); *count set. */
+const ft_scene_key *ft_scene_keys(size_t *count);
+
+/* "16..8192 px", "0 or 1", "auto, sphere or flat": what a key accepts
+ * (FT_KEY_LIST: its meaning). Returns text. */
+const char *ft_scene_key_accepts(const ft_scene_key *k, char *text, size_t cap);
+
 /* The embedded default scene (config/default.ini, compiled in). */
 extern const char ft_default_scene_text[];
 
-/* Fills every field with its default (what config/default.ini also says). */
+/* Fills every field with its default: each row's default text through the
+ * parser (config/default.ini says the same). */
 void ft_scene_defaults(ft_scene *s);
-/* The default relative-altitude bands (presentation.band_*). */
-void ft_scene_default_bands(ft_bands *b);
+
+/* Checks the schema itself: no key twice, every default accepted by its own
+ * row (tests; scratch is any ft_scene, overwritten). */
+ft_status ft_scene_schema_check(ft_scene *scratch, ft_error *err);
 
 /* Parses INI text over the current contents of s (start from defaults). */
 ft_status ft_scene_parse(ft_scene *s, const char *text, const char *source_name, ft_error *err);
@@ -270,17 +391,18 @@ ft_status ft_scene_validate(const ft_scene *s, ft_error *err);
 /* The range of every pose field: one table for every way a pose enters (a
  * scene's [pose], --pose, bench --centre, the CAN map's position and attitude
  * entries), so no path can hand the renderer what a scene may not say.
- * X(id, field of ft_pose, min, max, unit); the order is --pose's order. */
-#define FT_POSE_FIELD_LIST(X)                              \
-    X(FT_POSE_LAT, lat_deg, -89.0, 89.0, "deg")            \
-    X(FT_POSE_LON, lon_deg, -360.0, 360.0, "deg")          \
-    X(FT_POSE_ALT, alt_m, -12000.0, 1e6, "m")              \
-    X(FT_POSE_HEADING, heading_deg, -1e9, 1e9, "deg")      \
-    X(FT_POSE_PITCH, pitch_deg, -90.0, 90.0, "deg")        \
-    X(FT_POSE_ROLL, roll_deg, -1e9, 1e9, "deg")
+ * X(id, field of ft_pose, min, max, unit, the scene's default); the order is
+ * --pose's order. A scene's [pose] keys are generated from it. */
+#define FT_POSE_FIELD_LIST(X)                                      \
+    X(FT_POSE_LAT, lat_deg, -89.0, 89.0, "deg", "46.52698")        \
+    X(FT_POSE_LON, lon_deg, -360.0, 360.0, "deg", "8.200674")      \
+    X(FT_POSE_ALT, alt_m, -12000.0, 1e6, "m", "4200")              \
+    X(FT_POSE_HEADING, heading_deg, -1e9, 1e9, "deg", "10")        \
+    X(FT_POSE_PITCH, pitch_deg, -90.0, 90.0, "deg", "-18")         \
+    X(FT_POSE_ROLL, roll_deg, -1e9, 1e9, "deg", "0")
 
 typedef enum ft_pose_field {
-#define FT_POSE_FIELD_ENUM(id, field, lo, hi, unit) id,
+#define FT_POSE_FIELD_ENUM(id, field, lo, hi, unit, def) id,
     FT_POSE_FIELD_LIST(FT_POSE_FIELD_ENUM)
 #undef FT_POSE_FIELD_ENUM
     FT_POSE_FIELD_COUNT

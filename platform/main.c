@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app/app.h"
+#include "app/frame.h"
 #include "app/replay.h"
 #include "core/platform_api.h"
 #include "terrain/default_view.h"
@@ -402,18 +403,22 @@ static int cmd_render(int argc, char **argv)
     }
 
     static double times_ms[FT_FRAMES_MAX];
-    ft_camera cam;
-    ft_frame_stats st;
-    memset(&st, 0, sizeof st);
+    /* the same frame N times: the settings as set, no degradation */
+    ft_frame_loop loop;
+    ft_frame_loop_init(&loop, &g_app, 0);
+    ft_frame fr;
+    memset(&fr, 0, sizeof fr);
     int rc = FT_EXIT_OK;
     for (unsigned f = 0; f < frames; ++f) {
-        if (ft_app_render(&g_app, &pose_drawn, &cam, &st, &err) != FT_OK) {
+        if (ft_frame_step(&loop, &g_app, &pose_drawn, NULL, &fr, &err) != FT_OK) {
             fprintf(stderr, "fixterrain: frame %u: %s\n", f, err.text);
             rc = FT_EXIT_ERROR;
             goto done;
         }
-        times_ms[f] = st.gpu_ms;
+        times_ms[f] = fr.stats.gpu_ms;
     }
+    const ft_camera cam = fr.cam;
+    const ft_frame_stats st = fr.stats;
     /* Frame 0 includes shader compilation in the driver: leave it out. */
     double median = times_ms[0];
     if (frames > 1) {
@@ -617,9 +622,10 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         (unsigned long long)f->dec.lost, (unsigned long long)f->dec.out_of_sequence, rejects,
         position, r->frames, r->frames_annunciated,
         r->first_annunciated == UINT32_MAX ? -1LL : (long long)r->first_annunciated,
-        r->frames_predicted, r->log_first_s, r->log_last_s, r->draw_ms_max, r->degrade.budget_ms,
-        r->degrade.over_budget, r->degrade.enabled, r->degrade.raises, r->degrade.lowers,
-        r->degrade_scale_max, r->tau_max_px, r->frames_off_terrain);
+        r->frames_predicted, r->log_first_s, r->log_last_s, r->frame.timing.render_ms_max,
+        r->frame.degrade.budget_ms, r->frame.degrade.over_budget, r->frame.degrade.enabled,
+        r->frame.degrade.raises, r->frame.degrade.lowers, r->frame.timing.degrade_scale_max,
+        r->frame.timing.tau_max_px, r->frames_off_terrain);
     return write_stats_text(path, len, "replay", err);
 }
 
@@ -735,9 +741,10 @@ static int cmd_replay(int argc, char **argv)
         }
         printf("replay: budget %.3f ms: %u frames over it (slowest %.1f ms); degradation %s "
                "(%u raises, %u lowers, LOD scale up to %.2f, error bound up to %.3f px)\n",
-               r.degrade.budget_ms, r.degrade.over_budget, r.draw_ms_max,
-               r.degrade.enabled ? "on" : "off", r.degrade.raises, r.degrade.lowers,
-               r.degrade_scale_max, r.tau_max_px);
+               r.frame.degrade.budget_ms, r.frame.degrade.over_budget,
+               r.frame.timing.render_ms_max, r.frame.degrade.enabled ? "on" : "off",
+               r.frame.degrade.raises, r.frame.degrade.lowers, r.frame.timing.degrade_scale_max,
+               r.frame.timing.tau_max_px);
         printf("replay: position predicted from the velocity on %u frames (velocity stale on "
                "%u), %llu snaps, largest offset converged %.3f m\n",
                r.frames_pos_predicted, r.frames_velocity_stale,
@@ -783,6 +790,9 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
                       sizeof position) == 0u) {
         return ft_fail(err, FT_ERR_OVERSIZED, "run stats: position counters too long");
     }
+    const ft_frame_timing *t = &r->frame.timing;
+    const ft_degrade *dg = &r->frame.degrade;
+    const double frames = r->frames > 0u ? (double)r->frames : 1.0;
     int len = snprintf(
         g_stats_text, sizeof g_stats_text,
         "{\n  \"frames\": %u,\n  \"deadline_misses\": %u,\n  \"frame_ms_max\": %.3f,\n%s"
@@ -810,14 +820,12 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
         (unsigned long long)f->dec.out_of_sequence, (unsigned long long)r->gpio_edges,
         (unsigned long long)r->gpio_changes,
         (unsigned long long)r->heartbeat_toggles, (unsigned long long)r->t_start_ns,
-        (unsigned long long)r->t_first_rx_ns, r->poll_ms_sum / (r->frames ? r->frames : 1u),
-        r->select_ms_sum / (r->frames ? r->frames : 1u), r->draw_ms_sum / (r->frames ? r->frames : 1u),
-        r->gpu_ms_sum / (r->frames ? r->frames : 1u), r->poll_ms_max, r->select_ms_max,
-        r->draw_ms_max, r->gpu_ms_max, r->gpu_timer_frames,
-        r->gpu_timer_ms_sum / (r->gpu_timer_frames ? r->gpu_timer_frames : 1u),
-        r->gpu_timer_ms_max, r->degrade.budget_ms, r->degrade.over_budget,
-        r->degrade.enabled, r->degrade.raises, r->degrade.lowers, r->degrade_scale_max,
-        r->tau_max_px, (unsigned long long)r->jobs_run,
+        (unsigned long long)r->t_first_rx_ns, r->poll_ms_sum / frames, t->select_ms_sum / frames,
+        t->draw_ms_sum / frames, t->gpu_ms_sum / frames, r->poll_ms_max, t->select_ms_max,
+        t->draw_ms_max, t->gpu_ms_max, t->gpu_timer_frames,
+        t->gpu_timer_ms_sum / (t->gpu_timer_frames ? t->gpu_timer_frames : 1u),
+        t->gpu_timer_ms_max, dg->budget_ms, dg->over_budget, dg->enabled, dg->raises,
+        dg->lowers, t->degrade_scale_max, t->tau_max_px, (unsigned long long)r->jobs_run,
         (unsigned long long)r->jobs_deferred_frames, (unsigned long long)r->jobs_refused,
         r->jobs_high_water);
     return write_stats_text(path, len, "run", err);

@@ -202,7 +202,7 @@ static void on_frame(void *ctx, const ft_renderer *r)
     const uint64_t k = s->frames_seen++; /* this frame's index in the replay */
     const uint32_t m = (uint32_t)((double)k * s->period_ms / 60000.0);
     while (s->minutes_seen <= m && s->minutes_seen <= MINUTES_MAX) {
-        s->misses_at[s->minutes_seen] = s->res->degrade.over_budget;
+        s->misses_at[s->minutes_seen] = s->res->frame.degrade.over_budget;
         s->wall_at_ns[s->minutes_seen] = ft_plat_monotonic_ns();
         if (s->minutes_seen == WARMUP_MIN) {
             s->rss_warm_kib = rss_kib();
@@ -327,7 +327,7 @@ int main(int argc, char **argv)
     printf("deadline misses (budget %g ms): %u in minutes 0-%u, %u in minutes %u-%u (margin %u), "
            "%u in all; slowest frame %.2f ms\n",
            period_ms, first, WINDOW_MIN, last, full - WINDOW_MIN, full, margin,
-           g_res.degrade.over_budget, g_res.draw_ms_max);
+           g_res.frame.degrade.over_budget, g_res.frame.timing.render_ms_max);
     CHECK(last <= first + margin);
     /* information: wall time per frame (replay work included) in the two
      * windows; not judged, the machine is shared */

@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include "app/app.h"
+#include "app/frame.h"
 #include "bench_oracle.h"
 #include "terrain/default_view.h"
 #include "flight_path.h"
@@ -695,9 +696,13 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
         }
         g_poses_ready = 1;
     }
-    ft_camera cam;
+    /* the settings as set: no degradation */
+    ft_frame_loop loop;
+    ft_frame_loop_init(&loop, &g_app, 0);
+    ft_frame fr;
+    int ok = ft_frame_step(&loop, &g_app, &g_paths[0].pose[0], NULL, &fr, &err) == FT_OK; /* warm-up */
+    ft_camera cam = fr.cam;
     ft_frame_stats st;
-    int ok = ft_app_render(&g_app, &g_paths[0].pose[0], &cam, &st, &err) == FT_OK; /* warm-up */
     const char *fail_what = "frame";
     int oracle = 0;
     if (ok && bm->kind == FT_METHOD_BINTREE && !o->no_oracle) {
@@ -722,10 +727,12 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
         row->path_err_max_px[p] = row->path_err_p999_px[p] = 0.0;
         for (int i = 0; i < o->frames && ok; ++i) {
             progress(o, run, runs, row, g_paths[p].name, i + 1, o->frames);
-            if (ft_app_render(&g_app, &g_paths[p].pose[i], &cam, &st, &err) != FT_OK) {
+            if (ft_frame_step(&loop, &g_app, &g_paths[p].pose[i], NULL, &fr, &err) != FT_OK) {
                 ok = 0;
                 break;
             }
+            cam = fr.cam;
+            st = fr.stats;
             g_frame_ms[timed] = st.select_ms + st.gpu_ms;
             g_select_ms[timed] = st.select_ms;
             if (oracle) {

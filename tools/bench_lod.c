@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/frame.h"
 #include "core/units.h"
 
 #define BENCH_FRAMES_MAX 1000
@@ -138,15 +139,18 @@ static int run(const ft_scene *base, const char *method, uint32_t k, double tau,
                    g_app.gpu.renderer);
     double tri = 0.0, tiles = 0.0, err_sum = 0.0;
     int timed = 0, measured = 0, ok = 1;
+    ft_frame_loop loop; /* the settings as set: no degradation */
+    ft_frame_loop_init(&loop, &g_app, 0);
     for (int f = 0; f <= frames && ok; ++f) {
-        ft_camera cam;
-        ft_frame_stats st;
+        ft_frame fr;
         ft_pose p = orbit_pose(&base->pose, f, frames);
-        if (ft_app_render(&g_app, &p, &cam, &st, &err) != FT_OK) {
+        if (ft_frame_step(&loop, &g_app, &p, NULL, &fr, &err) != FT_OK) {
             fprintf(stderr, "bench: frame %d: %s\n", f, err.text);
             ok = 0;
             break;
         }
+        const ft_camera cam = fr.cam;
+        const ft_frame_stats st = fr.stats;
         if (f == 0) continue; /* shader compilation */
         frame_ms[timed] = st.select_ms + st.gpu_ms;
         select_ms[timed] = st.select_ms;

@@ -199,10 +199,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         st = ft_fail(err, FT_ERR_CONFIG, "run: frame.period_ms %g is not in 1..1000",
                      s->frame_period_ms);
     }
-    ft_degrade_init(&r->degrade, s->frame_degrade,
-                    s->frame_budget_ms > 0.0 ? s->frame_budget_ms : s->frame_period_ms,
-                    s->frame_degrade_max_scale);
-    (void)ft_method_set_lod_scale(&app->renderer.method, 1.0);
+    ft_frame_loop_init(&r->frame, app, 1);
     const uint64_t failover_ns = (uint64_t)s->can_failover_ms * 1000000u;
     int source = 0, frozen = 0, heartbeat = 0;
     ft_pose frozen_pose = s->pose;
@@ -260,32 +257,13 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         ft_renderer_set_palette(&app->renderer, palette);
         const int test = input_active(lv, FT_GPIO_TEST);
         const char *reason = test ? FT_LIVE_TEST_REASON : (v.annunciate ? v.reason : NULL);
-        ft_camera cam;
-        ft_frame_stats fs;
-        st = ft_app_render_annunciated(app, draw_pose, reason, &cam, &fs, err);
+        ft_frame fr;
+        st = ft_frame_step(&r->frame, app, draw_pose, reason, &fr, err);
         if (st != FT_OK) {
             break;
         }
-        const double scale_drawn = r->degrade.scale;
-        const double render_ms = fs.select_ms + fs.gpu_ms;
-        if (ft_degrade_frame(&r->degrade, render_ms)) {
-            (void)ft_method_set_lod_scale(&app->renderer.method, r->degrade.scale);
-        }
-        if (r->degrade.scale > r->degrade_scale_max) r->degrade_scale_max = r->degrade.scale;
-        if (fs.tau_achieved_px > r->tau_max_px) r->tau_max_px = fs.tau_achieved_px;
         r->poll_ms_sum += poll_ms;
-        r->select_ms_sum += fs.select_ms;
-        r->draw_ms_sum += fs.cpu_ms;
-        r->gpu_ms_sum += fs.gpu_ms;
         if (poll_ms > r->poll_ms_max) r->poll_ms_max = poll_ms;
-        if (fs.select_ms > r->select_ms_max) r->select_ms_max = fs.select_ms;
-        if (fs.cpu_ms > r->draw_ms_max) r->draw_ms_max = fs.cpu_ms;
-        if (fs.gpu_ms > r->gpu_ms_max) r->gpu_ms_max = fs.gpu_ms;
-        if (fs.gpu_timer_ms >= 0.0) {
-            r->gpu_timer_frames += 1u;
-            r->gpu_timer_ms_sum += fs.gpu_timer_ms;
-            if (fs.gpu_timer_ms > r->gpu_timer_ms_max) r->gpu_timer_ms_max = fs.gpu_timer_ms;
-        }
         if (lv->gpio_open && s->gpio_heartbeat_line >= 0) {
             heartbeat = !heartbeat;
             st = ft_plat_gpio_set_output(&lv->gpio, heartbeat, err);
@@ -308,7 +286,7 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
                 (void)snprintf(shown.reason, sizeof shown.reason, "%s", FT_LIVE_TEST_REASON);
             }
             size_t n = ft_pose_row_format(row, sizeof row, k, now, &shown, frozen, source,
-                                          scale_drawn, fs.tau_achieved_px);
+                                          fr.lod_scale, fr.stats.tau_achieved_px);
             if (n == 0u) {
                 st = ft_fail(err, FT_ERR_OVERSIZED, "pose row too long");
             } else if (ft_jobs_push(&lv->jobs, write_pose_row, &lv->pose_file.writer,

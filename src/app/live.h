@@ -37,11 +37,11 @@
 #include <stdint.h>
 
 #include "app/app.h"
+#include "app/frame.h"
 #include "core/jobs.h"
 #include "core/platform_api.h"
 #include "input/debounce.h"
 #include "input/pose_feed.h"
-#include "lod/degrade.h"
 
 #define FT_LIVE_CAN_BATCH 64u      /* frames read per call */
 #define FT_LIVE_CAN_BATCHES_MAX 64u /* calls per frame and port: 4096 frames */
@@ -67,12 +67,8 @@ typedef struct ft_live_result {
     uint64_t gpio_edges, gpio_changes, heartbeat_toggles;
     uint64_t t_start_ns, t_first_rx_ns; /* monotonic; first rx 0 if none */
     double frame_ms_max;
-    double poll_ms_max, select_ms_max, draw_ms_max, gpu_ms_max; /* per stage, worst frame */
-    double poll_ms_sum, select_ms_sum, draw_ms_sum, gpu_ms_sum;
-    double gpu_timer_ms_max, gpu_timer_ms_sum; /* timer queries (0 frames: none) */
-    uint32_t gpu_timer_frames;
-    ft_degrade degrade;
-    double degrade_scale_max, tau_max_px;
+    double poll_ms_max, poll_ms_sum; /* inputs: CAN and GPIO reads, worst and sum */
+    ft_frame_loop frame; /* the later stages' timing and the LOD degradation */
     uint64_t jobs_run, jobs_deferred_frames, jobs_refused;
     uint32_t jobs_high_water;
 } ft_live_result;

@@ -162,10 +162,7 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
     }
     _Static_assert(FT_REPLAY_T_HEADROOM_NS >= UINT64_C(1000000000),
                    "one display period (at most 1 s) fits after the last accepted frame");
-    ft_degrade_init(&r->degrade, s->frame_degrade,
-                    s->frame_budget_ms > 0.0 ? s->frame_budget_ms : s->frame_period_ms,
-                    s->frame_degrade_max_scale);
-    (void)ft_method_set_lod_scale(&app->renderer.method, 1.0);
+    ft_frame_loop_init(&r->frame, app, 1);
     const uint64_t gap_ns = (uint64_t)(FT_REPLAY_GAP_MAX_S * 1e9);
     ft_file *const log_file = &io->log_file, *const pose_file = &io->pose_file;
     ft_line_reader *const lr = &io->lr;
@@ -225,21 +222,11 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         }
         ft_pose_view v;
         ft_pose_feed_view(feed, t_display, &v);
-        ft_camera cam;
-        ft_frame_stats fs;
-        st = ft_app_render_annunciated(app, &v.pose, v.annunciate ? v.reason : NULL, &cam, &fs,
-                                       err);
+        ft_frame fr;
+        st = ft_frame_step(&r->frame, app, &v.pose, v.annunciate ? v.reason : NULL, &fr, err);
         if (st != FT_OK) {
             break;
         }
-        double ms = fs.select_ms + fs.gpu_ms;
-        if (ms > r->draw_ms_max) r->draw_ms_max = ms;
-        const double scale_drawn = r->degrade.scale;
-        if (ft_degrade_frame(&r->degrade, ms)) {
-            (void)ft_method_set_lod_scale(&app->renderer.method, r->degrade.scale);
-        }
-        if (r->degrade.scale > r->degrade_scale_max) r->degrade_scale_max = r->degrade.scale;
-        if (fs.tau_achieved_px > r->tau_max_px) r->tau_max_px = fs.tau_achieved_px;
         r->frames += 1u;
         r->frames_predicted += (uint32_t)v.predicted;
         r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
@@ -256,8 +243,8 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         }
         r->last_view = v;
         if (poses) {
-            st = write_row(&pose_file->writer, k, t_display, &v, scale_drawn, fs.tau_achieved_px,
-                           err);
+            st = write_row(&pose_file->writer, k, t_display, &v, fr.lod_scale,
+                           fr.stats.tau_achieved_px, err);
         }
         if (st == FT_OK && d->frames_dir != NULL) {
             char path[FT_PATH_MAX];

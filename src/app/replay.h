@@ -39,10 +39,10 @@
 #include <stdint.h>
 
 #include "app/app.h"
+#include "app/frame.h"
 #include "core/line_reader.h"
 #include "core/platform_api.h"
 #include "input/pose_feed.h"
-#include "lod/degrade.h"
 
 #define FT_REPLAY_ERRORS_KEPT 8u
 #define FT_REPLAY_ERROR_TEXT_MAX 200u
@@ -78,10 +78,8 @@ typedef struct ft_replay_result {
                                      * over the terrain (the frame shows no terrain there) */
     double last_off_lat_deg, last_off_lon_deg; /* the last such position */
     double log_first_s, log_last_s;
-    double draw_ms_max;      /* slowest frame (select + draw + readback), information only */
-    ft_degrade degrade;      /* frame.budget_ms: frames over it, LOD scale steps */
-    double degrade_scale_max;
-    double tau_max_px;       /* worst error bound a frame's LOD met (bintree) */
+    ft_frame_loop frame;     /* the frames' timing (information only) and the LOD
+                              * degradation (frame.budget_ms, frame.degrade) */
     ft_pose_view last_view;
 } ft_replay_result;
 

@@ -10,7 +10,8 @@
  *      1:1), a CRTC its encoders can drive; the CRTC's current state is saved;
  *   3. a GBM device and an XRGB8888 scanout gbm_surface of the mode size; EGL
  *      on EGL_PLATFORM_GBM_KHR with a config whose native visual id is
- *      GBM_FORMAT_XRGB8888, an OpenGL ES 3 (or 2) context, the GL table;
+ *      GBM_FORMAT_XRGB8888, an OpenGL ES 3 (or 2) context, the GL table (the
+ *      bring-up shared with gpu_egl.c: egl_context.c);
  *   4. the framebuffer ring: black frames are swapped until the surface has
  *      no free buffer, and every buffer it handed out is registered as a DRM
  *      framebuffer in a fixed table (Mesa's GBM surfaces hold at most 4);
@@ -33,8 +34,6 @@
  * the console comes back), remove our framebuffers, tear down EGL and GBM,
  * close the card. One display per process (the state is static). */
 #define _POSIX_C_SOURCE 200809L
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <gbm.h>
@@ -48,12 +47,11 @@
 #include <xf86drmMode.h>
 
 #include "display_kms.h"
+#include "egl_context.h"
+#include "gpu_backends.h"
 #include "core/platform_api.h"
 #include "gpu/gpu.h"
 
-#ifndef EGL_PLATFORM_GBM_KHR
-#define EGL_PLATFORM_GBM_KHR 0x31D7
-#endif
 #ifndef DRM_FORMAT_MOD_INVALID
 #define DRM_FORMAT_MOD_INVALID 0x00ffffffffffffffULL
 #endif
@@ -64,11 +62,6 @@
 #define FT_KMS_CARDS_MAX 16u        /* /dev/dri/card0..15 when no device is named */
 #define FT_KMS_FB_MAX 8u            /* framebuffer table (Mesa GBM surfaces: <= 4 buffers) */
 #define FT_KMS_FLIP_TIMEOUT_MS 1000 /* a flip that takes longer is an error */
-#define FT_KMS_CONFIGS_MAX 64       /* EGL configs examined for the native visual */
-
-ft_status ft_plat_kms_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err);
-ft_status ft_plat_kms_present(ft_gpu_context *ctx, ft_error *err);
-void ft_plat_kms_close(ft_gpu_context *ctx);
 
 typedef struct kms_fb {
     struct gbm_bo *bo;
@@ -87,9 +80,7 @@ static struct {
     int monotonic_events;    /* DRM_CAP_TIMESTAMP_MONOTONIC */
     struct gbm_device *gbm;
     struct gbm_surface *surface;
-    EGLDisplay egl_display;
-    EGLContext egl_context;
-    EGLSurface egl_surface;
+    ft_egl egl; /* on the GBM device, window surface on surface */
     kms_fb fbs[FT_KMS_FB_MAX];
     uint32_t fb_count;
     struct gbm_bo *front; /* locked, on screen */
@@ -98,8 +89,7 @@ static struct {
     uint64_t open_ns;
     uint32_t late_registrations; /* buffers first seen after open (expected 0) */
     double flip_ms_sum;
-} g_kms = {.fd = -1, .egl_display = EGL_NO_DISPLAY, .egl_context = EGL_NO_CONTEXT,
-           .egl_surface = EGL_NO_SURFACE};
+} g_kms = {.fd = -1, .egl = FT_EGL_CLOSED};
 
 /* ---- decisions without a device (display_kms.h) --------------------------- */
 
@@ -290,25 +280,6 @@ ft_kms_fb_call ft_kms_fb_call_for(uint64_t modifier, int driver_takes_modifiers)
 
 /* ---- the device ------------------------------------------------------------ */
 
-static int has_word(const char *list, const char *word)
-{
-    size_t n = strlen(word);
-    if (list == NULL) {
-        return 0;
-    }
-    for (const char *p = strstr(list, word); p != NULL; p = strstr(p + 1, word)) {
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
-static ft_gl_proc egl_get_proc(const char *name)
-{
-    return (ft_gl_proc)eglGetProcAddress(name);
-}
-
 static ft_status open_error(const char *path, int e, ft_error *err)
 {
     const char *hint = "";
@@ -465,84 +436,19 @@ done:
     return s;
 }
 
+/* EGL on the GBM device, rendering into the scanout surface. */
 static ft_status open_egl(ft_backend backend, ft_gpu_context *ctx, ft_error *err)
 {
-    const int es3 = (backend == FT_BACKEND_EGL_GLES3);
-    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_word(client, "EGL_KHR_platform_gbm") && !has_word(client, "EGL_MESA_platform_gbm")) {
-        return ft_fail(err, FT_ERR_UNSUPPORTED,
-                       "EGL: no GBM platform in this libEGL (EGL_KHR_platform_gbm missing)");
-    }
-    g_kms.egl_display = eglGetPlatformDisplay(EGL_PLATFORM_GBM_KHR, g_kms.gbm, NULL);
-    if (g_kms.egl_display == EGL_NO_DISPLAY) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: eglGetPlatformDisplay(GBM) failed: 0x%x",
-                       (unsigned)eglGetError());
-    }
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(g_kms.egl_display, &major, &minor)) {
-        EGLint e = eglGetError();
-        g_kms.egl_display = EGL_NO_DISPLAY;
-        return ft_fail(err, FT_ERR_GPU, "EGL: eglInitialize on GBM failed: 0x%x", (unsigned)e);
-    }
-    if (!eglBindAPI(EGL_OPENGL_ES_API)) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: eglBindAPI(GLES) failed: 0x%x",
-                       (unsigned)eglGetError());
-    }
     /* Window configs with 8-bit RGB and no alpha; the one whose native visual
      * is the scanout format (XRGB8888) renders into buffers KMS can show. */
-    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RED_SIZE, 8,
-                                     EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 0,
-                                     EGL_RENDERABLE_TYPE,
-                                     es3 ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_ES2_BIT, EGL_NONE};
-    EGLConfig configs[FT_KMS_CONFIGS_MAX];
-    EGLint n_configs = 0;
-    if (!eglChooseConfig(g_kms.egl_display, config_attribs, configs, FT_KMS_CONFIGS_MAX,
-                         &n_configs)) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: eglChooseConfig failed: 0x%x",
-                       (unsigned)eglGetError());
-    }
-    EGLConfig config = NULL;
-    for (EGLint i = 0; i < n_configs && config == NULL; ++i) {
-        EGLint visual = 0;
-        if (eglGetConfigAttrib(g_kms.egl_display, configs[i], EGL_NATIVE_VISUAL_ID, &visual) &&
-            (uint32_t)visual == GBM_FORMAT_XRGB8888) {
-            config = configs[i];
-        }
-    }
-    if (config == NULL) {
-        return ft_fail(err, FT_ERR_GPU,
-                       "EGL: none of %d RGB8 window configs for OpenGL ES %d has the native "
-                       "visual GBM_FORMAT_XRGB8888",
-                       (int)n_configs, es3 ? 3 : 2);
-    }
-    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, es3 ? 3 : 2,
-                                      EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
-    g_kms.egl_context = eglCreateContext(g_kms.egl_display, config, EGL_NO_CONTEXT,
-                                         context_attribs);
-    if (g_kms.egl_context == EGL_NO_CONTEXT) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: OpenGL ES %d.0 context creation failed: 0x%x",
-                       es3 ? 3 : 2, (unsigned)eglGetError());
-    }
-    g_kms.egl_surface = eglCreatePlatformWindowSurface(g_kms.egl_display, config,
-                                                       (void *)g_kms.surface, NULL);
-    if (g_kms.egl_surface == EGL_NO_SURFACE) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: window surface on the GBM surface failed: 0x%x",
-                       (unsigned)eglGetError());
-    }
-    if (!eglMakeCurrent(g_kms.egl_display, g_kms.egl_surface, g_kms.egl_surface,
-                        g_kms.egl_context)) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: eglMakeCurrent(GBM surface) failed: 0x%x",
-                       (unsigned)eglGetError());
-    }
-    ft_status s = ft_gl_load(&ctx->gl, es3 ? FT_GL_API_ES3 : FT_GL_API_ES2, 0, egl_get_proc, err);
-    if (s != FT_OK) {
-        return s;
-    }
-    const char *version = (const char *)ctx->gl.GetString(GL_VERSION);
-    const char *renderer = (const char *)ctx->gl.GetString(GL_RENDERER);
-    (void)snprintf(ctx->version, sizeof ctx->version, "%s", version ? version : "?");
-    (void)snprintf(ctx->renderer, sizeof ctx->renderer, "%s", renderer ? renderer : "?");
-    return FT_OK;
+    const ft_egl_desc egl_desc = {.platform = FT_EGL_PLATFORM_GBM,
+                                  .native_display = g_kms.gbm,
+                                  .native_window = g_kms.surface,
+                                  .es3 = (backend == FT_BACKEND_EGL_GLES3),
+                                  .alpha_bits = 0,
+                                  .native_visual = GBM_FORMAT_XRGB8888,
+                                  .native_visual_name = "GBM_FORMAT_XRGB8888"};
+    return ft_egl_open(&egl_desc, &g_kms.egl, ctx, err);
 }
 
 /* The table entry of bo, registering it (drmModeAddFB2[WithModifiers]) when
@@ -656,9 +562,8 @@ static ft_status fill_ring_and_set_mode(ft_gpu_context *ctx, ft_error *err)
     gl->ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     while (n < FT_KMS_FB_MAX && (n == 0u || gbm_surface_has_free_buffers(g_kms.surface))) {
         gl->Clear(GL_COLOR_BUFFER_BIT);
-        if (!eglSwapBuffers(g_kms.egl_display, g_kms.egl_surface)) {
-            s = ft_fail(err, FT_ERR_GPU, "EGL: eglSwapBuffers (GBM) failed: 0x%x",
-                        (unsigned)eglGetError());
+        s = ft_egl_present(&g_kms.egl, err);
+        if (s != FT_OK) {
             break;
         }
         struct gbm_bo *bo = gbm_surface_lock_front_buffer(g_kms.surface);
@@ -766,9 +671,9 @@ fail:
 
 ft_status ft_plat_kms_present(ft_gpu_context *ctx, ft_error *err)
 {
-    if (!eglSwapBuffers(g_kms.egl_display, g_kms.egl_surface)) {
-        return ft_fail(err, FT_ERR_GPU, "EGL: eglSwapBuffers (GBM) failed: 0x%x",
-                       (unsigned)eglGetError());
+    ft_status s = ft_egl_present(&g_kms.egl, err);
+    if (s != FT_OK) {
+        return s;
     }
     struct gbm_bo *bo = gbm_surface_lock_front_buffer(g_kms.surface);
     if (bo == NULL) {
@@ -791,7 +696,7 @@ ft_status ft_plat_kms_present(ft_gpu_context *ctx, ft_error *err)
         return ft_fail(err, FT_ERR_GPU, "KMS: drmModePageFlip(CRTC %u, fb %u): %s",
                        g_kms.crtc_id, fb->fb_id, strerror(e));
     }
-    ft_status s = wait_flip(err);
+    s = wait_flip(err);
     if (s != FT_OK) {
         /* still pending: keep bo locked (it may yet be scanned out); close
          * waits again before it restores the CRTC */
@@ -857,19 +762,7 @@ void ft_plat_kms_close(ft_gpu_context *ctx)
         gbm_surface_release_buffer(g_kms.surface, g_kms.front);
         g_kms.front = NULL;
     }
-    if (g_kms.egl_display != EGL_NO_DISPLAY) {
-        (void)eglMakeCurrent(g_kms.egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (g_kms.egl_surface != EGL_NO_SURFACE) {
-            (void)eglDestroySurface(g_kms.egl_display, g_kms.egl_surface);
-        }
-        if (g_kms.egl_context != EGL_NO_CONTEXT) {
-            (void)eglDestroyContext(g_kms.egl_display, g_kms.egl_context);
-        }
-        (void)eglTerminate(g_kms.egl_display);
-    }
-    g_kms.egl_display = EGL_NO_DISPLAY;
-    g_kms.egl_context = EGL_NO_CONTEXT;
-    g_kms.egl_surface = EGL_NO_SURFACE;
+    ft_egl_close(&g_kms.egl);
     if (g_kms.surface != NULL) {
         gbm_surface_destroy(g_kms.surface);
         g_kms.surface = NULL;

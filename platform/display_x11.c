@@ -8,11 +8,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "gpu_backends.h"
 #include "core/ft_status.h"
-
-ft_status ft_x11_open(uint32_t width_px, uint32_t height_px, void **native_display,
-                      void **native_window, ft_error *err);
-void ft_x11_close(void);
 
 static Display *g_x11_display;
 static Window g_x11_window;

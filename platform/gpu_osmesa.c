@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "gpu_backends.h"
 #include "gpu/gpu.h"
 
 typedef struct osmesa_context *OSMesaContext;
@@ -28,9 +29,6 @@ extern OSMESAproc OSMesaGetProcAddress(const char *funcName);
 #define FT_OSMESA_CORE_PROFILE 0x34
 #define FT_OSMESA_CONTEXT_MAJOR_VERSION 0x36
 #define FT_OSMESA_CONTEXT_MINOR_VERSION 0x37
-
-ft_status ft_plat_osmesa_open(ft_backend backend, ft_gpu_context *ctx, ft_error *err);
-void ft_plat_osmesa_close(ft_gpu_context *ctx);
 
 /* MakeCurrent needs a colour buffer; we never draw to it (FBOs only), so a
  * small static one will do. */

@@ -1,15 +1,7 @@
 /* gpu_select.c - one dispatch point from ft_backend to the backend that
  * this build contains. */
+#include "gpu_backends.h"
 #include "gpu/gpu.h"
-
-ft_status ft_plat_egl_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err);
-ft_status ft_plat_egl_present(ft_gpu_context *ctx, ft_error *err);
-void ft_plat_egl_close(ft_gpu_context *ctx);
-ft_status ft_plat_kms_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err);
-ft_status ft_plat_kms_present(ft_gpu_context *ctx, ft_error *err);
-void ft_plat_kms_close(ft_gpu_context *ctx);
-ft_status ft_plat_osmesa_open(ft_backend backend, ft_gpu_context *ctx, ft_error *err);
-void ft_plat_osmesa_close(ft_gpu_context *ctx);
 
 ft_status ft_plat_gpu_open(const ft_gpu_desc *desc, ft_gpu_context *ctx, ft_error *err)
 {

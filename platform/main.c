@@ -975,7 +975,7 @@ static void print_shader_variants(const ft_scene *s, const ft_terrain *t, int es
     }
     printf("], colour fragment shaders [");
     char buf[FT_SHADE_DEFINES_MAX];
-    print_defines(ft_renderer_shade_defines(s, t, buf));
+    print_defines(ft_program_shade_defines(s, t, buf));
     printf("]\n");
 }
 

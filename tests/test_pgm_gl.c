@@ -138,7 +138,7 @@ static void capture(float *out)
         /* a band's first vertex row is the previous band's last: skip it */
         const uint32_t first_row = (b == 0u) ? 0u : 1u;
         const uint32_t vrows = ft_pgm_band_cell_rows(m, b) + 1u - first_row;
-        gl->Uniform4f(p->u_pgm_grid, (float)(m->cols - 1u), (float)(m->rows - 1u),
+        gl->Uniform4f(p->method_u[FT_PGM_U_GRID], (float)(m->cols - 1u), (float)(m->rows - 1u),
                       (float)(b * m->band_rows), (float)m->levels);
         gl->DrawArrays(GL_POINTS, (GLint)(first_row * m->cols), (GLsizei)(vrows * m->cols));
     }

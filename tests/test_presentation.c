@@ -68,11 +68,11 @@ static int run_parse(void)
     CHECK_NEAR(s.present_bands.rgba[2][3], 128.0 / 255.0, 1e-7);
 
     expect_refused("[presentation]\ncolouring = relief\n", "expected absolute or relative");
-    expect_refused("[presentation]\nhaze_km = 0.5\n", "1 to 1000 km");
-    expect_refused("[presentation]\nhaze_km = -1\n", "1 to 1000 km");
+    expect_refused("[presentation]\nhaze_km = 0.5\n", "0 (off) or 1..1000 km");
+    expect_refused("[presentation]\nhaze_km = -1\n", "0 (off) or 1..1000 km");
     expect_refused("[presentation]\nhorizon = 2\n", "expected 0 or 1");
-    expect_refused("[presentation]\ngrid_m = 5\n", "10 to 10000 m");
-    expect_refused("[presentation]\ngrid_m = 20000\n", "10 to 10000 m");
+    expect_refused("[presentation]\ngrid_m = 5\n", "0 (off) or 10..10000 m");
+    expect_refused("[presentation]\ngrid_m = 20000\n", "0 (off) or 10..10000 m");
     expect_refused("[presentation]\npalette = dusk\n", "expected day or night");
     expect_refused("[presentation]\nband_edges_ft = -100, -1000\n", "strictly increasing");
     expect_refused("[presentation]\nband_edges_ft = -100, -100\n", "strictly increasing");

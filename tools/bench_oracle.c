@@ -58,10 +58,13 @@ ft_status bench_oracle_init(bench_oracle *o, ft_renderer *r, ft_error *err)
     free(scratch);
     char frag_buf[FT_SHADE_DEFINES_MAX];
     if (st == FT_OK) {
-        st = ft_renderer_build_terrain_program_attribs(
-            gl, r->terrain, &r->gt, "oracle.vert.glsl", "terrain.frag.glsl",
-            ft_renderer_shade_defines(r->scene, r->terrain, frag_buf), k_oracle_attribs,
-            &o->prog, err);
+        const ft_terrain_program_desc d = {
+            .vert_name = "oracle.vert.glsl",
+            .frag_name = "terrain.frag.glsl",
+            .frag_defines = ft_program_shade_defines(r->scene, r->terrain, frag_buf),
+            .attribs = k_oracle_attribs,
+        };
+        st = ft_terrain_program_build(gl, r->terrain, &r->gt, &d, &o->prog, err);
     }
     if (st != FT_OK) {
         bench_oracle_shutdown(o);
@@ -185,7 +188,7 @@ ft_status bench_oracle_frame(bench_oracle *o, ft_renderer *r, const ft_camera *c
     shade.px_per_rad = (float)cam->px_per_rad_k;
     shade.void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
     shade.void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
-    ft_renderer_shade_uniforms(gl, &o->prog.shade, &shade);
+    ft_program_shade_uniforms(gl, &o->prog.shade, &shade);
     bind_oracle_vao(o);
     gl->BindBuffer(GL_ARRAY_BUFFER, o->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, o->ibo);

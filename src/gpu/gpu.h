@@ -1,6 +1,8 @@
 /* gpu.h - a GPU context as src/ sees it: which backend, what it reported, and
- * the loaded GL table (the backend and display names: core/output.h). platform/ opens and closes it (gpu_egl.c,
- * gpu_osmesa.c); everything else in src/ only calls through ctx->gl. */
+ * the loaded GL table (the backend and display names: core/output.h).
+ * platform/ opens and closes it (ft_plat_gpu_*: gpu_select.c picks the
+ * backend, platform/gpu_backends.h lists them); everything else in src/ only
+ * calls through ctx->gl. */
 #ifndef FT_GPU_H
 #define FT_GPU_H
 

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "core/invariant.h"
-#include "gpu/renderer.h" /* ft_renderer_link_program: the one shader compile/link path */
+#include "gpu/program.h" /* ft_program_link: the one shader compile/link path */
 
 #define FT_OVERLAY_PAD_GLYPH_PX 2u /* box padding around the text, in glyph pixels */
 
@@ -193,7 +193,7 @@ ft_status ft_overlay_init(ft_overlay *ov, const ft_gl *gl, ft_error *err)
     memset(ov, 0, sizeof *ov);
     GLuint prog = 0;
     ft_status st =
-        ft_renderer_link_program(gl, "overlay.vert.glsl", "overlay.frag.glsl", "a_pos", &prog, err);
+        ft_program_link(gl, "overlay.vert.glsl", "overlay.frag.glsl", NULL, "a_pos", &prog, err);
     if (st != FT_OK) {
         return st;
     }

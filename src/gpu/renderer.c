@@ -17,8 +17,6 @@ _Static_assert(FT_VIEW_SIDE_MAX_PX <= FT_OVERLAY_VIEW_MAX_PX, "a view larger tha
 #error "FT_GL_ERROR_CHECKS_DEFAULT comes from CMakeLists.txt (0 or 1 by build type)"
 #endif
 
-#define FT_SHADER_LOG_MAX 1024
-
 /* ---- planning ----------------------------------------------------------- */
 
 static int may_need_packed(const ft_scene *s)
@@ -40,253 +38,16 @@ void ft_renderer_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_method_plan(s, t, a);
 }
 
-/* ---- programs ------------------------------------------------------------- */
 
-static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name,
-                         const char *defines, GLuint *out, ft_error *err)
-{
-    const char *prelude =
-        ft_shader_find(gl->api == FT_GL_API_ES3 ? "prelude_es3.glsl" : "prelude_es2.glsl");
-    const char *body = ft_shader_find(body_name);
-    if (prelude == NULL || body == NULL) {
-        return ft_fail(err, FT_ERR_ARG, "embedded shader %s missing", body_name);
-    }
-    GLuint sh = gl->CreateShader(stage);
-    const GLchar *parts[3] = {prelude, defines != NULL ? defines : "", body};
-    gl->ShaderSource(sh, 3, parts, NULL);
-    gl->CompileShader(sh);
-    GLint ok = 0;
-    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[FT_SHADER_LOG_MAX];
-        GLsizei n = 0;
-        gl->GetShaderInfoLog(sh, (GLsizei)sizeof log, &n, log);
-        log[(n > 0 && n < FT_SHADER_LOG_MAX) ? n : 0] = '\0';
-        gl->DeleteShader(sh);
-        return ft_fail(err, FT_ERR_GPU, "shader %s (GLSL ES %s) failed to compile: %.200s",
-                       body_name, gl->api == FT_GL_API_ES3 ? "3.00" : "1.00", log);
-    }
-    *out = sh;
-    return FT_OK;
-}
 
-/* Compiles and links vert (after the lines vert_defines, may be NULL) + frag
- * with attribute slots 0, 1, 2 bound to attribs[0..2]. */
-static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
-                                      const char *vert_defines, const char *frag_name,
-                                      const char *frag_defines, const char *const attribs[3],
-                                      GLuint *out, ft_error *err)
-{
-    GLuint vs = 0, fs = 0;
-    ft_status s = compile(gl, GL_VERTEX_SHADER, vert_name, vert_defines, &vs, err);
-    if (s != FT_OK) {
-        return s;
-    }
-    s = compile(gl, GL_FRAGMENT_SHADER, frag_name, frag_defines, &fs, err);
-    if (s != FT_OK) {
-        gl->DeleteShader(vs);
-        return s;
-    }
-    GLuint prog = gl->CreateProgram();
-    gl->AttachShader(prog, vs);
-    gl->AttachShader(prog, fs);
-    /* Fixed attribute slots for every program: 0 the template vertex, 1-2
-     * per-tile instance data (bintree on GLES 3). Unused names are ignored. */
-    gl->BindAttribLocation(prog, 0, attribs[0]);
-    gl->BindAttribLocation(prog, FT_ATTRIB_TILE0, attribs[1]);
-    gl->BindAttribLocation(prog, FT_ATTRIB_TILE1, attribs[2]);
-    gl->LinkProgram(prog);
-    gl->DeleteShader(vs); /* flagged; freed with the program */
-    gl->DeleteShader(fs);
-    GLint ok = 0;
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[FT_SHADER_LOG_MAX];
-        GLsizei n = 0;
-        gl->GetProgramInfoLog(prog, (GLsizei)sizeof log, &n, log);
-        log[(n > 0 && n < FT_SHADER_LOG_MAX) ? n : 0] = '\0';
-        gl->DeleteProgram(prog);
-        return ft_fail(err, FT_ERR_GPU, "program %s + %s failed to link: %.200s", vert_name,
-                       frag_name, log);
-    }
-    *out = prog;
-    return FT_OK;
-}
 
-/* Compiles and links vert + frag with attribute 0 bound to attr0. */
-static ft_status link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                              const char *attr0, GLuint *out, ft_error *err)
-{
-    return ft_renderer_link_program_frag(gl, vert_name, frag_name, NULL, attr0, out, err);
-}
 
-static void locate_uniforms(const ft_gl *gl, ft_terrain_program *p)
-{
-    const GLuint prog = p->program;
-#define FT_UNIFORM(name) p->name = gl->GetUniformLocation(prog, #name)
-    FT_UNIFORM(u_heights);
-    FT_UNIFORM(u_grid_size);
-    FT_UNIFORM(u_patch_origin);
-    FT_UNIFORM(u_patch_stride);
-    FT_UNIFORM(u_cell_m);
-    FT_UNIFORM(u_origin_rel_eye_m);
-    FT_UNIFORM(u_view_proj);
-    FT_UNIFORM(u_pack);
-    FT_UNIFORM(u_clamp_box);
-    FT_UNIFORM(u_tile0);
-    FT_UNIFORM(u_tile1);
-    FT_UNIFORM(u_bt_err);
-    FT_UNIFORM(u_bt_err_pack);
-    FT_UNIFORM(u_bt_lattice);
-    FT_UNIFORM(u_bt_morph);
-    FT_UNIFORM(u_bt_axis);
-    FT_UNIFORM(u_bt_sub);
-    FT_UNIFORM(u_bt_twist);
-    FT_UNIFORM(u_bt_twist_pack);
-    FT_UNIFORM(u_bt_vtx);
-    FT_UNIFORM(u_earth_drop_per_m2);
-    FT_UNIFORM(u_pgm_atlas);
-    FT_UNIFORM(u_pgm_atlas_size);
-    FT_UNIFORM(u_pgm_atlas_pack);
-    FT_UNIFORM(u_pgm_grid);
-    FT_UNIFORM(u_pgm_fwd);
-    FT_UNIFORM(u_pgm_right);
-    FT_UNIFORM(u_pgm_up);
-    FT_UNIFORM(u_pgm_rect);
-    FT_UNIFORM(u_pgm_eye);
-    FT_UNIFORM(u_pgrid_dist);
-    FT_UNIFORM(u_pgrid_mm);
-    FT_UNIFORM(u_pgrid_mm_info);
-    FT_UNIFORM(u_pgrid_mm_levels);
-    FT_UNIFORM(u_pgrid_quad);
-    FT_UNIFORM(u_pgrid_tight);
-    FT_UNIFORM(u_pgrid_vtx);
-    FT_UNIFORM(u_pgrid_slope);
-#undef FT_UNIFORM
-    ft_renderer_shade_locate(gl, prog, &p->shade);
-    /* the pgm level table: one location per element, set element by element */
-    for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        char name[32];
-        (void)snprintf(name, sizeof name, "u_pgm_level[%u]", l);
-        p->u_pgm_level[l] = gl->GetUniformLocation(prog, name);
-        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
-        p->u_pgrid_mm_level[l] = gl->GetUniformLocation(prog, name);
-    }
-    for (uint32_t l = 0; l < FT_BT_TWIST_LEVELS_MAX; ++l) {
-        char name[32];
-        (void)snprintf(name, sizeof name, "u_bt_twist_off[%u]", l);
-        p->u_bt_twist_off[l] = gl->GetUniformLocation(prog, name);
-    }
-}
 
-static const char *const k_terrain_attribs[3] = {"a_uv", "i_tile0", "i_tile1"};
-
-static ft_status build_program(const ft_gl *gl, const char *vert_name, const char *vert_defines,
-                               const char *frag_name, const char *frag_defines,
-                               const char *const attribs[3], ft_terrain_program *p,
-                               ft_error *err)
-{
-    GLuint prog = 0;
-    ft_status s = link_program_attribs(gl, vert_name, vert_defines, frag_name, frag_defines,
-                                       attribs, &prog, err);
-    if (s != FT_OK) {
-        return s;
-    }
-    p->program = prog;
-    locate_uniforms(gl, p);
-    return ft_gl_check(gl, frag_name, err);
-}
-
-/* Uniforms that never change for a scene: set once at init. */
-static void set_static_uniforms(const ft_gl *gl, const ft_terrain_program *p, const ft_terrain *t,
-                                const ft_gpu_terrain *gt)
-{
-    gl->UseProgram(p->program);
-    gl->Uniform1i(p->u_heights, 0);
-    gl->Uniform2f(p->u_grid_size, (float)t->width, (float)t->height);
-    gl->Uniform2f(p->u_cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
-    gl->Uniform4f(p->u_clamp_box, 0.0f, 0.0f, (float)(t->width - 1u), (float)(t->height - 1u));
-    gl->Uniform1f(p->u_patch_stride, 1.0f);
-    gl->Uniform1f(p->u_earth_drop_per_m2, (float)t->curv_drop_per_m2);
-    gl->Uniform2f(p->u_pack, gt->pack_min_m,
-                  gt->format == FT_HEIGHT_FORMAT_PACKED ? gt->pack_range_m : 0.0f);
-}
 
 /* ---- colour: shaders/shade.glsl ---------------------------------------------- */
 
-const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t,
-                                      char buf[FT_SHADE_DEFINES_MAX])
-{
-    const int unmeasured = t != NULL && t->void_count > 0u && t->void_bits != NULL;
-    /* at most 4 lines of 28 characters: always fits */
-    (void)snprintf(buf, FT_SHADE_DEFINES_MAX, "%s%s%s%s",
-                   s->present_relative ? "#define FT_SHADE_RELATIVE 1\n" : "",
-                   s->present_haze_km > 0.0 ? "#define FT_SHADE_HAZE 1\n" : "",
-                   s->present_grid_m > 0.0 ? "#define FT_SHADE_GRID 1\n" : "",
-                   unmeasured ? "#define FT_SHADE_VOID 1\n" : "");
-    return buf;
-}
 
-void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
-{
-    u->ramp_h = gl->GetUniformLocation(prog, "u_ramp_height_m");
-    u->ramp_rgb = gl->GetUniformLocation(prog, "u_ramp_rgb");
-    u->sun = gl->GetUniformLocation(prog, "u_sun_dir");
-    u->light = gl->GetUniformLocation(prog, "u_light");
-#if FT_WITH_RELATIVE_COLOURING
-    u->band_edge = gl->GetUniformLocation(prog, "u_band_edge_m");
-    u->band_rgba = gl->GetUniformLocation(prog, "u_band_rgba");
-    u->aircraft_alt = gl->GetUniformLocation(prog, "u_aircraft_alt_m");
-#else
-    u->band_edge = u->band_rgba = u->aircraft_alt = -1;
-#endif
-    u->haze = gl->GetUniformLocation(prog, "u_haze");
-    u->void_cells = gl->GetUniformLocation(prog, "u_void_cells");
-    u->void_map = gl->GetUniformLocation(prog, "u_void_map");
-    u->void_size = gl->GetUniformLocation(prog, "u_void_size");
-    u->grid = gl->GetUniformLocation(prog, "u_grid");
-}
 
-/* Program must be current. A few dozen floats: set every frame, so a
- * palette switch takes effect on the next frame with no other state. */
-void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
-                                const ft_shade_state *st)
-{
-    if (u->ramp_h < 0) {
-        return;
-    }
-    float ramp[FT_RAMP_STOPS][3];
-    ft_shade_palette_ramp(st->palette, ramp);
-    gl->Uniform1fv(u->ramp_h, FT_RAMP_STOPS, ft_ramp_height_m);
-    gl->Uniform3fv(u->ramp_rgb, FT_RAMP_STOPS, &ramp[0][0]);
-    const float l = sqrtf(FT_SUN_DIR_X * FT_SUN_DIR_X + FT_SUN_DIR_Y * FT_SUN_DIR_Y +
-                          FT_SUN_DIR_Z * FT_SUN_DIR_Z);
-    gl->Uniform3f(u->sun, FT_SUN_DIR_X / l, FT_SUN_DIR_Y / l, FT_SUN_DIR_Z / l);
-    gl->Uniform2f(u->light, FT_SHADE_AMBIENT, FT_SHADE_DIFFUSE);
-    if (u->void_cells >= 0) {
-        gl->Uniform1i(u->void_cells, FT_TEX_UNIT_VOID);
-        gl->Uniform4f(u->void_map, st->void_map[0], st->void_map[1], st->void_map[2],
-                      st->void_map[3]);
-        gl->Uniform2f(u->void_size, st->void_size[0], st->void_size[1]);
-    }
-    if (u->grid >= 0) {
-        gl->Uniform4f(u->grid, st->void_map[0], st->void_map[1], st->grid_m, st->px_per_rad);
-    }
-    if (u->haze >= 0) {
-        float sky[3];
-        ft_shade_palette_sky(st->palette, sky);
-        gl->Uniform4f(u->haze, sky[0], sky[1], sky[2], st->haze_per_m);
-    }
-#if FT_WITH_RELATIVE_COLOURING
-    if (u->band_rgba >= 0) {
-        float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];
-        ft_shade_bands_gpu(st, edge_m, rgba);
-        gl->Uniform1fv(u->band_edge, (GLsizei)(FT_BANDS_MAX - 1u), edge_m);
-        gl->Uniform4fv(u->band_rgba, (GLsizei)FT_BANDS_MAX, &rgba[0][0]);
-        gl->Uniform1f(u->aircraft_alt, st->aircraft_alt_m);
-    }
-#endif
-}
 
 void ft_renderer_set_palette(ft_renderer *r, ft_palette p)
 {
@@ -577,53 +338,51 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
             return st;
         }
     }
-    const char *vert = ft_method_vertex_shader(s->method);
-    const char *vert_defines = ft_method_vertex_defines(s, gl->api == FT_GL_API_ES3);
+    /* the colour pass, and its position twin for the metric; each with a
+     * coarse variant when the method draws its coarse tiles with one */
+    const int es3 = gl->api == FT_GL_API_ES3;
+    const ft_method_ops *ops = ft_method_ops_of(s->method);
     char frag_buf[FT_SHADE_DEFINES_MAX];
-    const char *frag_defines = ft_renderer_shade_defines(s, t, frag_buf);
-    st = build_program(gl, vert, vert_defines, "terrain.frag.glsl", frag_defines,
-                       k_terrain_attribs, &r->prog_color, err);
+    ft_terrain_program_desc d = {
+        .vert_name = ft_method_vertex_shader(s->method),
+        .vert_defines = ft_method_vertex_defines(s, es3),
+        .frag_name = "terrain.frag.glsl",
+        .frag_defines = ft_program_shade_defines(s, t, frag_buf),
+        .method_uniforms = ops != NULL ? &ops->uniforms : NULL,
+    };
+    const char *coarse_defines = ft_method_vertex_defines_coarse(s, es3);
+    ft_terrain_program_desc dc = d;
+    dc.vert_defines = coarse_defines;
+    st = ft_terrain_program_build(gl, t, &r->gt, &d, &r->prog_color, err);
+    if (st == FT_OK && coarse_defines != NULL) {
+        st = ft_terrain_program_build(gl, t, &r->gt, &dc, &r->prog_color_coarse, err);
+        r->prog_color.coarse = &r->prog_color_coarse;
+    }
     if (st != FT_OK) {
         return st;
     }
-    set_static_uniforms(gl, &r->prog_color, t, &r->gt);
     r->prog_color.shade_state = &r->shade;
-    const char *coarse_defines = ft_method_vertex_defines_coarse(s, gl->api == FT_GL_API_ES3);
-    if (coarse_defines != NULL) {
-        st = build_program(gl, vert, coarse_defines, "terrain.frag.glsl", frag_defines,
-                           k_terrain_attribs, &r->prog_color_coarse, err);
-        if (st != FT_OK) {
-            return st;
-        }
-        set_static_uniforms(gl, &r->prog_color_coarse, t, &r->gt);
-        r->prog_color.coarse = &r->prog_color_coarse;
-        r->prog_color_coarse.shade_state = &r->shade;
-    }
+    r->prog_color_coarse.shade_state = &r->shade;
     st = make_targets(r, err);
     if (st != FT_OK) {
         return st;
     }
     if (r->has_pos_target) {
-        st = build_program(gl, vert, vert_defines, "terrain_pos.frag.glsl", NULL,
-                           k_terrain_attribs, &r->prog_pos, err);
+        d.frag_name = dc.frag_name = "terrain_pos.frag.glsl";
+        d.frag_defines = dc.frag_defines = NULL;
+        st = ft_terrain_program_build(gl, t, &r->gt, &d, &r->prog_pos, err);
+        if (st == FT_OK && coarse_defines != NULL) {
+            st = ft_terrain_program_build(gl, t, &r->gt, &dc, &r->prog_pos_coarse, err);
+            r->prog_pos.coarse = &r->prog_pos_coarse;
+        }
         if (st != FT_OK) {
             return st;
-        }
-        set_static_uniforms(gl, &r->prog_pos, t, &r->gt);
-        if (coarse_defines != NULL) {
-            st = build_program(gl, vert, coarse_defines, "terrain_pos.frag.glsl", NULL,
-                               k_terrain_attribs, &r->prog_pos_coarse, err);
-            if (st != FT_OK) {
-                return st;
-            }
-            set_static_uniforms(gl, &r->prog_pos_coarse, t, &r->gt);
-            r->prog_pos.coarse = &r->prog_pos_coarse;
         }
     }
     if (gpu->display != FT_DISPLAY_NONE) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
-        st = link_program(gl, "present.vert.glsl", "present.frag.glsl", "a_corner",
-                          &r->present_program, err);
+        st = ft_program_link(gl, "present.vert.glsl", "present.frag.glsl", NULL, "a_corner",
+                             &r->present_program, err);
         if (st != FT_OK) {
             return st;
         }
@@ -739,10 +498,7 @@ ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyi
         if (!ok) {
             return ft_fail(err, FT_ERR_GPU, "relinking the colour program for capture failed");
         }
-        const ft_terrain_program *coarse = p->coarse;
-        locate_uniforms(gl, p); /* a relink may move uniforms and resets their values */
-        p->coarse = coarse;
-        set_static_uniforms(gl, p, r->terrain, &r->gt);
+        ft_terrain_program_relocate(gl, r->terrain, &r->gt, p);
     }
     return ft_gl_check(gl, "vertex capture relink", err);
 }
@@ -774,7 +530,7 @@ static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_came
         gl->Uniform3f(progs[i]->u_origin_rel_eye_m,
                       (float)(t->origin_world_x_m - cam->eye_m[0]),
                       (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
-        ft_renderer_shade_uniforms(gl, &progs[i]->shade, &r->shade);
+        ft_program_shade_uniforms(gl, &progs[i]->shade, &r->shade);
     }
     ft_method_draw(&r->method, gl, p, t, cam, ms);
 }
@@ -1020,42 +776,3 @@ void ft_renderer_shutdown(ft_renderer *r)
     r->gl = NULL;
 }
 
-/* ---- for methods with programs of their own (pgrid) ---------------------------- */
-
-ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                                   const char *attr0, GLuint *out, ft_error *err)
-{
-    return link_program(gl, vert_name, frag_name, attr0, out, err);
-}
-
-ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
-                                        const char *frag_name, const char *frag_defines,
-                                        const char *attr0, GLuint *out, ft_error *err)
-{
-    const char *const attribs[3] = {attr0, "i_tile0", "i_tile1"};
-    return link_program_attribs(gl, vert_name, NULL, frag_name, frag_defines, attribs, out,
-                                err);
-}
-
-ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
-                                            const ft_gpu_terrain *gt, const char *vert_name,
-                                            const char *frag_name, ft_terrain_program *p,
-                                            ft_error *err)
-{
-    return ft_renderer_build_terrain_program_attribs(gl, t, gt, vert_name, frag_name, NULL,
-                                                     k_terrain_attribs, p, err);
-}
-
-ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
-                                                    const ft_gpu_terrain *gt,
-                                                    const char *vert_name, const char *frag_name,
-                                                    const char *frag_defines,
-                                                    const char *const attribs[3],
-                                                    ft_terrain_program *p, ft_error *err)
-{
-    ft_status st = build_program(gl, vert_name, NULL, frag_name, frag_defines, attribs, p, err);
-    if (st == FT_OK) {
-        set_static_uniforms(gl, p, t, gt);
-    }
-    return st;
-}

@@ -16,71 +16,14 @@
 #include "core/scene.h"
 #include "gpu/gpu.h"
 #include "gpu/overlay.h"
+#include "gpu/program.h"
 #include "gpu/shade.h"
 #include "lod/method.h"
 #include "terrain/terrain.h"
 
 #define FT_TERRAIN_TEXTURES_MAX (1u + 3u * FT_PYRAMID_LEVELS_MAX)
 
-/* The colour uniforms of shaders/shade.glsl (-1 where a program lacks them:
- * position passes; the band uniforms outside the relative variant). */
-typedef struct ft_shade_locs {
-    GLint ramp_h, ramp_rgb, sun, light;
-    GLint band_edge, band_rgba, aircraft_alt;
-    GLint haze; /* FT_SHADE_HAZE variant */
-    GLint void_cells, void_map, void_size; /* FT_SHADE_VOID variant */
-    GLint grid;                            /* FT_SHADE_GRID variant */
-} ft_shade_locs;
-
-/* The unmeasured-cell texture's unit: above every unit a method uses (0-7),
- * so it stays bound from init on. */
-#define FT_TEX_UNIT_VOID 8
 #define FT_VOID_STRIP_ROWS 16u /* rows of cells built and uploaded at a time */
-
-typedef struct ft_terrain_program {
-    GLuint program;
-    GLint u_heights, u_grid_size, u_patch_origin, u_patch_stride, u_cell_m;
-    GLint u_origin_rel_eye_m, u_view_proj, u_pack, u_clamp_box;
-    ft_shade_locs shade; /* shade.ramp_h < 0: a position pass */
-    GLint u_tile0, u_tile1; /* bintree tile corners, per draw on GLES 2 */
-    GLint u_earth_drop_per_m2; /* curvature (shaders/curvature.glsl) */
-    GLint u_bt_err, u_bt_err_pack, u_bt_lattice, u_bt_morph, u_bt_axis; /* bintree geomorph */
-    GLint u_bt_sub, u_bt_twist, u_bt_twist_pack;       /* ... and its sub-sample levels */
-    GLint u_bt_vtx;                                    /* GLES 3: the vertex table */
-    GLint u_bt_twist_off[FT_BT_TWIST_LEVELS_MAX];
-    /* pgm: avg-pyramid atlas, sampling camera, grid band (shaders/pgm.vert.glsl) */
-    GLint u_pgm_atlas, u_pgm_atlas_size, u_pgm_atlas_pack, u_pgm_grid;
-    GLint u_pgm_fwd, u_pgm_right, u_pgm_up, u_pgm_rect, u_pgm_eye;
-    GLint u_pgm_level[FT_PYRAMID_LEVELS_MAX]; /* one location per element */
-    /* pgrid: min/max atlas and row distribution (shaders/pgrid.vert.glsl) */
-    GLint u_pgrid_dist, u_pgrid_mm, u_pgrid_mm_info, u_pgrid_mm_levels;
-    GLint u_pgrid_quad, u_pgrid_tight; /* the tight bound (src/lod/pgrid.h 6) */
-    GLint u_pgrid_vtx, u_pgrid_slope;  /* ... and the vertex pass it reads */
-    GLint u_pgrid_mm_level[FT_PYRAMID_LEVELS_MAX];
-    /* The same pass compiled for tiles whose every vertex is on a sample
-     * (ft_method_vertex_defines_coarse), or NULL: the bintree draws its
-     * coarse tiles with it, so they run none of the sub-sample code. */
-    const struct ft_terrain_program *coarse;
-    /* The colour state in force (palette, bands, aircraft altitude), for
-     * passes a method draws with programs of its own (pgrid's ray cast). */
-    const struct ft_shade_state *shade_state;
-} ft_terrain_program;
-
-/* Heights and (gpu.pyramid_textures = 1) the pyramids as vertex textures,
- * one single-channel texture per array, all in the same format: R32F (ES3),
- * LUMINANCE/FLOAT (ES2 + OES_texture_float) or RGBA8 packed 24-bit fixed
- * point over [pack_min_m, pack_min_m + pack_range_m]. NEAREST sampling. */
-typedef struct ft_gpu_terrain {
-    ft_height_format format; /* resolved: FLOAT or PACKED */
-    float pack_min_m, pack_range_m;
-    GLuint heights_tex;
-    uint32_t pyramid_levels_avg;    /* textures in avg_tex (level 0 = heights_tex) */
-    uint32_t pyramid_levels_minmax; /* textures in min_tex / max_tex */
-    GLuint avg_tex[FT_PYRAMID_LEVELS_MAX];
-    GLuint min_tex[FT_PYRAMID_LEVELS_MAX];
-    GLuint max_tex[FT_PYRAMID_LEVELS_MAX];
-    uint64_t bytes;
-} ft_gpu_terrain;
 
 typedef struct ft_frame_stats {
     uint64_t triangles;
@@ -203,47 +146,10 @@ ft_status ft_renderer_present(ft_renderer *r, ft_error *err);
 
 void ft_renderer_shutdown(ft_renderer *r);
 
-/* For methods that build programs of their own at init (pgrid): links
- * embedded shaders vert + frag (attribute 0 = attr0), and builds a terrain
- * program (the renderer's uniform set, static uniforms set from gt). */
-ft_status ft_renderer_link_program(const ft_gl *gl, const char *vert_name, const char *frag_name,
-                                   const char *attr0, GLuint *out, ft_error *err);
-/* The same with lines inserted before the fragment body (NULL: none). */
-ft_status ft_renderer_link_program_frag(const ft_gl *gl, const char *vert_name,
-                                        const char *frag_name, const char *frag_defines,
-                                        const char *attr0, GLuint *out, ft_error *err);
-
-/* The colour variant a scene needs, written into buf and returned: one
- * "#define FT_SHADE_<PART> 1\n" line per part it uses: RELATIVE (relative
- * colouring), HAZE, GRID (ground grid),
- * "#define FT_SHADE_VOID 1\n" when the terrain has void-filled samples (the
- * marking is not optional there), else "" (the code of a part the scene
- * does not use is not compiled at all). */
-#define FT_SHADE_DEFINES_MAX 160u
-const char *ft_renderer_shade_defines(const ft_scene *s, const ft_terrain *t,
-                                      char buf[FT_SHADE_DEFINES_MAX]);
 /* Staging bytes the unmeasured-cell texture's upload takes (a terrain that
  * may have void-filled samples: planned by the app). */
 size_t ft_renderer_void_staging_bytes(uint32_t width);
-/* shade.glsl's uniform locations of a program, and their values for a
- * colour state (palette ramp, sun, light; bands and aircraft altitude in the
- * relative variant). */
-void ft_renderer_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u);
-void ft_renderer_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u,
-                                const ft_shade_state *st);
 /* Palette for the next frame (presentation.palette, or a GPIO discrete). */
 void ft_renderer_set_palette(ft_renderer *r, ft_palette p);
-ft_status ft_renderer_build_terrain_program(const ft_gl *gl, const ft_terrain *t,
-                                            const ft_gpu_terrain *gt, const char *vert_name,
-                                            const char *frag_name, ft_terrain_program *p,
-                                            ft_error *err);
-/* The same with attribute slots 0, 1, 2 bound to attribs[0..2] (the terrain
- * programs use a_uv, i_tile0, i_tile1; a name a shader lacks is ignored). */
-ft_status ft_renderer_build_terrain_program_attribs(const ft_gl *gl, const ft_terrain *t,
-                                                    const ft_gpu_terrain *gt,
-                                                    const char *vert_name, const char *frag_name,
-                                                    const char *frag_defines,
-                                                    const char *const attribs[3],
-                                                    ft_terrain_program *p, ft_error *err);
 
 #endif

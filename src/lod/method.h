@@ -11,17 +11,11 @@
 #include "core/scene.h"
 #include "gpu/gl_api.h"
 #include "gpu/gpu_texture.h"
+#include "gpu/program.h"
 #include "lod/bintree.h"
 #include "lod/pgm.h"
 #include "lod/pgrid.h"
 #include "terrain/terrain.h"
-
-struct ft_terrain_program;
-
-/* Vertex attribute slots shared by every terrain program. */
-#define FT_ATTRIB_UV 0u
-#define FT_ATTRIB_TILE0 1u
-#define FT_ATTRIB_TILE1 2u
 
 typedef struct ft_method_draw_stats {
     uint64_t triangles;
@@ -98,7 +92,7 @@ typedef struct ft_pgrid_method {
     float mm_level_px[FT_PYRAMID_LEVELS_MAX][4];
     ft_scalar_format mm_fmt;
     GLuint err_tex, err_depth, err_fbo, rc_prog, quad_vbo;
-    struct ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
+    ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
     int err_prog_built;
     GLint u_err_k_gamma, u_err_fwd, u_err_envelope; /* err_prog's own uniforms */
     /* the tight bound (src/lod/pgrid.h 6; GLES 3 with ray casting): residual
@@ -108,7 +102,7 @@ typedef struct ft_pgrid_method {
     GLuint res_tex, vtx_tex, slope_tex, vtx_fbo, quad_tex, quad_fbo, quad_prog;
     uint32_t res_levels;
     float res_level_px[FT_PYRAMID_LEVELS_MAX][4];
-    struct ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */
+    ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */
     int vtx_prog_built;
     GLint uq_vtx, uq_res, uq_heights, uq_grid_size, uq_cell_m, uq_origin, uq_pack, uq_drop;
     GLint uq_res_levels, uq_res_level[FT_PYRAMID_LEVELS_MAX];
@@ -162,13 +156,14 @@ typedef struct ft_method_worst {
  * vertex_defines (one shader variant), vertex_defines_coarse (one program). */
 typedef struct ft_method_ops {
     const char *vertex_shader; /* embedded name */
+    ft_uniform_list uniforms;  /* its own uniforms: ft_terrain_program.method_u */
     const char *(*vertex_defines)(const ft_scene *s, int es3);
     const char *(*vertex_defines_coarse)(const ft_scene *s, int es3);
     void (*plan)(const ft_scene *s, const ft_terrain *t, ft_arena *a);
     ft_status (*init)(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                       ft_arena *a, ft_error *err);
     void (*select)(ft_method *m, const ft_terrain *t, const ft_camera *cam);
-    void (*draw)(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+    void (*draw)(ft_method *m, const ft_gl *gl, const ft_terrain_program *p,
                  const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
     void (*set_lod_scale)(ft_method *m, double scale);
     uint64_t (*gpu_bytes)(const ft_method *m);
@@ -197,7 +192,7 @@ void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
 ft_status ft_method_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                          ft_arena *a, ft_error *err);
 /* Binds the method's vertex state and draws; the program is already in use. */
-void ft_method_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+void ft_method_draw(ft_method *m, const ft_gl *gl, const ft_terrain_program *p,
                     const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 /* Per-frame LOD selection for the camera (no-op when the view is unchanged
  * or the method selects nothing); ft_method_draw calls it too. */
@@ -219,6 +214,21 @@ extern const ft_method_ops ft_pgrid_ops;
 
 /* pgrid draws with the pgm grid: pgm's entry points, typed. */
 #if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID
+/* pgm's uniforms (shaders/pgm.vert.glsl): the first rows of pgrid's list
+ * too, which draws with the same grid and these indices. */
+#define FT_PGM_UNIFORMS(X)                                        \
+    X(FT_PGM_U_ATLAS, "u_pgm_atlas", 1u)                         \
+    X(FT_PGM_U_ATLAS_SIZE, "u_pgm_atlas_size", 1u)               \
+    X(FT_PGM_U_ATLAS_PACK, "u_pgm_atlas_pack", 1u)               \
+    X(FT_PGM_U_GRID, "u_pgm_grid", 1u)                           \
+    X(FT_PGM_U_FWD, "u_pgm_fwd", 1u)                             \
+    X(FT_PGM_U_RIGHT, "u_pgm_right", 1u)                         \
+    X(FT_PGM_U_UP, "u_pgm_up", 1u)                               \
+    X(FT_PGM_U_RECT, "u_pgm_rect", 1u)                           \
+    X(FT_PGM_U_EYE, "u_pgm_eye", 1u)                             \
+    X(FT_PGM_U_LEVEL, "u_pgm_level", FT_PYRAMID_LEVELS_MAX)
+enum ft_pgm_uniform { FT_PGM_UNIFORMS(FT_UNIFORM_ENUM) FT_PGM_U_COUNT };
+
 /* The grid pgm draws: from pgm's keys, or pgrid's (pgrid.grid). */
 typedef struct ft_pgm_grid_desc {
     uint32_t cols, rows;            /* grid vertices */
@@ -234,8 +244,8 @@ uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
 /* Binds the avg atlas (unit 1) and sets program p's pgm uniforms for the
  * selected sampling (u_pgm_grid with band row 0), without drawing. */
 void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
-                        const struct ft_terrain_program *p);
-void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                        const ft_terrain_program *p);
+void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const ft_terrain_program *p,
                         const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);
 #endif

@@ -18,7 +18,7 @@
 
 #include "core/view_scale.h"
 #include "gpu/gpu_texture.h"
-#include "gpu/renderer.h"
+#include "gpu/program.h"
 #include "lod/bintree_template.h"
 #include "lod/method.h"
 
@@ -26,6 +26,25 @@
 /* The one-fetch vertex table goes up in strips of this many rows through
  * FT_POOL_GPU_STAGING (width * rows * 16 bytes), not in one copy of the grid. */
 #define FT_BT_VTX_STRIP_ROWS 8u
+
+/* The bintree's uniforms (shaders/bintree.vert.glsl): tile corners per draw
+ * on GLES 2, the error and twist textures, the morph and view axis. */
+#define FT_BT_UNIFORMS(X)                                      \
+    X(FT_BT_U_TILE0, "u_tile0", 1u)                           \
+    X(FT_BT_U_TILE1, "u_tile1", 1u)                           \
+    X(FT_BT_U_ERR, "u_bt_err", 1u)                            \
+    X(FT_BT_U_ERR_PACK, "u_bt_err_pack", 1u)                  \
+    X(FT_BT_U_LATTICE, "u_bt_lattice", 1u)                    \
+    X(FT_BT_U_MORPH, "u_bt_morph", 1u)                        \
+    X(FT_BT_U_AXIS, "u_bt_axis", 1u)                          \
+    X(FT_BT_U_SUB, "u_bt_sub", 1u)                            \
+    X(FT_BT_U_TWIST, "u_bt_twist", 1u)                        \
+    X(FT_BT_U_TWIST_PACK, "u_bt_twist_pack", 1u)              \
+    X(FT_BT_U_VTX, "u_bt_vtx", 1u)                            \
+    X(FT_BT_U_TWIST_OFF, "u_bt_twist_off", FT_BT_TWIST_LEVELS_MAX)
+enum { FT_BT_UNIFORMS(FT_UNIFORM_ENUM) FT_BT_U_COUNT };
+static const ft_uniform_name k_bt_uniforms[] = {FT_BT_UNIFORMS(FT_UNIFORM_ROW)};
+_Static_assert(FT_BT_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "the bintree's uniforms fit the table");
 
 static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
@@ -241,30 +260,30 @@ static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
     const double tau = m->sel.tau_used_px; /* the morph band is the selection's */
     const double split = m->morph ? m->split_fraction * tau : tau;
     const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
-    gl->Uniform1i(p->u_bt_err, 1);
-    gl->Uniform2f(p->u_bt_err_pack, m->err_fmt.pack_min,
+    gl->Uniform1i(p->method_u[FT_BT_U_ERR], 1);
+    gl->Uniform2f(p->method_u[FT_BT_U_ERR_PACK], m->err_fmt.pack_min,
                   m->err_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->err_fmt.pack_range : 0.0f);
-    gl->Uniform3f(p->u_bt_lattice, (float)m->bt.step, (float)m->bt.lattice_side,
+    gl->Uniform3f(p->method_u[FT_BT_U_LATTICE], (float)m->bt.step, (float)m->bt.lattice_side,
                   (float)m->bt.fine_side);
     const ft_bt_twist_layout *tl = &m->bt.twist;
-    gl->Uniform4f(p->u_bt_sub, (float)(1u << m->bt.sub), (float)(m->bt.step << m->bt.sub),
+    gl->Uniform4f(p->method_u[FT_BT_U_SUB], (float)(1u << m->bt.sub), (float)(m->bt.step << m->bt.sub),
                   (float)tl->levels, m->bt.sub > 0u ? 1.0f : 0.0f);
     if (m->vertex_table) {
-        gl->Uniform1i(p->u_bt_vtx, 3);
+        gl->Uniform1i(p->method_u[FT_BT_U_VTX], 3);
     }
     if (m->bt.sub > 0u) {
-        gl->Uniform1i(p->u_bt_twist, 2);
-        gl->Uniform4f(p->u_bt_twist_pack, m->twist_fmt.pack_min,
+        gl->Uniform1i(p->method_u[FT_BT_U_TWIST], 2);
+        gl->Uniform4f(p->method_u[FT_BT_U_TWIST_PACK], m->twist_fmt.pack_min,
                       m->twist_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->twist_fmt.pack_range
                                                                      : 0.0f,
                       (float)tl->atlas_w, (float)tl->atlas_h);
         for (uint32_t l = 0; l < tl->levels; ++l) {
-            gl->Uniform2f(p->u_bt_twist_off[l], (float)tl->ox[l], (float)tl->oy[l]);
+            gl->Uniform2f(p->method_u[FT_BT_U_TWIST_OFF + l], (float)tl->ox[l], (float)tl->oy[l]);
         }
     }
-    gl->Uniform4f(p->u_bt_morph, (float)cam->px_per_rad_k, (float)split, (float)band,
+    gl->Uniform4f(p->method_u[FT_BT_U_MORPH], (float)cam->px_per_rad_k, (float)split, (float)band,
                   (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
-    gl->Uniform4f(p->u_bt_axis, (float)cam->forward[0], (float)cam->forward[1],
+    gl->Uniform4f(p->method_u[FT_BT_U_AXIS], (float)cam->forward[0], (float)cam->forward[1],
                   (float)cam->forward[2], (float)ft_view_corner_cos(cam));
 }
 
@@ -344,8 +363,8 @@ static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
         /* GLES 2: bounded by tiles_max draws */
         for (uint32_t i = 0; i < tiles; ++i) {
             const float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
-            gl->Uniform4f(p->u_tile0, o[0], o[1], o[2], o[3]);
-            gl->Uniform2f(p->u_tile1, o[4], o[5]);
+            gl->Uniform4f(p->method_u[FT_BT_U_TILE0], o[0], o[1], o[2], o[3]);
+            gl->Uniform2f(p->method_u[FT_BT_U_TILE1], o[4], o[5]);
             gl->DrawElements(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
                              (const void *)0);
         }
@@ -434,6 +453,7 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
 
 const ft_method_ops ft_bintree_ops = {
     .vertex_shader = "bintree.vert.glsl",
+    .uniforms = {k_bt_uniforms, sizeof k_bt_uniforms / sizeof k_bt_uniforms[0]},
     .vertex_defines = ops_vertex_defines,
     .vertex_defines_coarse = ops_vertex_defines_coarse,
     .plan = bintree_plan,

@@ -12,7 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "gpu/renderer.h"
+#include "gpu/program.h"
 #include "lod/method.h"
 
 static uint32_t vertex_count(uint32_t p)

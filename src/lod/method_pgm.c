@@ -24,7 +24,6 @@
 #include <string.h>
 
 #include "gpu/gpu_texture.h"
-#include "gpu/renderer.h"
 #include "lod/method.h"
 
 /* A band's vertices are indexed by 16 bits, and a band holds at least 8
@@ -250,23 +249,23 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
     gl->ActiveTexture(GL_TEXTURE1);
     gl->BindTexture(GL_TEXTURE_2D, m->atlas_tex);
     gl->ActiveTexture(GL_TEXTURE0);
-    gl->Uniform1i(p->u_pgm_atlas, 1);
-    gl->Uniform2f(p->u_pgm_atlas_size, (float)m->atlas_w, (float)m->atlas_h);
-    gl->Uniform2f(p->u_pgm_atlas_pack, m->atlas_fmt.pack_min,
+    gl->Uniform1i(p->method_u[FT_PGM_U_ATLAS], 1);
+    gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_SIZE], (float)m->atlas_w, (float)m->atlas_h);
+    gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_PACK], m->atlas_fmt.pack_min,
                   m->atlas_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->atlas_fmt.pack_range
                                                                  : 0.0f);
     for (uint32_t l = 0; l < m->levels; ++l) {
-        gl->Uniform4f(p->u_pgm_level[l], m->level_px[l][0], m->level_px[l][1],
+        gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], m->level_px[l][0], m->level_px[l][1],
                       m->level_px[l][2], m->level_px[l][3]);
     }
-    gl->Uniform3f(p->u_pgm_fwd, (float)s->forward[0], (float)s->forward[1],
+    gl->Uniform3f(p->method_u[FT_PGM_U_FWD], (float)s->forward[0], (float)s->forward[1],
                   (float)s->forward[2]);
-    gl->Uniform3f(p->u_pgm_right, (float)s->right[0], (float)s->right[1], (float)s->right[2]);
-    gl->Uniform3f(p->u_pgm_up, (float)s->up[0], (float)s->up[1], (float)s->up[2]);
-    gl->Uniform4f(p->u_pgm_rect, (float)s->rect[0], (float)s->rect[1], (float)s->rect[2],
+    gl->Uniform3f(p->method_u[FT_PGM_U_RIGHT], (float)s->right[0], (float)s->right[1], (float)s->right[2]);
+    gl->Uniform3f(p->method_u[FT_PGM_U_UP], (float)s->up[0], (float)s->up[1], (float)s->up[2]);
+    gl->Uniform4f(p->method_u[FT_PGM_U_RECT], (float)s->rect[0], (float)s->rect[1], (float)s->rect[2],
                   (float)s->rect[3]);
-    gl->Uniform2f(p->u_pgm_eye, (float)s->height_m, (float)s->min_neg_dz);
-    gl->Uniform4f(p->u_pgm_grid, (float)(m->cols - 1u), (float)(m->rows - 1u), 0.0f,
+    gl->Uniform2f(p->method_u[FT_PGM_U_EYE], (float)s->height_m, (float)s->min_neg_dz);
+    gl->Uniform4f(p->method_u[FT_PGM_U_GRID], (float)(m->cols - 1u), (float)(m->rows - 1u), 0.0f,
                   (float)m->levels);
 }
 
@@ -282,7 +281,7 @@ void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terra
     /* bounded: band_count <= rows - 1 */
     for (uint32_t b = 0; b < m->band_count; ++b) {
         const uint32_t cells = ft_pgm_band_cell_rows(m, b);
-        gl->Uniform4f(p->u_pgm_grid, (float)(m->cols - 1u), (float)(m->rows - 1u),
+        gl->Uniform4f(p->method_u[FT_PGM_U_GRID], (float)(m->cols - 1u), (float)(m->rows - 1u),
                       (float)(b * m->band_rows), (float)m->levels);
         gl->DrawElements(GL_TRIANGLES, (GLsizei)(cells * (m->cols - 1u) * 6u),
                          GL_UNSIGNED_SHORT, (const void *)0);
@@ -349,8 +348,12 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
     ft_pgm_method_shutdown(&m->u.pgm, gl);
 }
 
+static const ft_uniform_name k_pgm_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)};
+_Static_assert(FT_PGM_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgm's uniforms fit the program's table");
+
 const ft_method_ops ft_pgm_ops = {
     .vertex_shader = "pgm.vert.glsl",
+    .uniforms = {k_pgm_uniforms, sizeof k_pgm_uniforms / sizeof k_pgm_uniforms[0]},
     .plan = ops_plan,
     .init = ops_init,
     .select = ops_select,

@@ -20,9 +20,29 @@
 #include <string.h>
 
 #include "gpu/gpu_texture.h"
-#include "gpu/renderer.h"
+#include "gpu/program.h"
 #include "gpu/shade.h"
 #include "lod/method.h"
+
+/* pgrid's uniforms (shaders/pgrid.vert.glsl, pgrid_pass.vert.glsl): pgm's
+ * first (it draws with the pgm grid), then its own row distribution, min/max
+ * atlas and tight-bound inputs. */
+#define FT_PGRID_UNIFORMS(X)                                   \
+    X(FT_PGRID_U_DIST, "u_pgrid_dist", 1u)                    \
+    X(FT_PGRID_U_MM, "u_pgrid_mm", 1u)                        \
+    X(FT_PGRID_U_MM_INFO, "u_pgrid_mm_info", 1u)              \
+    X(FT_PGRID_U_MM_LEVELS, "u_pgrid_mm_levels", 1u)          \
+    X(FT_PGRID_U_QUAD, "u_pgrid_quad", 1u)                    \
+    X(FT_PGRID_U_TIGHT, "u_pgrid_tight", 1u)                  \
+    X(FT_PGRID_U_VTX, "u_pgrid_vtx", 1u)                      \
+    X(FT_PGRID_U_SLOPE, "u_pgrid_slope", 1u)                  \
+    X(FT_PGRID_U_MM_LEVEL, "u_pgrid_mm_level", FT_PYRAMID_LEVELS_MAX)
+enum { FT_PGRID_U_BEFORE_ = FT_PGM_U_COUNT - 1, FT_PGRID_UNIFORMS(FT_UNIFORM_ENUM) FT_PGRID_U_COUNT };
+static const ft_uniform_name k_pgrid_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)
+                                                       FT_PGRID_UNIFORMS(FT_UNIFORM_ROW)};
+static const ft_uniform_list k_pgrid_uniform_list = {
+    k_pgrid_uniforms, sizeof k_pgrid_uniforms / sizeof k_pgrid_uniforms[0]};
+_Static_assert(FT_PGRID_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgrid's uniforms fit the table");
 
 /* The ray-cast program's uniform locations, looked up once at init (a frame
  * makes no glGetUniformLocation call). They live in the same arena block as
@@ -68,7 +88,7 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
     U(mode, "u_rc_mode");
     U(sky, "u_rc_sky");
 #undef U
-    ft_renderer_shade_locate(gl, prog, &u->shade);
+    ft_program_shade_locate(gl, prog, &u->shade);
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
         char name[40];
         (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
@@ -213,14 +233,16 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
         return st;
     }
     memset(m->vtx_prog, 0, sizeof *m->vtx_prog);
-    st = ft_renderer_build_terrain_program(gl, t, gt, "pgrid_pass.vert.glsl",
-                                           "pgrid_vtx.frag.glsl", m->vtx_prog, err);
+    const ft_terrain_program_desc vtx = {.vert_name = "pgrid_pass.vert.glsl",
+                                         .frag_name = "pgrid_vtx.frag.glsl",
+                                         .method_uniforms = &k_pgrid_uniform_list};
+    st = ft_terrain_program_build(gl, t, gt, &vtx, m->vtx_prog, err);
     if (st != FT_OK) {
         return st;
     }
     m->vtx_prog_built = 1;
-    st = ft_renderer_link_program(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", "a_uv",
-                                  &m->quad_prog, err);
+    st = ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", NULL, "a_uv",
+                         &m->quad_prog, err);
     if (st != FT_OK) {
         return st;
     }
@@ -410,8 +432,10 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
     gt.format = m->mm_fmt.format;
     gt.pack_min_m = m->mm_fmt.pack_min;
     gt.pack_range_m = m->mm_fmt.pack_range;
-    st = ft_renderer_build_terrain_program(gl, t, &gt, "pgrid.vert.glsl", "pgrid_err.frag.glsl",
-                                           m->err_prog, err);
+    const ft_terrain_program_desc errd = {.vert_name = "pgrid.vert.glsl",
+                                          .frag_name = "pgrid_err.frag.glsl",
+                                          .method_uniforms = &k_pgrid_uniform_list};
+    st = ft_terrain_program_build(gl, t, &gt, &errd, m->err_prog, err);
     if (st != FT_OK) {
         return st;
     }
@@ -422,9 +446,9 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
     char frag_buf[FT_SHADE_DEFINES_MAX];
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
-        st = ft_renderer_link_program_frag(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
-                                           ft_renderer_shade_defines(s, t, frag_buf), "a_corner",
-                                           &m->rc_prog, err);
+        st = ft_program_link(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
+                             ft_program_shade_defines(s, t, frag_buf), "a_corner", &m->rc_prog,
+                             err);
         if (st != FT_OK) {
             return st;
         }
@@ -487,19 +511,19 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
         s0 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[1]);
         s1 = (float)ft_pgrid_row_s(s->depression_rad, s->rect[3]);
     }
-    gl->Uniform4f(p->u_pgrid_dist, (float)m->distribution, s0, s1, (float)s->depression_rad);
-    gl->Uniform1i(p->u_pgrid_mm, 2);
-    gl->Uniform4f(p->u_pgrid_mm_info, (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
+    gl->Uniform4f(p->method_u[FT_PGRID_U_DIST], (float)m->distribution, s0, s1, (float)s->depression_rad);
+    gl->Uniform1i(p->method_u[FT_PGRID_U_MM], 2);
+    gl->Uniform4f(p->method_u[FT_PGRID_U_MM_INFO], (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
-    gl->Uniform1f(p->u_pgrid_mm_levels, (float)m->mm_levels);
+    gl->Uniform1f(p->method_u[FT_PGRID_U_MM_LEVELS], (float)m->mm_levels);
     for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        gl->Uniform4f(p->u_pgrid_mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
+        gl->Uniform4f(p->method_u[FT_PGRID_U_MM_LEVEL + l], m->mm_level_px[l][0], m->mm_level_px[l][1],
                       m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
-    gl->Uniform1i(p->u_pgrid_quad, 5);
-    gl->Uniform1i(p->u_pgrid_vtx, 4);
-    gl->Uniform1i(p->u_pgrid_slope, 7);
-    gl->Uniform1f(p->u_pgrid_tight, m->tight ? 1.0f : 0.0f);
+    gl->Uniform1i(p->method_u[FT_PGRID_U_QUAD], 5);
+    gl->Uniform1i(p->method_u[FT_PGRID_U_VTX], 4);
+    gl->Uniform1i(p->method_u[FT_PGRID_U_SLOPE], 7);
+    gl->Uniform1f(p->method_u[FT_PGRID_U_TIGHT], m->tight ? 1.0f : 0.0f);
 }
 
 /* The tight bound's two passes (src/lod/pgrid.h 6), before the grid is drawn:
@@ -703,7 +727,7 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     float sky[3] = {FT_SKY_R, FT_SKY_G, FT_SKY_B};
     if (!pos_pass && p->shade_state != NULL) {
         ft_shade_palette_sky(p->shade_state->palette, sky);
-        ft_renderer_shade_uniforms(gl, &u->shade, p->shade_state);
+        ft_program_shade_uniforms(gl, &u->shade, p->shade_state);
     }
     gl->Uniform4f(u->sky, sky[0], sky[1], sky[2], 1.0f);
     gl->DepthFunc(GL_ALWAYS);
@@ -890,6 +914,7 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
 
 const ft_method_ops ft_pgrid_ops = {
     .vertex_shader = "pgrid.vert.glsl",
+    .uniforms = {k_pgrid_uniforms, sizeof k_pgrid_uniforms / sizeof k_pgrid_uniforms[0]},
     .plan = pgrid_plan,
     .init = ops_init,
     .select = ops_select,

@@ -5,12 +5,17 @@
 set -eu
 src=$1; dir=$2; cc=$3; full=${4:-}
 rm -rf "$dir"; mkdir -p "$dir"
-off="-DFIXTERRAIN_WITH_EGL=OFF -DFIXTERRAIN_WITH_X11=OFF -DFIXTERRAIN_WITH_KMS=OFF -DFIXTERRAIN_WITH_OSMESA=OFF -DFIXTERRAIN_WITH_METHOD_BRUTE=OFF
-     -DFIXTERRAIN_WITH_METHOD_BINTREE=OFF -DFIXTERRAIN_WITH_METHOD_PGM=OFF -DFIXTERRAIN_WITH_METHOD_PGRID=OFF -DFIXTERRAIN_WITH_CAN=OFF -DFIXTERRAIN_WITH_GPIO=OFF
-     -DFIXTERRAIN_WITH_REFERENCE=OFF -DFIXTERRAIN_WITH_PNG=OFF -DFIXTERRAIN_WITH_GDAL_TOOLS=OFF
-     -DFIXTERRAIN_BUILD_TESTS=OFF -DFIXTERRAIN_WERROR=${FT_WERROR:-OFF}"
+# every FIXTERRAIN_WITH_* option OFF, named by the one table of them
+# (tools/build_options.cmake), so a new option cannot stay ON here
+alloff=$(cmake -DFT_OPTIONS_VALUE=OFF -P "$src/tools/build_options.cmake")
+case $alloff in -DFIXTERRAIN_WITH_*) ;; *) echo "FAIL: no option list: '$alloff'"; exit 1 ;; esac
+off="$alloff -DFIXTERRAIN_BUILD_TESTS=OFF -DFIXTERRAIN_WERROR=${FT_WERROR:-OFF}"
 # shellcheck disable=SC2086
 cmake -S "$src" -B "$dir/off" -DCMAKE_C_COMPILER="$cc" $off > "$dir/off.log"
+if grep '^FIXTERRAIN_WITH_[A-Z0-9_]*:BOOL=ON' "$dir/off/CMakeCache.txt"; then
+  echo "FAIL: an option is ON in the every-option-OFF build (not a row of tools/build_options.cmake?)"
+  exit 1
+fi
 cmake --build "$dir/off" -j2 >> "$dir/off.log" 2>&1 || { cat "$dir/off.log"; exit 1; }
 if "$dir/off/fixterrain" render --out "$dir/x.png" > "$dir/off-run.log" 2>&1; then
   echo "FAIL: a build without backends rendered"; exit 1

@@ -1,10 +1,12 @@
 # profile.cmake - a lean build sized to one scene ("leave out what a scene
 # does not need"): cmake -DFIXTERRAIN_PROFILE=config/minimal.ini
 #
-# Forces every FIXTERRAIN_WITH_* option from what the scene uses: its method
-# (scene.method), backend (scene.backend), display (scene.display), pose
-# inputs (build.inputs: replay, can, gpio), PNG output (build.png), error
-# metric (metric.enabled) and relative colouring (presentation.colouring). Everything else is OFF, the GDAL import tool
+# Forces every FIXTERRAIN_WITH_* option (the rows of tools/build_options.cmake):
+# first all OFF, then ON what the scene uses: its method (scene.method),
+# backend (scene.backend), display (scene.display), pose inputs (build.inputs:
+# replay, can, gpio), PNG output (build.png), error metric (metric.enabled)
+# and relative colouring (presentation.colouring). Everything else stays OFF,
+# the GDAL import tool and any option this file does not know about
 # included. Included by CMakeLists.txt before option().
 #
 # One parser: the scene is read by the runtime's own reader and parser
@@ -13,6 +15,7 @@
 # with the runtime's message, keys absent from the file take the runtime's
 # defaults, and every value means what it means at run time (metric.enabled
 # is 0 or 1, build.inputs a comma list of whole words).
+include(${CMAKE_CURRENT_LIST_DIR}/build_options.cmake)  # FT_BUILD_OPTIONS
 set(FIXTERRAIN_PROFILE "" CACHE FILEPATH "scene file whose needs decide the build options")
 if(FIXTERRAIN_PROFILE)
   if(NOT EXISTS "${FIXTERRAIN_PROFILE}")
@@ -66,25 +69,23 @@ if(FIXTERRAIN_PROFILE)
   macro(_ft_force opt value)
     set(FIXTERRAIN_WITH_${opt} ${value} CACHE BOOL "set by FIXTERRAIN_PROFILE" FORCE)
   endmacro()
-  foreach(m BRUTE BINTREE PGM PGRID)
-    _ft_force(METHOD_${m} OFF)
+  # every option OFF first: a row added to the table and not mapped below is
+  # left out of a profile build, never left ON from its default
+  foreach(_opt IN LISTS FT_BUILD_OPTIONS)
+    _ft_force(${_opt} OFF)
   endforeach()
-  string(TOUPPER "${_p_method}" _m)
-  if(NOT _m MATCHES "^(BRUTE|BINTREE|PGM|PGRID)$")
+  string(TOUPPER "METHOD_${_p_method}" _m)
+  if(NOT _p_method MATCHES "^[a-z]+$" OR NOT _m IN_LIST FT_BUILD_OPTIONS)
     message(FATAL_ERROR "FIXTERRAIN_PROFILE: scene.method '${_p_method}' has no build option")
   endif()
-  _ft_force(METHOD_${_m} ON)
+  _ft_force(${_m} ON)
   if(_p_backend MATCHES "^egl-gles[23]$")
     _ft_force(EGL ON)
-    _ft_force(OSMESA OFF)
   elseif(_p_backend STREQUAL "osmesa")
-    _ft_force(EGL OFF)
     _ft_force(OSMESA ON)
   else()
     message(FATAL_ERROR "FIXTERRAIN_PROFILE: scene.backend '${_p_backend}' has no build option")
   endif()
-  _ft_force(X11 OFF)
-  _ft_force(KMS OFF)
   if(_p_display STREQUAL "x11")
     _ft_force(X11 ON)
   elseif(_p_display STREQUAL "kms")
@@ -97,11 +98,8 @@ if(FIXTERRAIN_PROFILE)
     list(GET _pair 1 _k)
     if(_p_${_k} STREQUAL "1")
       _ft_force(${_opt} ON)
-    else()
-      _ft_force(${_opt} OFF)
     endif()
   endforeach()
-  _ft_force(GDAL_TOOLS OFF)
   message(STATUS "fixterrain profile ${FIXTERRAIN_PROFILE} (read by the runtime's parser): "
                  "method ${_p_method}, backend ${_p_backend}, display ${_p_display}, inputs "
                  "replay ${_p_inputs_replay} can ${_p_inputs_can} gpio ${_p_inputs_gpio}, "

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app/app.h"
+#include "app/cli.h"
 #include "app/frame.h"
 #include "app/replay.h"
 #include "core/platform_api.h"
@@ -21,9 +22,9 @@
 #endif
 #include "core/scene.h"
 
-#define FT_EXIT_OK 0
-#define FT_EXIT_ERROR 1
-#define FT_EXIT_USAGE 2
+#define FT_EXIT_OK FT_CLI_OK
+#define FT_EXIT_ERROR FT_CLI_ERROR
+#define FT_EXIT_USAGE FT_CLI_USAGE
 #define FT_FRAMES_MAX 10000
 #define FT_STATS_TEXT_MAX 8192u
 
@@ -31,50 +32,6 @@
 static ft_app g_app;
 static char g_scene_text[FT_SCENE_TEXT_MAX];
 static char g_stats_text[FT_STATS_TEXT_MAX];
-
-static void print_render_help(void)
-{
-    printf("usage: fixterrain render [options]\n"
-           "Renders one frame offscreen to a PNG. With no options: the embedded default\n"
-           "scene (synthetic terrain, method pgrid, EGL GLES 3) to fixterrain.png.\n\n"
-           "  --scene FILE        scene file (INI; see config/*.ini); default: embedded\n"
-           "  --dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt\n"
-           "  --method NAME       terrain method: brute | bintree | pgm | pgrid (as built)\n"
-           "  --backend NAME      egl-gles3 | egl-gles2 | osmesa\n"
-           "  --display NAME      none (offscreen) | x11 (a window; EGL backends) |\n"
-           "                      kms[:/dev/dri/cardN] (full screen on DRM/KMS, page flips;\n"
-           "                      the mode's size must be the view size: --size WxH;\n"
-           "                      display.mode and display.connector in the scene)\n"
-           "  --hold-ms N         with a display: keep the last frame shown N ms\n"
-           "  --size WxH          image size in pixels (16..8192)\n"
-           "  --pose LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG\n"
-           "                      default: the scene's [pose] if it lies over the terrain,\n"
-           "                      else the terrain's default view (from above its\n"
-           "                      south-west corner, looking at its centre; said on stderr)\n"
-           "  --strict            a pose that does not lie over the terrain is an error\n"
-           "                      (default: a warning naming both)\n"
-           "  --out FILE.png      output image (default fixterrain.png)\n"
-           "  --stats FILE.json   frame, memory and (metric.enabled) error statistics\n"
-           "  --frames N          render N frames (timing: median of all but the first)\n"
-           "  --quiet             do not print the memory table\n");
-}
-
-static int parse_size(const char *text, uint32_t *w, uint32_t *h)
-{
-    char *end = NULL;
-    unsigned long a = strtoul(text, &end, 10);
-    if (end == text || *end != 'x') {
-        return 0;
-    }
-    const char *p = end + 1;
-    unsigned long b = strtoul(p, &end, 10);
-    if (end == p || *end != '\0' || a < 16 || b < 16 || a > 8192 || b > 8192) {
-        return 0;
-    }
-    *w = (uint32_t)a;
-    *h = (uint32_t)b;
-    return 1;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -174,100 +131,6 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
     return write_stats_text(path, n, "render", err);
 }
 
-/* Options every rendering command shares. */
-typedef struct scene_opts {
-    const char *scene_path, *dem, *method, *backend, *display, *size, *pose;
-} scene_opts;
-
-/* Takes option a with value v if it is one of the scene options every
- * command shares (--scene --dem --method --backend --size, and --display
- * where the command has a display): 1 when taken. */
-static int take_scene_opt(scene_opts *o, const char *a, const char *v, int with_display)
-{
-    const char **slot = NULL;
-    if (strcmp(a, "--scene") == 0) slot = &o->scene_path;
-    else if (strcmp(a, "--dem") == 0) slot = &o->dem;
-    else if (strcmp(a, "--method") == 0) slot = &o->method;
-    else if (strcmp(a, "--backend") == 0) slot = &o->backend;
-    else if (strcmp(a, "--size") == 0) slot = &o->size;
-    else if (with_display && strcmp(a, "--display") == 0) slot = &o->display;
-    if (slot == NULL) {
-        return 0;
-    }
-    *slot = v;
-    return 1;
-}
-
-/* Scene file (or the embedded default) + command-line overrides. Returns an
- * exit status: FT_EXIT_OK when the scene is ready. */
-static int resolve_scene(const char *cmd, const scene_opts *o, ft_scene *scene)
-{
-    ft_error err;
-    memset(&err, 0, sizeof err);
-    ft_scene_defaults(scene);
-    if (o->scene_path != NULL) {
-        size_t len = 0;
-        if (ft_plat_file_read_text(o->scene_path, g_scene_text, sizeof g_scene_text, &len,
-                                   &err) != FT_OK ||
-            ft_scene_parse(scene, g_scene_text, o->scene_path, &err) != FT_OK) {
-            fprintf(stderr, "fixterrain: scene: %s\n", err.text);
-            return FT_EXIT_ERROR;
-        }
-    } else if (ft_scene_parse(scene, ft_default_scene_text, "embedded default scene", &err) !=
-               FT_OK) {
-        fprintf(stderr, "fixterrain: embedded scene: %s\n", err.text);
-        return FT_EXIT_ERROR;
-    }
-    /* A relative terrain.dem in a scene file is relative to that file, so a
-     * scene works from any working directory. */
-    if (o->dem == NULL && o->scene_path != NULL && scene->dem_path[0] != '\0' &&
-        scene->dem_path[0] != '/') {
-        const char *slash = strrchr(o->scene_path, '/');
-        if (slash != NULL) {
-            char joined[sizeof scene->dem_path];
-            int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - o->scene_path),
-                             o->scene_path, scene->dem_path);
-            if (n < 0 || (size_t)n >= sizeof joined) {
-                fprintf(stderr, "fixterrain: scene: terrain.dem path too long after joining\n");
-                return FT_EXIT_ERROR;
-            }
-            memcpy(scene->dem_path, joined, (size_t)n + 1u);
-        }
-    }
-    if (o->dem != NULL) {
-        if (strlen(o->dem) >= sizeof scene->dem_path) {
-            fprintf(stderr, "fixterrain %s: --dem path too long\n", cmd);
-            return FT_EXIT_USAGE;
-        }
-        (void)snprintf(scene->dem_path, sizeof scene->dem_path, "%s", o->dem);
-    }
-    if (o->method != NULL && !ft_method_from_name(o->method, &scene->method)) {
-        fprintf(stderr, "fixterrain %s: unknown method '%s'\n", cmd, o->method);
-        return FT_EXIT_USAGE;
-    }
-    if (o->backend != NULL && !ft_backend_from_name(o->backend, &scene->backend)) {
-        fprintf(stderr, "fixterrain %s: unknown backend '%s' (egl-gles3, egl-gles2, osmesa)\n",
-                cmd, o->backend);
-        return FT_EXIT_USAGE;
-    }
-    if (o->display != NULL && !ft_display_parse(o->display, &scene->display,
-                                                scene->display_device,
-                                                sizeof scene->display_device)) {
-        fprintf(stderr, "fixterrain %s: unknown display '%s' (none, x11, kms, "
-                        "kms:/dev/dri/cardN)\n", cmd, o->display);
-        return FT_EXIT_USAGE;
-    }
-    if (o->size != NULL && !parse_size(o->size, &scene->width_px, &scene->height_px)) {
-        fprintf(stderr, "fixterrain %s: --size wants WxH, each 16..8192\n", cmd);
-        return FT_EXIT_USAGE;
-    }
-    if (o->pose != NULL && ft_pose_parse(o->pose, &scene->pose, &err) != FT_OK) {
-        fprintf(stderr, "fixterrain %s: %s\n", cmd, err.text);
-        return FT_EXIT_USAGE;
-    }
-    return FT_EXIT_OK;
-}
-
 /* The pose a command draws from: --pose, else the scene's [pose] when the
  * scene's own terrain is drawn or the pose lies over the terrain given with
  * --dem, else the terrain's default view (a scene's pose belongs to the
@@ -304,89 +167,87 @@ static int settle_pose(const char *cmd, const ft_scene *scene, int pose_from_cli
     return FT_EXIT_OK;
 }
 
+/* Indent of a help line's continuation: the column the text starts in. */
+#define FT_HELP_CONT "\n                      "
+
 static int cmd_render(int argc, char **argv)
 {
     ft_scene scene;
     ft_error err;
-    const char *scene_path = NULL, *out_path = "fixterrain.png", *stats_path = NULL;
-    const char *dem = NULL, *method = NULL, *backend = NULL, *size = NULL, *pose = NULL;
-    const char *display = NULL;
-    unsigned long hold_ms = 0;
-    unsigned frames = 1;
+    ft_cli_scene_desc sd;
+    memset(&sd, 0, sizeof sd);
+    sd.command = "render";
+    sd.text = g_scene_text;
+    sd.text_cap = sizeof g_scene_text;
+    const char *out_path = "fixterrain.png", *stats_path = NULL;
+    uint32_t hold_ms = 0, frames = 1;
     int quiet = 0, strict = 0;
     ft_pose pose_drawn;
     memset(&err, 0, sizeof err);
 
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            print_render_help();
-            return FT_EXIT_OK;
-        }
-        if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (strcmp(a, "--strict") == 0) {
-            strict = 1;
-            continue;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "fixterrain render: %s needs a value (or unknown option)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        if (strcmp(a, "--scene") == 0) scene_path = v;
-        else if (strcmp(a, "--dem") == 0) dem = v;
-        else if (strcmp(a, "--method") == 0) method = v;
-        else if (strcmp(a, "--backend") == 0) backend = v;
-        else if (strcmp(a, "--display") == 0) display = v;
-        else if (strcmp(a, "--hold-ms") == 0) {
-            char *end = NULL;
-            hold_ms = strtoul(v, &end, 10);
-            if (end == v || *end != '\0' || hold_ms > 600000ul) {
-                fprintf(stderr, "fixterrain render: --hold-ms wants 0..600000\n");
-                return FT_EXIT_USAGE;
-            }
-        }
-        else if (strcmp(a, "--size") == 0) size = v;
-        else if (strcmp(a, "--pose") == 0) pose = v;
-        else if (strcmp(a, "--out") == 0) out_path = v;
-        else if (strcmp(a, "--stats") == 0) stats_path = v;
-        else if (strcmp(a, "--frames") == 0) {
-            char *end = NULL;
-            unsigned long f = strtoul(v, &end, 10);
-            if (end == v || *end != '\0' || f < 1 || f > FT_FRAMES_MAX) {
-                fprintf(stderr, "fixterrain render: --frames wants 1..%d\n", FT_FRAMES_MAX);
-                return FT_EXIT_USAGE;
-            }
-            frames = (unsigned)f;
-        } else {
-            fprintf(stderr, "fixterrain render: unknown option %s (see --help)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        ++i;
+    const ft_cli_opt opts[] = {
+        FT_CLI_OPT_STRING("--scene", &sd.scene_path,
+                          "--scene FILE        "
+                          "scene file (INI; see config/*.ini); default: embedded"),
+        FT_CLI_OPT_STRING("--dem", &sd.dem,
+                          "--dem FILE          terrain: .ftt (fixterrain import) or SRTM .hgt"),
+        FT_CLI_OPT_STRING("--method", &sd.method,
+                          "--method NAME       "
+                          "terrain method: brute | bintree | pgm | pgrid (as built)"),
+        FT_CLI_OPT_STRING("--backend", &sd.backend,
+                          "--backend NAME      egl-gles3 | egl-gles2 | osmesa"),
+        FT_CLI_OPT_STRING("--display", &sd.display,
+                          "--display NAME      none (offscreen) | x11 (a window; EGL backends) |"
+                          FT_HELP_CONT "kms[:/dev/dri/cardN] (full screen on DRM/KMS, page flips;"
+                          FT_HELP_CONT "the mode's size must be the view size: --size WxH;"
+                          FT_HELP_CONT "display.mode and display.connector in the scene)"),
+        FT_CLI_OPT_U32("--hold-ms", &hold_ms, 0u, 600000u,
+                       "--hold-ms N         with a display: keep the last frame shown N ms"),
+        FT_CLI_OPT_STRING("--size", &sd.size,
+                          "--size WxH          image size in pixels (16..8192)"),
+        FT_CLI_OPT_STRING("--pose", &sd.pose,
+                          "--pose LAT,LON,ALT_M,HEADING_DEG,PITCH_DEG,ROLL_DEG"
+                          FT_HELP_CONT "default: the scene's [pose] if it lies over the terrain,"
+                          FT_HELP_CONT "else the terrain's default view (from above its"
+                          FT_HELP_CONT "south-west corner, looking at its centre; said on stderr)"),
+        FT_CLI_OPT_FLAG("--strict", &strict,
+                        "--strict            a pose that does not lie over the terrain is an error"
+                        FT_HELP_CONT "(default: a warning naming both)"),
+        FT_CLI_OPT_STRING("--out", &out_path,
+                          "--out FILE.png      output image (default fixterrain.png)"),
+        FT_CLI_OPT_STRING("--stats", &stats_path,
+                          "--stats FILE.json   "
+                          "frame, memory and (metric.enabled) error statistics"),
+        FT_CLI_OPT_U32("--frames", &frames, 1u, FT_FRAMES_MAX,
+                       "--frames N          render N frames (timing: median of all but the first)"),
+        FT_CLI_OPT_FLAG("--quiet", &quiet, "--quiet             do not print the memory table"),
+    };
+    const ft_cli_desc cli = {"render", opts, sizeof opts / sizeof opts[0]};
+    int rc0 = ft_cli_parse(&cli, argc, argv, NULL);
+    if (rc0 == FT_CLI_HELP) {
+        printf("usage: fixterrain render [options]\n"
+               "Renders one frame offscreen to a PNG. With no options: the embedded default\n"
+               "scene (synthetic terrain, method pgrid, EGL GLES 3) to fixterrain.png.\n\n");
+        ft_cli_print_help(&cli);
+        return FT_EXIT_OK;
     }
-
-    {
-        const scene_opts o = {scene_path, dem, method, backend, display, size, pose};
-        int rc0 = resolve_scene("render", &o, &scene);
-        if (rc0 != FT_EXIT_OK) {
-            return rc0;
-        }
+    if (rc0 != FT_EXIT_OK) {
+        return rc0;
+    }
+    rc0 = ft_cli_scene_load(&sd, &scene, NULL);
+    if (rc0 != FT_EXIT_OK) {
+        return rc0;
     }
 
     if (ft_app_init(&g_app, &scene, &err) != FT_OK) {
         fprintf(stderr, "fixterrain: init failed: %s: %s\n", ft_status_str(err.status), err.text);
         return FT_EXIT_ERROR;
     }
-    {
-        int rc0 = settle_pose("render", &scene, pose != NULL, dem != NULL, strict,
-                              &g_app.terrain, &pose_drawn);
-        if (rc0 != FT_EXIT_OK) {
-            ft_app_shutdown(&g_app);
-            return rc0;
-        }
+    rc0 = settle_pose("render", &scene, sd.pose != NULL, sd.dem != NULL, strict, &g_app.terrain,
+                      &pose_drawn);
+    if (rc0 != FT_EXIT_OK) {
+        ft_app_shutdown(&g_app);
+        return rc0;
     }
     if (!quiet) {
         printf("fixterrain: %s on %s (%s, %s)\n", ft_method_name(scene.method),
@@ -516,28 +377,13 @@ static int cmd_render(int argc, char **argv)
         }
     }
     if (hold_ms > 0 && scene.display != FT_DISPLAY_NONE) {
-        printf("showing the frame for %lu ms\n", hold_ms);
+        printf("showing the frame for %u ms\n", (unsigned)hold_ms);
         (void)fflush(stdout);
-        ft_plat_sleep_ms((uint32_t)hold_ms);
+        ft_plat_sleep_ms(hold_ms);
     }
 done:
     ft_app_shutdown(&g_app);
     return rc;
-}
-
-static void print_replay_help(void)
-{
-    printf("usage: fixterrain replay --log FILE [options]\n"
-           "Feeds a candump log (as `candump -l` writes it) through the CANaerospace\n"
-           "decoder and renders one frame per frame.period_ms of log time. Deterministic.\n\n"
-           "  --log FILE          candump log: (SECONDS.MICROS) IFACE ID#HEXDATA per line\n"
-           "  --scene FILE        scene file (CAN map, frame period, terrain, method)\n"
-           "  --dem FILE, --method NAME, --backend NAME, --size WxH   as for render\n"
-           "  --frames-out DIR    write every frame as DIR/frame_NNNNNN.png\n"
-           "  --poses FILE.csv    one row per frame: time, pose, annunciation, reason\n"
-           "  --stats FILE.json   counters: lines, rejects per reason, annunciated frames\n"
-           "  --frames N          stop after N frames\n"
-           "  --quiet             only errors\n");
 }
 
 static ft_pose_feed g_feed;
@@ -631,54 +477,57 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
 
 static int cmd_replay(int argc, char **argv)
 {
-    scene_opts o;
-    memset(&o, 0, sizeof o);
+    ft_cli_scene_desc sd;
+    memset(&sd, 0, sizeof sd);
+    sd.command = "replay";
+    sd.text = g_scene_text;
+    sd.text_cap = sizeof g_scene_text;
     ft_replay_desc d;
     memset(&d, 0, sizeof d);
     const char *stats_path = NULL;
     int quiet = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            print_replay_help();
-            return FT_EXIT_OK;
-        }
-        if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "fixterrain replay: %s needs a value (or unknown option)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        if (take_scene_opt(&o, a, v, 0)) {
-            /* taken */
-        } else if (strcmp(a, "--log") == 0) d.log_path = v;
-        else if (strcmp(a, "--frames-out") == 0) d.frames_dir = v;
-        else if (strcmp(a, "--poses") == 0) d.poses_path = v;
-        else if (strcmp(a, "--stats") == 0) stats_path = v;
-        else if (strcmp(a, "--frames") == 0) {
-            char *end = NULL;
-            unsigned long f = strtoul(v, &end, 10);
-            if (end == v || *end != '\0' || f < 1 || f >= FT_REPLAY_FRAMES_LIMIT) {
-                fprintf(stderr, "fixterrain replay: --frames wants 1..%u\n",
-                        FT_REPLAY_FRAMES_LIMIT - 1u);
-                return FT_EXIT_USAGE;
-            }
-            d.frames_max = (uint32_t)f;
-        } else {
-            fprintf(stderr, "fixterrain replay: unknown option %s (see --help)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        ++i;
+    const ft_cli_opt opts[] = {
+        FT_CLI_OPT_STRING("--log", &d.log_path,
+                          "--log FILE          "
+                          "candump log: (SECONDS.MICROS) IFACE ID#HEXDATA per line"),
+        FT_CLI_OPT_STRING("--scene", &sd.scene_path,
+                          "--scene FILE        "
+                          "scene file (CAN map, frame period, terrain, method)"),
+        FT_CLI_OPT_STRING("--dem", &sd.dem,
+                          "--dem FILE, --method NAME, --backend NAME, --size WxH   as for render"),
+        FT_CLI_OPT_STRING("--method", &sd.method, NULL),
+        FT_CLI_OPT_STRING("--backend", &sd.backend, NULL),
+        FT_CLI_OPT_STRING("--size", &sd.size, NULL),
+        FT_CLI_OPT_STRING("--frames-out", &d.frames_dir,
+                          "--frames-out DIR    write every frame as DIR/frame_NNNNNN.png"),
+        FT_CLI_OPT_STRING("--poses", &d.poses_path,
+                          "--poses FILE.csv    "
+                          "one row per frame: time, pose, annunciation, reason"),
+        FT_CLI_OPT_STRING("--stats", &stats_path,
+                          "--stats FILE.json   "
+                          "counters: lines, rejects per reason, annunciated frames"),
+        FT_CLI_OPT_U32("--frames", &d.frames_max, 1u, FT_REPLAY_FRAMES_LIMIT - 1u,
+                       "--frames N          stop after N frames"),
+        FT_CLI_OPT_FLAG("--quiet", &quiet, "--quiet             only errors"),
+    };
+    const ft_cli_desc cli = {"replay", opts, sizeof opts / sizeof opts[0]};
+    int rc = ft_cli_parse(&cli, argc, argv, NULL);
+    if (rc == FT_CLI_HELP) {
+        printf("usage: fixterrain replay --log FILE [options]\n"
+               "Feeds a candump log (as `candump -l` writes it) through the CANaerospace\n"
+               "decoder and renders one frame per frame.period_ms of log time. Deterministic.\n\n");
+        ft_cli_print_help(&cli);
+        return FT_EXIT_OK;
+    }
+    if (rc != FT_EXIT_OK) {
+        return rc;
     }
     if (d.log_path == NULL) {
         fprintf(stderr, "fixterrain replay: --log FILE is required (see --help)\n");
         return FT_EXIT_USAGE;
     }
     static ft_scene scene;
-    int rc = resolve_scene("replay", &o, &scene);
+    rc = ft_cli_scene_load(&sd, &scene, NULL);
     if (rc != FT_EXIT_OK) {
         return rc;
     }
@@ -764,22 +613,6 @@ static void on_stop_signal(int sig)
     g_stop = 1;
 }
 
-static void print_run_help(void)
-{
-    printf("usage: fixterrain run --scene FILE [options]\n"
-           "Live: pose from SocketCAN (can.interface, can.backup_interface) and GPIO\n"
-           "(gpio.*), one frame per frame.period_ms, until SIGINT/SIGTERM or --frames.\n\n"
-           "  --scene FILE        scene file (CAN map, interfaces, GPIO lines, period)\n"
-           "  --dem FILE, --method NAME, --backend NAME, --size WxH   as for render\n"
-           "  --display NAME      none | x11 | kms[:/dev/dri/cardN]: on kms every frame is\n"
-           "                      page-flipped and present waits for the flip, so a late\n"
-           "                      flip is a deadline miss; SIGINT/SIGTERM restore the CRTC\n"
-           "  --poses FILE.csv    one row per frame: time, pose, annunciation, freeze, source\n"
-           "  --stats FILE.json   frames, deadline misses, CAN frames, rejects, GPIO, heartbeat\n"
-           "  --frames N          stop after N frames\n"
-           "  --quiet             only errors\n");
-}
-
 static ft_live g_live;
 
 static ft_status write_run_stats(const char *path, const ft_live_result *r, const ft_pose_feed *f,
@@ -833,47 +666,53 @@ static ft_status write_run_stats(const char *path, const ft_live_result *r, cons
 
 static int cmd_run(int argc, char **argv)
 {
-    scene_opts o;
-    memset(&o, 0, sizeof o);
+    ft_cli_scene_desc sd;
+    memset(&sd, 0, sizeof sd);
+    sd.command = "run";
+    sd.text = g_scene_text;
+    sd.text_cap = sizeof g_scene_text;
     ft_live_desc d;
     memset(&d, 0, sizeof d);
     const char *stats_path = NULL;
     int quiet = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            print_run_help();
-            return FT_EXIT_OK;
-        }
-        if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "fixterrain run: %s needs a value (or unknown option)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        if (take_scene_opt(&o, a, v, 1)) {
-            /* taken */
-        } else if (strcmp(a, "--poses") == 0) d.poses_path = v;
-        else if (strcmp(a, "--stats") == 0) stats_path = v;
-        else if (strcmp(a, "--frames") == 0) {
-            char *end = NULL;
-            unsigned long f = strtoul(v, &end, 10);
-            if (end == v || *end != '\0' || f < 1 || f > 100000000ul) {
-                fprintf(stderr, "fixterrain run: --frames wants 1..100000000\n");
-                return FT_EXIT_USAGE;
-            }
-            d.frames_max = (uint32_t)f;
-        } else {
-            fprintf(stderr, "fixterrain run: unknown option %s (see --help)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        ++i;
+    const ft_cli_opt opts[] = {
+        FT_CLI_OPT_STRING("--scene", &sd.scene_path,
+                          "--scene FILE        "
+                          "scene file (CAN map, interfaces, GPIO lines, period)"),
+        FT_CLI_OPT_STRING("--dem", &sd.dem,
+                          "--dem FILE, --method NAME, --backend NAME, --size WxH   as for render"),
+        FT_CLI_OPT_STRING("--method", &sd.method, NULL),
+        FT_CLI_OPT_STRING("--backend", &sd.backend, NULL),
+        FT_CLI_OPT_STRING("--size", &sd.size, NULL),
+        FT_CLI_OPT_STRING("--display", &sd.display,
+                          "--display NAME      "
+                          "none | x11 | kms[:/dev/dri/cardN]: on kms every frame is"
+                          FT_HELP_CONT "page-flipped and present waits for the flip, so a late"
+                          FT_HELP_CONT "flip is a deadline miss; SIGINT/SIGTERM restore the CRTC"),
+        FT_CLI_OPT_STRING("--poses", &d.poses_path,
+                          "--poses FILE.csv    "
+                          "one row per frame: time, pose, annunciation, freeze, source"),
+        FT_CLI_OPT_STRING("--stats", &stats_path,
+                          "--stats FILE.json   "
+                          "frames, deadline misses, CAN frames, rejects, GPIO, heartbeat"),
+        FT_CLI_OPT_U32("--frames", &d.frames_max, 1u, 100000000u,
+                       "--frames N          stop after N frames"),
+        FT_CLI_OPT_FLAG("--quiet", &quiet, "--quiet             only errors"),
+    };
+    const ft_cli_desc cli = {"run", opts, sizeof opts / sizeof opts[0]};
+    int rc = ft_cli_parse(&cli, argc, argv, NULL);
+    if (rc == FT_CLI_HELP) {
+        printf("usage: fixterrain run --scene FILE [options]\n"
+               "Live: pose from SocketCAN (can.interface, can.backup_interface) and GPIO\n"
+               "(gpio.*), one frame per frame.period_ms, until SIGINT/SIGTERM or --frames.\n\n");
+        ft_cli_print_help(&cli);
+        return FT_EXIT_OK;
+    }
+    if (rc != FT_EXIT_OK) {
+        return rc;
     }
     static ft_scene scene;
-    int rc = resolve_scene("run", &o, &scene);
+    rc = ft_cli_scene_load(&sd, &scene, NULL);
     if (rc != FT_EXIT_OK) {
         return rc;
     }
@@ -930,16 +769,6 @@ static int cmd_run(int argc, char **argv)
  * lld define them for Linux executables). */
 extern char __executable_start, etext, __data_start, edata, end;
 
-static void print_budget_help(void)
-{
-    printf("usage: fixterrain budget [--scene FILE] [--dem FILE] [--method NAME] [--backend NAME]\n"
-           "                        [--size WxH]\n"
-           "Initialises the scene (terrain, GPU, method) and prints every static memory\n"
-           "pool, the binary's static footprint, GPU memory, and the worst-case triangles\n"
-           "per frame and ray-cast pixels, each against its budget. Exit status 1 when\n"
-           "any budget is exceeded (the message names it), 2 for a usage error.\n");
-}
-
 /* "#define A 1\n#define B 0\n" -> "A=1 B=0" (or "none"). */
 static void print_defines(const char *defines)
 {
@@ -981,26 +810,36 @@ static void print_shader_variants(const ft_scene *s, const ft_terrain *t, int es
 
 static int cmd_budget(int argc, char **argv)
 {
-    scene_opts o;
-    memset(&o, 0, sizeof o);
-    for (int i = 1; i < argc; i += 2) { /* every option takes a value */
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            print_budget_help();
-            return FT_EXIT_OK;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "fixterrain budget: %s needs a value (or unknown option)\n", a);
-            return FT_EXIT_USAGE;
-        }
-        if (!take_scene_opt(&o, a, v, 0)) {
-            fprintf(stderr, "fixterrain budget: unknown option %s (see --help)\n", a);
-            return FT_EXIT_USAGE;
-        }
+    ft_cli_scene_desc sd;
+    memset(&sd, 0, sizeof sd);
+    sd.command = "budget";
+    sd.text = g_scene_text;
+    sd.text_cap = sizeof g_scene_text;
+    /* the usage line below lists them */
+    const ft_cli_opt opts[] = {
+        FT_CLI_OPT_STRING("--scene", &sd.scene_path, NULL),
+        FT_CLI_OPT_STRING("--dem", &sd.dem, NULL),
+        FT_CLI_OPT_STRING("--method", &sd.method, NULL),
+        FT_CLI_OPT_STRING("--backend", &sd.backend, NULL),
+        FT_CLI_OPT_STRING("--size", &sd.size, NULL),
+    };
+    const ft_cli_desc cli = {"budget", opts, sizeof opts / sizeof opts[0]};
+    int rc = ft_cli_parse(&cli, argc, argv, NULL);
+    if (rc == FT_CLI_HELP) {
+        printf("usage: fixterrain budget [--scene FILE] [--dem FILE] [--method NAME] "
+               "[--backend NAME]\n"
+               "                        [--size WxH]\n"
+               "Initialises the scene (terrain, GPU, method) and prints every static memory\n"
+               "pool, the binary's static footprint, GPU memory, and the worst-case triangles\n"
+               "per frame and ray-cast pixels, each against its budget. Exit status 1 when\n"
+               "any budget is exceeded (the message names it), 2 for a usage error.\n");
+        return FT_EXIT_OK;
+    }
+    if (rc != FT_EXIT_OK) {
+        return rc;
     }
     static ft_scene scene;
-    int rc = resolve_scene("budget", &o, &scene);
+    rc = ft_cli_scene_load(&sd, &scene, NULL);
     if (rc != FT_EXIT_OK) {
         return rc;
     }

@@ -27,3 +27,10 @@ endif()
 
 # Warnings: every build type with gcc and clang is built warning-free by
 # tools/build-matrix.sh (a CI step of tools/test-all.sh), not by a test here.
+
+# The option table parser and the scene loader every command uses
+# (src/app/cli.h): flags, strings, ranges, missing values, unknown options,
+# --help, and the overrides over the embedded scene. No GPU.
+if(TARGET ft_app)
+  ft_add_test(test_cli_options SOURCES test_cli_options.c LIBS ft_app)
+endif()

@@ -27,15 +27,16 @@
 #include <unistd.h>
 
 #include "app/app.h"
+#include "app/cli.h"
 #include "app/frame.h"
 #include "bench_oracle.h"
 #include "terrain/default_view.h"
 #include "flight_path.h"
 #include "plot.h"
 
-#define BENCH_EXIT_OK 0
-#define BENCH_EXIT_ERROR 1
-#define BENCH_EXIT_USAGE 2
+#define BENCH_EXIT_OK FT_CLI_OK
+#define BENCH_EXIT_ERROR FT_CLI_ERROR
+#define BENCH_EXIT_USAGE FT_CLI_USAGE
 
 #define BENCH_METHODS_MAX 8
 #define BENCH_AXES_MAX 6
@@ -51,6 +52,7 @@
 #define BENCH_FRAMES_MAX 1000
 #define BENCH_MEASURED_MAX BENCH_FRAMES_MAX
 #define BENCH_WAYPOINT_TEXT_MAX (FLIGHT_WAYPOINTS_MAX * FLIGHT_LINE_MAX)
+#define BENCH_SIZE_DEFAULT "640x480" /* the view, unless --size */
 #define BENCH_PLOT_W 800u
 #define BENCH_PLOT_H 600u
 #define BENCH_CLEARANCE_M 50.0  /* default: every pose this far above the ground near it */
@@ -1178,75 +1180,24 @@ static void print_help(void)
         built, BENCH_CLEARANCE_M, BENCH_CLEAR_RADIUS_M, BENCH_HOVER_AGL_M, BENCH_FRAMES_MAX);
 }
 
-static int parse_size(const char *text, uint32_t *w, uint32_t *h)
-{
-    unsigned a, b;
-    char tail;
-    if (sscanf(text, "%ux%u%c", &a, &b, &tail) != 2 || a < 16 || b < 16 || a > 8192 ||
-        b > 8192) {
-        return 0;
-    }
-    *w = a;
-    *h = b;
-    return 1;
-}
-
-static int parse_int(const char *v, int lo, int hi, int *out)
-{
-    char *end = NULL;
-    long x = strtol(v, &end, 10);
-    if (end == v || *end != '\0' || x < lo || x > hi) return 0;
-    *out = (int)x;
-    return 1;
-}
-
+/* The scene as every command loads it (src/app/cli.h), at the bench's own
+ * view size unless --size gives one (the scene's view is its display's). */
 static int resolve_scene(const bench_opts *o, ft_scene *s)
 {
     ft_error err;
     memset(&err, 0, sizeof err);
-    ft_scene_defaults(s);
-    if (o->scene_path != NULL) {
-        size_t len = 0;
-        if (ft_plat_file_read_text(o->scene_path, g_scene_text, sizeof g_scene_text, &len,
-                                   &err) != FT_OK ||
-            ft_scene_parse(s, g_scene_text, o->scene_path, &err) != FT_OK) {
-            fprintf(stderr, "fixterrain bench: scene: %s\n", err.text);
-            return BENCH_EXIT_ERROR;
-        }
-        if (o->dem == NULL && s->dem_path[0] != '\0' && s->dem_path[0] != '/') {
-            const char *slash = strrchr(o->scene_path, '/');
-            if (slash != NULL) {
-                char joined[sizeof s->dem_path];
-                int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - o->scene_path),
-                                 o->scene_path, s->dem_path);
-                if (n < 0 || (size_t)n >= sizeof joined) {
-                    fprintf(stderr, "fixterrain bench: terrain.dem path too long\n");
-                    return BENCH_EXIT_ERROR;
-                }
-                memcpy(s->dem_path, joined, (size_t)n + 1u);
-            }
-        }
-    } else if (ft_scene_parse(s, ft_default_scene_text, "embedded default scene", &err) !=
-               FT_OK) {
-        fprintf(stderr, "fixterrain bench: embedded scene: %s\n", err.text);
-        return BENCH_EXIT_ERROR;
-    }
-    if (o->dem != NULL) {
-        if (strlen(o->dem) >= sizeof s->dem_path) {
-            fprintf(stderr, "fixterrain bench: --dem path too long\n");
-            return BENCH_EXIT_USAGE;
-        }
-        (void)snprintf(s->dem_path, sizeof s->dem_path, "%s", o->dem);
-    }
-    if (o->backend != NULL && !ft_backend_from_name(o->backend, &s->backend)) {
-        fprintf(stderr, "fixterrain bench: unknown backend '%s'\n", o->backend);
-        return BENCH_EXIT_USAGE;
-    }
-    s->width_px = 640;
-    s->height_px = 480;
-    if (o->size != NULL && !parse_size(o->size, &s->width_px, &s->height_px)) {
-        fprintf(stderr, "fixterrain bench: --size wants WxH, each 16..8192\n");
-        return BENCH_EXIT_USAGE;
+    ft_cli_scene_desc sd;
+    memset(&sd, 0, sizeof sd);
+    sd.command = "bench";
+    sd.scene_path = o->scene_path;
+    sd.dem = o->dem;
+    sd.backend = o->backend;
+    sd.size = o->size != NULL ? o->size : BENCH_SIZE_DEFAULT;
+    sd.text = g_scene_text;
+    sd.text_cap = sizeof g_scene_text;
+    const int rc = ft_cli_scene_load(&sd, s, NULL);
+    if (rc != BENCH_EXIT_OK) {
+        return rc;
     }
     if (o->centre != NULL) {
         double lat, lon;
@@ -1322,89 +1273,66 @@ static int resolve_scene(const bench_opts *o, ft_scene *s)
     return BENCH_EXIT_OK;
 }
 
+static ft_status take_plot_error(const char *value, void *dst, ft_error *err)
+{
+    if (strcmp(value, "max") != 0 && strcmp(value, "p999") != 0) {
+        return ft_fail(err, FT_ERR_ARG, "--plot-error wants max or p999");
+    }
+    *(const char **)dst = value;
+    return FT_OK;
+}
+
+/* --settings is repeatable: each one is kept (parsed after the command line). */
+static ft_status take_settings(const char *value, void *dst, ft_error *err)
+{
+    bench_opts *o = dst;
+    if (o->settings_count >= BENCH_USER_AXES_MAX) {
+        return ft_fail(err, FT_ERR_ARG, "too many --settings");
+    }
+    o->settings[o->settings_count++] = value;
+    return FT_OK;
+}
+
 static int parse_args(int argc, char **argv, bench_opts *o)
 {
     memset(o, 0, sizeof *o);
-    o->frames = 60;
-    o->every = 5;
-    o->ref_cache_mb = 2048.0;
+    uint32_t frames = 60, every = 5, ref_cache_mb = 2048;
     o->clearance_m = BENCH_CLEARANCE_M;
     o->csv = "bench.csv";
     o->plot = "bench.png";
     o->paths = "valley";
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            print_help();
-            return -1;
-        }
-        if (strcmp(a, "--quiet") == 0) {
-            o->quiet = 1;
-            continue;
-        }
-        if (strcmp(a, "--no-oracle") == 0) {
-            o->no_oracle = 1;
-            continue;
-        }
-        if (v == NULL) {
-            fprintf(stderr, "fixterrain bench: %s needs a value (or unknown option)\n", a);
-            return BENCH_EXIT_USAGE;
-        }
-        ++i;
-        if (strcmp(a, "--scene") == 0) o->scene_path = v;
-        else if (strcmp(a, "--dem") == 0) o->dem = v;
-        else if (strcmp(a, "--methods") == 0) o->methods = v;
-        else if (strcmp(a, "--path") == 0) o->paths = v;
-        else if (strcmp(a, "--csv") == 0) o->csv = v;
-        else if (strcmp(a, "--plot") == 0) o->plot = v;
-        else if (strcmp(a, "--report") == 0) o->report = v;
-        else if (strcmp(a, "--size") == 0) o->size = v;
-        else if (strcmp(a, "--backend") == 0) o->backend = v;
-        else if (strcmp(a, "--centre") == 0) o->centre = v;
-        else if (strcmp(a, "--plot-error") == 0) {
-            if (strcmp(v, "max") != 0 && strcmp(v, "p999") != 0) {
-                fprintf(stderr, "fixterrain bench: --plot-error wants max or p999\n");
-                return BENCH_EXIT_USAGE;
-            }
-            o->plot_error = v;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!parse_int(v, 1, BENCH_FRAMES_MAX, &o->frames)) {
-                fprintf(stderr, "fixterrain bench: --frames wants 1..%d\n", BENCH_FRAMES_MAX);
-                return BENCH_EXIT_USAGE;
-            }
-        } else if (strcmp(a, "--metric-every") == 0) {
-            if (!parse_int(v, 1, BENCH_FRAMES_MAX, &o->every)) {
-                fprintf(stderr, "fixterrain bench: --metric-every wants 1..%d\n",
-                        BENCH_FRAMES_MAX);
-                return BENCH_EXIT_USAGE;
-            }
-        } else if (strcmp(a, "--clearance") == 0) {
-            char *end = NULL;
-            o->clearance_m = strtod(v, &end);
-            if (end == v || *end != '\0' || !(o->clearance_m >= 0.0 && o->clearance_m <= 10000.0)) {
-                fprintf(stderr, "fixterrain bench: --clearance wants 0..10000 m\n");
-                return BENCH_EXIT_USAGE;
-            }
-        } else if (strcmp(a, "--ref-cache-mb") == 0) {
-            int mb;
-            if (!parse_int(v, 0, 1 << 20, &mb)) {
-                fprintf(stderr, "fixterrain bench: --ref-cache-mb wants 0..1048576\n");
-                return BENCH_EXIT_USAGE;
-            }
-            o->ref_cache_mb = mb;
-        } else if (strcmp(a, "--settings") == 0) {
-            if (o->settings_count >= BENCH_USER_AXES_MAX) {
-                fprintf(stderr, "fixterrain bench: too many --settings\n");
-                return BENCH_EXIT_USAGE;
-            }
-            o->settings[o->settings_count++] = v;
-        } else {
-            fprintf(stderr, "fixterrain bench: unknown option %s (see --help)\n", a);
-            return BENCH_EXIT_USAGE;
-        }
+    /* the help is print_help's: it formats the built methods and defaults in */
+    const ft_cli_opt opts[] = {
+        FT_CLI_OPT_FLAG("--quiet", &o->quiet, NULL),
+        FT_CLI_OPT_FLAG("--no-oracle", &o->no_oracle, NULL),
+        FT_CLI_OPT_STRING("--scene", &o->scene_path, NULL),
+        FT_CLI_OPT_STRING("--dem", &o->dem, NULL),
+        FT_CLI_OPT_STRING("--methods", &o->methods, NULL),
+        FT_CLI_OPT_STRING("--path", &o->paths, NULL),
+        FT_CLI_OPT_STRING("--csv", &o->csv, NULL),
+        FT_CLI_OPT_STRING("--plot", &o->plot, NULL),
+        FT_CLI_OPT_STRING("--report", &o->report, NULL),
+        FT_CLI_OPT_STRING("--size", &o->size, NULL),
+        FT_CLI_OPT_STRING("--backend", &o->backend, NULL),
+        FT_CLI_OPT_STRING("--centre", &o->centre, NULL),
+        FT_CLI_OPT_CUSTOM("--plot-error", take_plot_error, &o->plot_error, NULL),
+        FT_CLI_OPT_U32("--frames", &frames, 1u, BENCH_FRAMES_MAX, NULL),
+        FT_CLI_OPT_U32("--metric-every", &every, 1u, BENCH_FRAMES_MAX, NULL),
+        FT_CLI_OPT_DOUBLE("--clearance", &o->clearance_m, 0.0, 10000.0, "m", NULL),
+        FT_CLI_OPT_U32("--ref-cache-mb", &ref_cache_mb, 0u, 1u << 20, NULL),
+        FT_CLI_OPT_CUSTOM("--settings", take_settings, o, NULL),
+    };
+    const ft_cli_desc cli = {"bench", opts, sizeof opts / sizeof opts[0]};
+    const int rc = ft_cli_parse(&cli, argc, argv, NULL);
+    if (rc == FT_CLI_HELP) {
+        print_help();
+        return -1;
     }
-    return BENCH_EXIT_OK;
+    /* each at most BENCH_FRAMES_MAX or 2^20: an int holds them */
+    o->frames = (int)frames;
+    o->every = (int)every;
+    o->ref_cache_mb = ref_cache_mb;
+    return rc;
 }
 
 static int setup_methods(const bench_opts *o)

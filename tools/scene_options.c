@@ -32,7 +32,7 @@ int main(int argc, char **argv)
     ft_scene_defaults(&s);
     if (ft_plat_file_read_text(argv[1], g_text, sizeof g_text, &len, &err) != FT_OK ||
         ft_scene_parse(&s, g_text, argv[1], &err) != FT_OK) {
-        fprintf(stderr, "fixterrain: scene: %s\n", err.text); /* as platform/main.c says it */
+        fprintf(stderr, "fixterrain: scene: %s\n", err.text); /* as src/app/cli.c says it */
         return 1;
     }
     printf("method=%s\nbackend=%s\ndisplay=%s\n", ft_method_name(s.method),

@@ -73,11 +73,26 @@ size_t ft_renderer_void_staging_bytes(uint32_t width)
 /* One byte per cell, 255 where a corner sample was void-filled: what the
  * FT_SHADE_VOID fragment variant looks up. Built strip by strip from the
  * terrain's void bits through FT_POOL_GPU_STAGING. */
+static void fill_void_rows(void *ctx, uint32_t y0, uint32_t rows, void *strip)
+{
+    const ft_terrain *t = ctx;
+    const uint32_t cw = t->width - 1u;
+    uint8_t *cell = strip;
+    for (uint32_t y = 0; y < rows; ++y) {
+        const size_t s0 = (size_t)(y0 + y) * t->width, s1 = s0 + t->width;
+        for (uint32_t x = 0; x < cw; ++x) {
+            const int filled =
+                ft_terrain_sample_filled(t, s0 + x) || ft_terrain_sample_filled(t, s0 + x + 1u) ||
+                ft_terrain_sample_filled(t, s1 + x) || ft_terrain_sample_filled(t, s1 + x + 1u);
+            *cell++ = filled ? 255u : 0u;
+        }
+    }
+}
+
 static ft_status upload_void_cells(ft_renderer *r, ft_arena *a, ft_error *err)
 {
     const ft_gl *gl = r->gl;
     const ft_terrain *t = r->terrain;
-    const uint32_t cw = t->width - 1u, ch = t->height - 1u;
     GLint units = 0;
     gl->GetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
     if (units <= FT_TEX_UNIT_VOID) {
@@ -86,45 +101,14 @@ static ft_status upload_void_cells(ft_renderer *r, ft_arena *a, ft_error *err)
                        "unit %d; this device has %d units",
                        t->void_count, FT_TEX_UNIT_VOID, units);
     }
-    uint8_t *strip = NULL;
-    const size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
-    ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING, ft_renderer_void_staging_bytes(t->width),
-                                 (void **)&strip, err);
-    if (st != FT_OK) {
-        return st;
-    }
     /* ES 2 has LUMINANCE, a core profile (OSMesa) and ES 3 have R8 */
     const int r8 = gl->api == FT_GL_API_ES3 || gl->caps.desktop_core;
-    const GLenum fmt = r8 ? GL_RED : GL_LUMINANCE;
-    gl->GenTextures(1, &r->void_tex);
-    gl->ActiveTexture(GL_TEXTURE0 + FT_TEX_UNIT_VOID);
-    gl->BindTexture(GL_TEXTURE_2D, r->void_tex);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, r8 ? GL_R8 : GL_LUMINANCE, (GLsizei)cw, (GLsizei)ch, 0, fmt,
-                   GL_UNSIGNED_BYTE, NULL);
-    for (uint32_t y0 = 0; y0 < ch; y0 += FT_VOID_STRIP_ROWS) {
-        const uint32_t rows = (ch - y0 < FT_VOID_STRIP_ROWS) ? ch - y0 : FT_VOID_STRIP_ROWS;
-        for (uint32_t y = 0; y < rows; ++y) {
-            const size_t s0 = (size_t)(y0 + y) * t->width, s1 = s0 + t->width;
-            for (uint32_t x = 0; x < cw; ++x) {
-                const int filled =
-                    ft_terrain_sample_filled(t, s0 + x) || ft_terrain_sample_filled(t, s0 + x + 1u) ||
-                    ft_terrain_sample_filled(t, s1 + x) || ft_terrain_sample_filled(t, s1 + x + 1u);
-                strip[(size_t)y * cw + x] = filled ? 255u : 0u;
-            }
-        }
-        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)y0, (GLsizei)cw, (GLsizei)rows, fmt,
-                          GL_UNSIGNED_BYTE, strip);
-    }
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl->ActiveTexture(GL_TEXTURE0);
-    ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
-    r->gpu_bytes += (uint64_t)cw * ch;
-    return ft_gl_check(gl, "unmeasured-cell texture upload", err);
+    const ft_texture_desc d = {GL_TEXTURE0 + FT_TEX_UNIT_VOID, t->width - 1u, t->height - 1u,
+                               r8 ? GL_R8 : GL_LUMINANCE, r8 ? GL_RED : GL_LUMINANCE,
+                               GL_UNSIGNED_BYTE, 1u};
+    return ft_gpu_texture_create_strips(gl, &d, FT_VOID_STRIP_ROWS, fill_void_rows, (void *)t, a,
+                                        &r->void_tex, &r->gpu_bytes,
+                                        "unmeasured-cell texture upload", err);
 }
 
 static ft_status upload_terrain(ft_renderer *r, const ft_scene *s, ft_arena *a, ft_error *err)
@@ -246,16 +230,13 @@ static ft_status make_targets(ft_renderer *r, ft_error *err)
 
     /* Colour as a texture: ES2 core has no RGBA8 renderbuffer, but RGBA
      * UNSIGNED_BYTE textures are colour-renderable everywhere. */
-    gl->GenTextures(1, &r->rb_color);
-    gl->BindTexture(GL_TEXTURE_2D, r->rb_color);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, es3 ? GL_RGBA8 : GL_RGBA, w, h, 0, GL_RGBA,
-                   GL_UNSIGNED_BYTE, NULL);
+    const ft_texture_desc colour = {GL_TEXTURE0, r->width_px, r->height_px,
+                                    es3 ? GL_RGBA8 : GL_RGBA, GL_RGBA, GL_UNSIGNED_BYTE, 4u};
+    ft_gpu_texture_create(gl, &colour, NULL, &r->rb_color, &r->gpu_bytes);
     gl->GenFramebuffers(1, &r->fbo_color);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->rb_color, 0);
-    r->gpu_bytes += (uint64_t)w * (uint64_t)h * (4u + 4u); /* colour + depth (32F, 24 as 32) */
+    r->gpu_bytes += (uint64_t)w * (uint64_t)h * 4u; /* depth (32F, 24 as 32) */
 
     r->has_pos_target = 0;
     if (r->scene->metric_enabled && gl->caps.has_float_color_buffer) {

@@ -46,6 +46,26 @@ enum { FT_BT_UNIFORMS(FT_UNIFORM_ENUM) FT_BT_U_COUNT };
 static const ft_uniform_name k_bt_uniforms[] = {FT_BT_UNIFORMS(FT_UNIFORM_ROW)};
 _Static_assert(FT_BT_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "the bintree's uniforms fit the table");
 
+/* GLES 3: the one-fetch vertex table (bintree.h, ft_bt_sample_texel) as an
+ * RGBA32F texture on unit 3. */
+static ft_texture_desc vertex_table_desc(uint32_t width, uint32_t height)
+{
+    const ft_texture_desc d = {GL_TEXTURE3, width, height, GL_RGBA32F, GL_RGBA, GL_FLOAT,
+                               4u * sizeof(float)};
+    return d;
+}
+
+static void fill_vertex_rows(void *ctx, uint32_t y0, uint32_t rows, void *strip)
+{
+    const ft_bintree *bt = ctx;
+    float *texel = strip;
+    for (uint32_t y = 0; y < rows; ++y) {
+        for (uint32_t x = 0; x < bt->width; ++x, texel += 4) {
+            ft_bt_sample_texel(bt, x, y0 + y, texel);
+        }
+    }
+}
+
 static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     uint32_t k = s->bintree_template_k;
@@ -59,49 +79,9 @@ static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
                   (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
     ft_bintree_plan(a, t->width, t->height, k, s->bintree_subsample_levels, s->bintree_tiles_max);
     if (s->bintree_vertex_table && s->backend != FT_BACKEND_EGL_GLES2) {
-        ft_arena_plan(a, FT_POOL_GPU_STAGING,
-                      (size_t)t->width * FT_BT_VTX_STRIP_ROWS * 4u * sizeof(float));
+        const ft_texture_desc d = vertex_table_desc(t->width, t->height);
+        ft_arena_plan(a, FT_POOL_GPU_STAGING, ft_gpu_texture_strip_bytes(&d, FT_BT_VTX_STRIP_ROWS));
     }
-}
-
-/* GLES 3: the one-fetch vertex table (bintree.h, ft_bt_sample_texel) as an
- * RGBA32F texture on unit 3, filled strip by strip. */
-static ft_status upload_vertex_table(ft_bintree_method *m, const ft_gl *gl, ft_arena *a,
-                                     ft_error *err)
-{
-    const uint32_t w = m->bt.width, h = m->bt.height;
-    float *strip = NULL;
-    const size_t mark = ft_arena_mark(a, FT_POOL_GPU_STAGING);
-    ft_status st = ft_arena_take(a, FT_POOL_GPU_STAGING,
-                                 (size_t)w * FT_BT_VTX_STRIP_ROWS * 4u * sizeof(float),
-                                 (void **)&strip, err);
-    if (st != FT_OK) {
-        return st;
-    }
-    gl->GenTextures(1, &m->vtx_tex);
-    gl->ActiveTexture(GL_TEXTURE3);
-    gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
-                   NULL);
-    for (uint32_t y0 = 0; y0 < h; y0 += FT_BT_VTX_STRIP_ROWS) {
-        const uint32_t rows = (h - y0 < FT_BT_VTX_STRIP_ROWS) ? h - y0 : FT_BT_VTX_STRIP_ROWS;
-        for (uint32_t y = 0; y < rows; ++y) {
-            for (uint32_t x = 0; x < w; ++x) {
-                ft_bt_sample_texel(&m->bt, x, y0 + y, strip + ((size_t)y * w + x) * 4u);
-            }
-        }
-        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)y0, (GLsizei)w, (GLsizei)rows, GL_RGBA,
-                          GL_FLOAT, strip);
-    }
-    gl->ActiveTexture(GL_TEXTURE0);
-    ft_arena_reset(a, FT_POOL_GPU_STAGING, mark);
-    m->gpu_bytes += (uint64_t)w * h * 4u * sizeof(float);
-    return ft_gl_check(gl, "bintree vertex table upload", err);
 }
 
 static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
@@ -180,7 +160,10 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
                            "bintree on GLES 3 needs 4 vertex texture units; this device has %d",
                            gl->caps.max_vertex_texture_units);
         }
-        st = upload_vertex_table(m, gl, a, err);
+        const ft_texture_desc d = vertex_table_desc(m->bt.width, m->bt.height);
+        st = ft_gpu_texture_create_strips(gl, &d, FT_BT_VTX_STRIP_ROWS, fill_vertex_rows, &m->bt,
+                                          a, &m->vtx_tex, &m->gpu_bytes,
+                                          "bintree vertex table upload", err);
         if (st != FT_OK) {
             return st;
         }

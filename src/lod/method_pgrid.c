@@ -165,23 +165,6 @@ static ft_status upload_residuals(ft_pgrid_method *m, const ft_gl *gl, const ft_
     return st;
 }
 
-/* A grid-sized RGBA32F texture (NEAREST) on texture unit `unit`. */
-static void make_float_texture(ft_pgrid_method *m, const ft_gl *gl, GLenum unit, uint32_t w,
-                               uint32_t h, GLuint *tex)
-{
-    gl->ActiveTexture(unit);
-    gl->GenTextures(1, tex);
-    gl->BindTexture(GL_TEXTURE_2D, *tex);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT,
-                   NULL);
-    gl->ActiveTexture(GL_TEXTURE0);
-    m->gpu_bytes += (uint64_t)w * h * 16u;
-}
-
 /* A framebuffer of one or two grid-sized RGBA32F textures (tex1 = NULL: one). */
 static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit0,
                                    GLenum unit1, uint32_t w, uint32_t h, GLuint *tex0,
@@ -191,9 +174,12 @@ static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum u
         return ft_fail(err, FT_ERR_UNSUPPORTED, "pgrid: the %s target %ux%u exceeds "
                        "GL_MAX_TEXTURE_SIZE %d", what, w, h, gl->caps.max_texture_size);
     }
-    make_float_texture(m, gl, unit0, w, h, tex0);
+    const ft_texture_desc d0 = {unit0, w, h, GL_RGBA32F, GL_RGBA, GL_FLOAT, 4u * sizeof(float)};
+    ft_gpu_texture_create(gl, &d0, NULL, tex0, &m->gpu_bytes);
     if (tex1 != NULL) {
-        make_float_texture(m, gl, unit1, w, h, tex1);
+        ft_texture_desc d1 = d0;
+        d1.unit = unit1;
+        ft_gpu_texture_create(gl, &d1, NULL, tex1, &m->gpu_bytes);
     }
     gl->GenFramebuffers(1, fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, *fbo);
@@ -349,16 +335,9 @@ static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error
     gl->RenderbufferStorage(GL_RENDERBUFFER,
                             gl->caps.has_depth24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT16,
                             w, h);
-    gl->ActiveTexture(GL_TEXTURE3);
-    gl->GenTextures(1, &m->err_tex);
-    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, m->es3 ? GL_RGBA8 : GL_RGBA, w, h, 0, GL_RGBA,
-                   GL_UNSIGNED_BYTE, NULL);
-    gl->ActiveTexture(GL_TEXTURE0);
+    const ft_texture_desc d = {GL_TEXTURE3, m->w_px, m->h_px, m->es3 ? GL_RGBA8 : GL_RGBA,
+                               GL_RGBA, GL_UNSIGNED_BYTE, 4u};
+    ft_gpu_texture_create(gl, &d, NULL, &m->err_tex, &m->gpu_bytes);
     gl->GenFramebuffers(1, &m->err_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m->err_tex, 0);
@@ -369,7 +348,7 @@ static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error
         return ft_fail(err, FT_ERR_GPU, "pgrid: error buffer %ux%u incomplete: 0x%04x", m->w_px,
                        m->h_px, (unsigned)st);
     }
-    m->gpu_bytes += (uint64_t)w * (uint64_t)h * 8u;
+    m->gpu_bytes += (uint64_t)w * (uint64_t)h * 4u; /* the depth (colour counted above) */
     return FT_OK;
 }
 

@@ -172,22 +172,13 @@ ft_status bench_oracle_frame(bench_oracle *o, ft_renderer *r, const ft_camera *c
     }
     const ft_gl *gl = o->gl;
     const uint64_t t0 = ft_plat_monotonic_ns();
-    /* ft_renderer_draw + draw_pass, with the oracle's program and mesh */
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
-    gl->ClearColor(r->clear_rgb[0], r->clear_rgb[1], r->clear_rgb[2], 1.0f);
-    gl->Viewport(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px);
-    gl->Enable(GL_DEPTH_TEST);
-    gl->DepthFunc(GL_LESS);
-    gl->DepthMask(GL_TRUE);
-    gl->ClearDepthf(1.0f);
-    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    /* ft_renderer_draw's pass, with the oracle's program and mesh */
+    const float sky[4] = {r->clear_rgb[0], r->clear_rgb[1], r->clear_rgb[2], 1.0f};
+    ft_renderer_begin_pass(r, r->fbo_color, sky);
     gl->UseProgram(o->prog.program);
     gl->UniformMatrix4fv(o->prog.u_view_proj, 1, GL_FALSE, cam->view_proj);
-    ft_shade_state shade = r->shade; /* the renderer's colours at this frame's altitude */
-    shade.aircraft_alt_m = (float)cam->eye_m[2];
-    shade.px_per_rad = (float)cam->px_per_rad_k;
-    shade.void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
-    shade.void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
+    ft_shade_state shade; /* the renderer's colours at this frame's altitude */
+    ft_renderer_frame_shade(r, cam, &shade);
     ft_program_shade_uniforms(gl, &o->prog.shade, &shade);
     bind_oracle_vao(o);
     gl->BindBuffer(GL_ARRAY_BUFFER, o->vbo);

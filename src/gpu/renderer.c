@@ -486,17 +486,35 @@ ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyi
 
 /* ---- frames ------------------------------------------------------------------------- */
 
-static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_camera *cam,
-                      ft_method_draw_stats *ms)
+void ft_renderer_begin_pass(const ft_renderer *r, GLuint fbo, const float clear_rgba[4])
 {
     const ft_gl *gl = r->gl;
-    const ft_terrain *t = r->terrain;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl->ClearColor(clear_rgba[0], clear_rgba[1], clear_rgba[2], clear_rgba[3]);
     gl->Viewport(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px);
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     gl->DepthMask(GL_TRUE);
     gl->ClearDepthf(1.0f);
     gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void ft_renderer_frame_shade(const ft_renderer *r, const ft_camera *cam, ft_shade_state *out)
+{
+    *out = r->shade;
+    out->aircraft_alt_m = (float)cam->eye_m[2]; /* the pose's altitude */
+    out->void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
+    out->void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
+    out->px_per_rad = (float)cam->px_per_rad_k;
+}
+
+/* Draws the method with program p (and its coarse companion) into the target
+ * ft_renderer_begin_pass made ready. */
+static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_camera *cam,
+                      ft_method_draw_stats *ms)
+{
+    const ft_gl *gl = r->gl;
+    const ft_terrain *t = r->terrain;
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, r->gt.heights_tex);
     /* the coarse companion first, so the pass's own program is current after */
@@ -577,15 +595,14 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
         return ft_fail(err, FT_ERR_ARG, "camera viewport %ux%u != target %ux%u", cam->width_px,
                        cam->height_px, r->width_px, r->height_px);
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_color);
-    gl->ClearColor(r->clear_rgb[0], r->clear_rgb[1], r->clear_rgb[2], 1.0f);
     if (r->timer_query != 0u) {
         gl->BeginQuery(GL_TIME_ELAPSED_EXT, r->timer_query);
     }
-    r->shade.aircraft_alt_m = (float)cam->eye_m[2]; /* the pose's altitude */
-    r->shade.void_map[0] = (float)(r->terrain->origin_world_x_m - cam->eye_m[0]);
-    r->shade.void_map[1] = (float)(r->terrain->origin_world_y_m - cam->eye_m[1]);
-    r->shade.px_per_rad = (float)cam->px_per_rad_k;
+    const float sky[4] = {r->clear_rgb[0], r->clear_rgb[1], r->clear_rgb[2], 1.0f};
+    ft_renderer_begin_pass(r, r->fbo_color, sky);
+    ft_shade_state shade;
+    ft_renderer_frame_shade(r, cam, &shade);
+    r->shade = shade;
     draw_pass(r, &r->prog_color, cam, &ms);
     if (r->scene->present_horizon) {
         const ft_status hs = draw_horizon(r, cam, err);
@@ -698,8 +715,8 @@ ft_status ft_renderer_draw_positions(ft_renderer *r, const ft_camera *cam, ft_er
                              "metric here"
                            : "metric.enabled = 0 in the scene: no position target");
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_pos);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    static const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    ft_renderer_begin_pass(r, r->fbo_pos, nothing);
     draw_pass(r, &r->prog_pos, cam, &ms);
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl->ReadPixels(0, 0, (GLsizei)r->width_px, (GLsizei)r->height_px, GL_RGBA, GL_FLOAT, r->pos);

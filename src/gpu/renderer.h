@@ -122,6 +122,14 @@ ft_status ft_renderer_enable_capture(ft_renderer *r, ft_error *err);
 ft_status ft_renderer_enable_capture_of(ft_renderer *r, const char *const *varyings,
                                         uint32_t count, ft_error *err);
 
+/* Binds target fbo, sets the viewport and the depth state every terrain
+ * pass draws with, and clears colour (to clear_rgba) and depth. The bench's
+ * oracle draws its own mesh after it, like the renderer's passes. */
+void ft_renderer_begin_pass(const ft_renderer *r, GLuint fbo, const float clear_rgba[4]);
+/* The colour state of a frame seen from cam: the renderer's palette and
+ * bands at the pose's altitude, the void map relative to the eye. */
+void ft_renderer_frame_shade(const ft_renderer *r, const ft_camera *cam, ft_shade_state *out);
+
 /* Draws one colour frame into the RGBA8 target. */
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
                            ft_error *err);

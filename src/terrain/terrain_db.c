@@ -719,11 +719,10 @@ ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32
                        "index says %u and %u (or a void bit on an uncovered sample)",
                        name, level, tx, ty, s.nodata, s.voids, e->nodata_count, e->void_count);
     }
-    /* Level 0 is its own footprint: exact bounds; coarser tiles lie within. */
-    const int exact = level == 0u;
+    /* The index bounds the whole footprint (finer levels, resampled input
+     * samples): the tile's own samples lie within them. */
     const float avg = stats_avg(&s, n);
     if (s.min_m < e->min_m || s.max_m > e->max_m ||
-        (exact && (s.min_m != e->min_m || s.max_m != e->max_m)) ||
         fabsf(avg - e->avg_m) > 1e-3f * (1.0f + fabsf(avg))) {
         return ft_fail(err, FT_ERR_FORMAT,
                        "%s: tile (level %u, %u, %u) heights span %g..%g m (mean %g), the index "

@@ -1,0 +1,536 @@
+/* test_terrain_db.c - `fixterrain import --database` on real data, read back
+ * with the runtime's .ftd reader (src/terrain/terrain_db.h) through pread.
+ *  - mosaic N41E001 + N42E001: every sample of both .hgt files is in level 0
+ *    (voids filled and flagged), so the joined edge row equals the shared
+ *    row of both files sample by sample; coarser levels are point samples of
+ *    level 0; footprint bounds reach the mosaic's -20..3100 m;
+ *  - holes N42E001 + N49E011: the tiles between them are "no data" in the
+ *    index and reading one says so (not an error);
+ *  - mixed resolution N42E001 (3") + ETOPO5 (5', if ferret-datasets is
+ *    installed): where both cover, the coarse level holds the SRTM samples;
+ *    elsewhere ETOPO5 (the ocean is below 0 m);
+ *  - corrupt databases (bytes patched in a valid one, crcs recomputed where
+ *    the damage must sit behind a valid crc) are refused with the reason. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "../tools/import_db.h"
+#include "core/platform_api.h"
+#include "terrain/terrain_db.h"
+#include "test_util.h"
+
+#define HGT_SIDE 1201
+#define ENTRIES_CAP 8192u
+#define TILE 256u
+
+static ft_tdb_entry g_entries[ENTRIES_CAP];
+static float g_tile[TILE * TILE];
+static uint8_t g_bits[TILE * TILE / 8u];
+static int16_t g_hgt[2][HGT_SIDE * HGT_SIDE];
+
+static int run_import(const char *out, const char *opt, const char *in1, const char *in2)
+{
+    char *argv[8];
+    int argc = 0;
+    argv[argc++] = (char *)"import";
+    argv[argc++] = (char *)"--database";
+    argv[argc++] = (char *)out;
+    if (opt != NULL) {
+        argv[argc++] = (char *)opt;
+    }
+    argv[argc++] = (char *)in1;
+    if (in2 != NULL) {
+        argv[argc++] = (char *)in2;
+    }
+    return ft_cmd_import_db(argc, argv);
+}
+
+static void load_hgt(const char *path, int16_t *out)
+{
+    FILE *f = fopen(path, "rb");
+    REQUIRE(f != NULL);
+    static uint8_t raw[HGT_SIDE * HGT_SIDE * 2];
+    REQUIRE(fread(raw, 1, sizeof raw, f) == sizeof raw);
+    fclose(f);
+    for (size_t i = 0; i < (size_t)HGT_SIDE * HGT_SIDE; ++i) {
+        out[i] = (int16_t)(uint16_t)(((uint16_t)raw[2 * i] << 8) | raw[2 * i + 1]);
+    }
+}
+
+/* The .hgt sample at level-0 lattice point (i, j), N = 1200: 1 inside, 0 outside. */
+static int hgt_at(const int16_t *hgt, int lon0, int lat0, uint64_t i, uint64_t j, int *v)
+{
+    const int64_t c = (int64_t)i - (int64_t)(lon0 + 180) * 1200;
+    const int64_t r = (int64_t)(lat0 + 1 + 90) * 1200 - (int64_t)j; /* row 0 = north */
+    if (c < 0 || c >= HGT_SIDE || r < 0 || r >= HGT_SIDE) {
+        return 0;
+    }
+    *v = hgt[r * HGT_SIDE + c];
+    return 1;
+}
+
+static int bit(const uint8_t *bits, size_t i)
+{
+    return (bits[i >> 3] >> (i & 7u)) & 1;
+}
+
+static void open_db(const char *path, ft_file *f, ft_tdb *db)
+{
+    ft_error err;
+    REQUIRE(ft_plat_file_open_read(f, path, &err) == FT_OK);
+    if (ft_tdb_open(db, &f->reader_at, g_entries, ENTRIES_CAP, &err) != FT_OK) {
+        fprintf(stderr, "%s\n", err.text);
+        REQUIRE(0);
+    }
+}
+
+static void read_tile(const ft_tdb *db, uint32_t k, uint32_t tx, uint32_t ty, ft_tdb_tile *t)
+{
+    ft_error err;
+    ft_status st = ft_tdb_read_tile(db, k, tx, ty, g_tile, TILE * TILE, g_bits, sizeof g_bits, t,
+                                    &err);
+    if (st != FT_OK) {
+        fprintf(stderr, "%s\n", err.text);
+    }
+    REQUIRE(st == FT_OK);
+}
+
+/* ---- the N41E001 + N42E001 mosaic ------------------------------------------------ */
+static void mosaic(void)
+{
+    const char *out = FT_TEST_OUT_DIR "/mosaic.ftd";
+    CHECK(run_import(out, NULL, FT_SHARED_DATA_DIR "/N41E001.hgt",
+                     FT_SHARED_DATA_DIR "/N42E001.hgt") == 0);
+    load_hgt(FT_SHARED_DATA_DIR "/N41E001.hgt", g_hgt[0]);
+    load_hgt(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
+    const int lat0[2] = {41, 42};
+    ft_file f;
+    ft_tdb db;
+    open_db(out, &f, &db);
+    CHECK(db.hdr.samples_per_deg == 1200u && db.hdr.tile_samples == TILE);
+    CHECK(db.hdr.min_height_m == -20.0f && db.hdr.max_height_m == 3100.0f);
+    uint64_t seen[2] = {0, 0}, voids_flagged = 0, edge_both = 0, uncovered = 0;
+    const uint64_t edge_j = (uint64_t)(42 + 90) * 1200u;
+    for (uint32_t k = 0u; k < db.hdr.level_count; ++k) {
+        const ft_tdb_level *lv = &db.hdr.levels[k];
+        for (uint32_t ty = lv->ty0; ty < lv->ty0 + lv->rows; ++ty) {
+            for (uint32_t tx = lv->tx0; tx < lv->tx0 + lv->cols; ++tx) {
+                ft_tdb_tile t;
+                read_tile(&db, k, tx, ty, &t);
+                REQUIRE(t.state == FT_TDB_DATA);
+                for (uint32_t tj = 0u; tj < TILE; ++tj) {
+                    for (uint32_t ti = 0u; ti < TILE; ++ti) {
+                        /* level k point (i, j) is level 0 point (i << k, j << k) */
+                        const uint64_t i = ((uint64_t)tx * TILE + ti) << k;
+                        const uint64_t j = ((uint64_t)ty * TILE + tj) << k;
+                        const size_t s = (size_t)tj * TILE + ti;
+                        const float v = t.heights_m[s];
+                        int inside = 0, measured = 0;
+                        for (int h = 0; h < 2; ++h) {
+                            int hv = 0;
+                            if (!hgt_at(g_hgt[h], 1, lat0[h], i, j, &hv)) {
+                                continue;
+                            }
+                            inside = 1;
+                            if (hv == -32768) {
+                                continue;
+                            }
+                            measured = 1;
+                            CHECK(v == (float)hv);
+                            CHECK(!bit(t.void_bits, s));
+                            if (v != (float)hv) {
+                                fprintf(stderr, "level %u tile %u,%u sample %u,%u: %g vs %d\n",
+                                        k, tx, ty, ti, tj, (double)v, hv);
+                                REQUIRE(0);
+                            }
+                            seen[h] += k == 0u;
+                            edge_both += (k == 0u && j == edge_j);
+                        }
+                        if (inside && !measured) {
+                            CHECK(bit(t.void_bits, s) && v != FT_TDB_NODATA_M);
+                            voids_flagged += k == 0u;
+                        }
+                        if (!inside) {
+                            CHECK(v == FT_TDB_NODATA_M);
+                            uncovered += k == 0u;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    /* 134 + 7652 voids (README), the shared row counted in both files */
+    printf("mosaic: %llu + %llu measured samples, %llu void-filled, %llu edge checks, %llu "
+           "uncovered on level 0\n",
+           (unsigned long long)seen[0], (unsigned long long)seen[1],
+           (unsigned long long)voids_flagged, (unsigned long long)edge_both,
+           (unsigned long long)uncovered);
+    CHECK(seen[0] == (uint64_t)HGT_SIDE * HGT_SIDE - 134u);
+    CHECK(seen[1] == (uint64_t)HGT_SIDE * HGT_SIDE - 7652u);
+    CHECK(voids_flagged > 0u && voids_flagged <= 134u + 7652u);
+    /* the shared row: N41E001's first (northern) row, N42E001's last */
+    uint64_t edge_want = 0;
+    for (int c = 0; c < HGT_SIDE; ++c) {
+        edge_want += g_hgt[0][c] != -32768;
+        edge_want += g_hgt[1][(HGT_SIDE - 1) * HGT_SIDE + c] != -32768;
+    }
+    CHECK(edge_both == edge_want && edge_want > 2u * 1100u);
+    CHECK(uncovered > 0u);
+    /* the top tile bounds the whole mosaic, from the finer levels */
+    const ft_tdb_level *top = &db.hdr.levels[db.hdr.level_count - 1u];
+    CHECK(top->cols == 1u && top->rows == 1u);
+    const ft_tdb_entry *te = ft_tdb_find(&db, db.hdr.level_count - 1u, top->tx0, top->ty0);
+    REQUIRE(te != NULL);
+    CHECK(te->min_m == -20.0f && te->max_m == 3100.0f);
+    ft_plat_file_close(&f);
+}
+
+/* ---- N42E001 + N49E011: holes between them ------------------------------------------ */
+static void holes(void)
+{
+    const char *out = FT_TEST_OUT_DIR "/holes.ftd";
+    CHECK(run_import(out, NULL, FT_SHARED_DATA_DIR "/N42E001.hgt",
+                     FT_SHARED_DATA_DIR "/N49E011.hgt") == 0);
+    ft_file f;
+    ft_tdb db;
+    open_db(out, &f, &db);
+    uint32_t no_data = 0u;
+    const ft_tdb_level *l0 = &db.hdr.levels[0];
+    for (uint32_t n = 0u; n < l0->cols * l0->rows; ++n) {
+        no_data += g_entries[n].state == FT_TDB_NO_DATA;
+    }
+    printf("holes: level 0 lists %u tiles, %u no data\n", l0->cols * l0->rows, no_data);
+    CHECK(no_data > 0u && no_data < l0->cols * l0->rows);
+    /* lon 5, lat 45: inside the box, outside both tiles */
+    const uint32_t tx = (185u * 1200u) / TILE, ty = (135u * 1200u) / TILE;
+    const ft_tdb_entry *e = ft_tdb_find(&db, 0u, tx, ty);
+    REQUIRE(e != NULL);
+    CHECK(e->state == FT_TDB_NO_DATA);
+    ft_tdb_tile t;
+    g_tile[0] = 1234.0f;
+    read_tile(&db, 0u, tx, ty, &t);
+    CHECK(t.state == FT_TDB_NO_DATA && g_tile[0] == 1234.0f);
+    /* lon 11.5, lat 49.5: inside N49E011 */
+    read_tile(&db, 0u, (uint32_t)((191.5 * 1200) / TILE), (uint32_t)((139.5 * 1200) / TILE), &t);
+    CHECK(t.state == FT_TDB_DATA);
+    /* outside the level's box but on the lattice: no data too */
+    CHECK(ft_tdb_find(&db, 0u, 0u, 0u) == NULL);
+    read_tile(&db, 0u, 0u, 0u, &t);
+    CHECK(t.state == FT_TDB_NO_DATA);
+    /* outside the lattice: an error */
+    ft_error err;
+    CHECK(ft_tdb_read_tile(&db, 0u, 100000u, 0u, g_tile, TILE * TILE, g_bits, sizeof g_bits, &t,
+                           &err) == FT_ERR_ARG);
+    CHECK(strstr(err.text, "outside the lattice") != NULL);
+    CHECK(ft_tdb_read_tile(&db, 99u, 0u, 0u, g_tile, TILE * TILE, g_bits, sizeof g_bits, &t,
+                           &err) == FT_ERR_ARG);
+    ft_plat_file_close(&f);
+}
+
+/* ---- N42E001 (3") over ETOPO5 (5') ------------------------------------------------------ */
+static void mixed(void)
+{
+    const char *etopo = "/usr/share/ferret-vis/data/etopo5.cdf";
+    FILE *probe = fopen(etopo, "rb");
+    if (probe == NULL) {
+        printf("%s missing (package ferret-datasets): skipped the mixed-resolution part\n",
+               etopo);
+        return;
+    }
+    fclose(probe);
+    const char *out = FT_TEST_OUT_DIR "/mixed.ftd";
+    /* no CRS in the netCDF: refused unless told */
+    CHECK(run_import(out, NULL, FT_SHARED_DATA_DIR "/N42E001.hgt", etopo) == 1);
+    CHECK(run_import(out, "--assume-wgs84", FT_SHARED_DATA_DIR "/N42E001.hgt", etopo) == 0);
+    load_hgt(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
+    ft_file f;
+    ft_tdb db;
+    open_db(out, &f, &db);
+    CHECK(db.hdr.samples_per_deg == 1200u);
+    CHECK(db.hdr.min_height_m == -10376.0f && db.hdr.max_height_m == 7833.0f);
+    /* ETOPO5 enters at level 7 (384" >= 300"): the first level covering the globe */
+    REQUIRE(db.hdr.level_count > 7u);
+    const uint32_t k = 7u;
+    CHECK(db.hdr.levels[k].cols * db.hdr.levels[k].rows > 50u);
+    CHECK(db.hdr.levels[6].cols == 1u && db.hdr.levels[6].rows == 1u);
+    uint64_t srtm_wins = 0;
+    const ft_tdb_level *lv = &db.hdr.levels[k];
+    for (uint32_t ty = lv->ty0; ty < lv->ty0 + lv->rows; ++ty) {
+        for (uint32_t tx = lv->tx0; tx < lv->tx0 + lv->cols; ++tx) {
+            ft_tdb_tile t;
+            read_tile(&db, k, tx, ty, &t);
+            CHECK(t.state == FT_TDB_DATA);
+            if (t.state != FT_TDB_DATA) {
+                continue;
+            }
+            for (uint32_t s = 0u; s < TILE * TILE; ++s) {
+                const uint64_t i = ((uint64_t)tx * TILE + s % TILE) << k;
+                const uint64_t j = ((uint64_t)ty * TILE + s / TILE) << k;
+                int hv = 0;
+                if (hgt_at(g_hgt[1], 1, 42, i, j, &hv) && hv != -32768) {
+                    CHECK(t.heights_m[s] == (float)hv); /* the finest data wins */
+                    ++srtm_wins;
+                }
+            }
+        }
+    }
+    printf("mixed: %llu level-%u samples from SRTM where ETOPO5 also covers\n",
+           (unsigned long long)srtm_wins, k);
+    CHECK(srtm_wins > 50u);
+    /* lon -150, lat -30 (South Pacific): ETOPO5 only, ocean floor */
+    const double d = 128.0 / 1200.0;
+    const uint64_t i = (uint64_t)((-150.0 + 180.0) / d), j = (uint64_t)((-30.0 + 90.0) / d);
+    ft_tdb_tile t;
+    read_tile(&db, k, (uint32_t)(i / TILE), (uint32_t)(j / TILE), &t);
+    REQUIRE(t.state == FT_TDB_DATA);
+    const float sea = t.heights_m[(j % TILE) * TILE + i % TILE];
+    printf("mixed: ETOPO5 at -150 E, -30 N: %g m\n", (double)sea);
+    CHECK(sea < -1000.0f && sea > -10376.0f);
+    ft_plat_file_close(&f);
+}
+
+/* ---- corrupt databases ------------------------------------------------------------------ */
+static uint8_t *g_good;
+static uint8_t *g_bad;
+static size_t g_size;
+
+static uint32_t get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
+           ((uint32_t)p[3] << 24);
+}
+static void put32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+static uint64_t get64(const uint8_t *p)
+{
+    return (uint64_t)get32(p) | ((uint64_t)get32(p + 4) << 32);
+}
+static void put64(uint8_t *p, uint64_t v)
+{
+    put32(p, (uint32_t)v);
+    put32(p + 4, (uint32_t)(v >> 32));
+}
+
+static uint8_t *entry_at(uint8_t *db, uint32_t n)
+{
+    return db + FT_TDB_HEADER_BYTES + (size_t)n * FT_TDB_ENTRY_BYTES;
+}
+
+/* Recomputes the index crc and the header crc, so damage sits behind them. */
+static void refresh_crcs(uint8_t *db)
+{
+    const uint32_t entries = get32(db + 28);
+    put32(db + 36, (uint32_t)crc32(0L, entry_at(db, 0u), entries * FT_TDB_ENTRY_BYTES));
+    put32(db + 124, 0u);
+    put32(db + 124, (uint32_t)crc32(0L, db, FT_TDB_HEADER_BYTES));
+}
+
+static uint32_t data_entry(const uint8_t *db, uint32_t nth)
+{
+    const uint32_t entries = get32(db + 28);
+    for (uint32_t n = 0u; n < entries; ++n) {
+        if (get32(db + FT_TDB_HEADER_BYTES + (size_t)n * FT_TDB_ENTRY_BYTES) == 1u &&
+            nth-- == 0u) {
+            return n;
+        }
+    }
+    REQUIRE(0);
+    return 0u;
+}
+
+static ft_status open_bad(size_t size, ft_tdb *db, ft_mem_reader *m, ft_reader_at *r,
+                          ft_error *err)
+{
+    ft_mem_reader_at_init(r, m, g_bad, size, "small.ftd");
+    return ft_tdb_open(db, r, g_entries, ENTRIES_CAP, err);
+}
+
+static void expect_open(size_t size, ft_status want, const char *phrase)
+{
+    ft_tdb db;
+    ft_mem_reader m;
+    ft_reader_at r;
+    ft_error err = {FT_OK, ""};
+    ft_status st = open_bad(size, &db, &m, &r, &err);
+    printf("  open: %s\n", err.text);
+    CHECK(st == want);
+    CHECK(strstr(err.text, "small.ftd") != NULL);
+    CHECK(strstr(err.text, phrase) != NULL);
+}
+
+/* Opens fine, then reading data tile `n` fails with want. */
+static void expect_read(uint32_t n, ft_status want, const char *phrase)
+{
+    ft_tdb db;
+    ft_mem_reader m;
+    ft_reader_at r;
+    ft_error err = {FT_OK, ""};
+    REQUIRE(open_bad(g_size, &db, &m, &r, &err) == FT_OK);
+    uint32_t k = 0u, tx = 0u, ty = 0u;
+    for (uint32_t l = 0u; l < db.hdr.level_count; ++l) {
+        const ft_tdb_level *lv = &db.hdr.levels[l];
+        if (n >= lv->first_entry && n < lv->first_entry + lv->cols * lv->rows) {
+            k = l;
+            tx = lv->tx0 + (n - lv->first_entry) % lv->cols;
+            ty = lv->ty0 + (n - lv->first_entry) / lv->cols;
+        }
+    }
+    ft_tdb_tile t;
+    ft_status st = ft_tdb_read_tile(&db, k, tx, ty, g_tile, TILE * TILE, g_bits, sizeof g_bits,
+                                    &t, &err);
+    printf("  read: %s\n", err.text);
+    CHECK(st == want);
+    CHECK(strstr(err.text, "small.ftd: tile (level") != NULL);
+    CHECK(strstr(err.text, phrase) != NULL);
+}
+
+static void reset(void)
+{
+    memcpy(g_bad, g_good, g_size);
+}
+
+static void corrupt(void)
+{
+    const char *out = FT_TEST_OUT_DIR "/small.ftd";
+    REQUIRE(run_import(out, NULL, FT_SHARED_DATA_DIR "/N41E001.hgt", NULL) == 0);
+    FILE *f = fopen(out, "rb");
+    REQUIRE(f != NULL);
+    fseek(f, 0, SEEK_END);
+    g_size = (size_t)ftell(f);
+    fseek(f, 0, SEEK_SET);
+    g_good = malloc(g_size);
+    g_bad = malloc(g_size);
+    REQUIRE(g_good != NULL && g_bad != NULL);
+    REQUIRE(fread(g_good, 1, g_size, f) == g_size);
+    fclose(f);
+
+    /* the intact copy opens and every tile reads */
+    reset();
+    {
+        ft_tdb db;
+        ft_mem_reader m;
+        ft_reader_at r;
+        ft_error err;
+        REQUIRE(open_bad(g_size, &db, &m, &r, &err) == FT_OK);
+        uint32_t read = 0u;
+        for (uint32_t k = 0u; k < db.hdr.level_count; ++k) {
+            const ft_tdb_level *lv = &db.hdr.levels[k];
+            for (uint32_t n = 0u; n < lv->cols * lv->rows; ++n) {
+                ft_tdb_tile t;
+                read_tile(&db, k, lv->tx0 + n % lv->cols, lv->ty0 + n / lv->cols, &t);
+                read += t.state == FT_TDB_DATA;
+            }
+        }
+        CHECK(read == db.hdr.data_tiles && read > 0u);
+        /* the caller's index capacity is a named limit, not an overrun */
+        CHECK(ft_tdb_open(&db, &r, g_entries, db.hdr.entry_count - 1u, &err) == FT_ERR_BUDGET);
+    }
+    const uint32_t d0 = data_entry(g_good, 0u), d1 = data_entry(g_good, 1u);
+    const uint64_t off0 = get64(entry_at(g_good, d0) + 8);
+
+    printf("truncated by one byte\n");
+    reset();
+    expect_open(g_size - 1u, FT_ERR_TRUNCATED, "the header says");
+    printf("truncated inside the header\n");
+    expect_open(300u, FT_ERR_TRUNCATED, "truncated inside the header");
+
+    printf("bad magic\n");
+    reset();
+    g_bad[0] = 'X';
+    expect_open(g_size, FT_ERR_FORMAT, "bad magic");
+
+    printf("bad header crc\n");
+    reset();
+    g_bad[16] ^= 0x01u; /* tile_samples */
+    expect_open(g_size, FT_ERR_CHECKSUM, "header crc32");
+
+    printf("bad index crc\n");
+    reset();
+    entry_at(g_bad, d0)[20] ^= 0x01u;
+    expect_open(g_size, FT_ERR_CHECKSUM, "index crc32");
+
+    printf("index offset past the end\n");
+    reset();
+    put64(entry_at(g_bad, d1) + 8, (uint64_t)g_size + 4096u);
+    refresh_crcs(g_bad);
+    expect_open(g_size, FT_ERR_FORMAT, "runs past the end");
+
+    printf("overlapping tiles\n");
+    reset();
+    put64(entry_at(g_bad, d1) + 8, off0 + 4u);
+    refresh_crcs(g_bad);
+    expect_open(g_size, FT_ERR_FORMAT, "overlaps tile (level 0");
+
+    printf("a tile over the index\n");
+    reset();
+    put64(entry_at(g_bad, d0) + 8, 512u);
+    refresh_crcs(g_bad);
+    expect_open(g_size, FT_ERR_FORMAT, "overlaps the header and index");
+
+    printf("min above max\n");
+    reset();
+    put32(entry_at(g_bad, d0) + 20, 0x45000000u); /* 2048 m, above the tile's max */
+    refresh_crcs(g_bad);
+    expect_open(g_size, FT_ERR_NUMERIC, "min");
+
+    printf("a wrong byte size\n");
+    reset();
+    put32(entry_at(g_bad, d0) + 4, get32(entry_at(g_good, d0) + 4) + 4u);
+    refresh_crcs(g_bad);
+    expect_open(g_size, FT_ERR_FORMAT, "bytes, a 256x256 tile");
+
+    printf("bad tile crc\n");
+    reset();
+    g_bad[off0 + 1000u] ^= 0x40u;
+    expect_read(d0, FT_ERR_CHECKSUM, "crc32");
+
+    printf("a non-finite height behind a valid crc\n");
+    reset();
+    {
+        const float nan_v = NAN;
+        uint8_t b[4];
+        memcpy(b, &nan_v, 4u); /* little-endian host: the file's byte order */
+        memcpy(g_bad + off0 + 4u * (100u * TILE + 200u), b, 4u);
+        const uint32_t bytes = get32(entry_at(g_bad, d0) + 4);
+        put32(entry_at(g_bad, d0) + 16, (uint32_t)crc32(0L, g_bad + off0, bytes));
+        refresh_crcs(g_bad);
+    }
+    expect_read(d0, FT_ERR_NUMERIC, "is nan");
+
+    printf("a height outside the tile's bounds behind a valid crc\n");
+    reset();
+    {
+        const float high = 8000.0f;
+        memcpy(g_bad + off0 + 4u * (100u * TILE + 200u), &high, 4u);
+        const uint32_t bytes = get32(entry_at(g_bad, d0) + 4);
+        put32(entry_at(g_bad, d0) + 16, (uint32_t)crc32(0L, g_bad + off0, bytes));
+        refresh_crcs(g_bad);
+    }
+    expect_read(d0, FT_ERR_FORMAT, "heights span");
+
+    free(g_good);
+    free(g_bad);
+}
+
+int main(void)
+{
+    FILE *probe = fopen(FT_SHARED_DATA_DIR "/N41E001.hgt", "rb");
+    if (probe == NULL) {
+        printf("%s missing: skipped\n", FT_SHARED_DATA_DIR "/N41E001.hgt");
+        return FT_TEST_SKIP;
+    }
+    fclose(probe);
+    mosaic();
+    holes();
+    mixed();
+    corrupt();
+    return ft_test_result("test_terrain_db");
+}

@@ -75,6 +75,9 @@
 /* Relative spacing difference taken as equal (N rounding, level entry). */
 #define FT_IMPORT_DB_SPACING_TOL 1e-3
 #define FT_IMPORT_DB_PAIRS_MAX 64u
+/* GDAL's block cache (its default is 5 % of RAM): with the tile buffers this
+ * bounds the import's memory whatever the region's size. */
+#define FT_IMPORT_DB_GDAL_CACHE_BYTES ((GIntBig)64 * 1024 * 1024)
 
 typedef struct db_input {
     char path[FT_PATH_MAX];
@@ -852,6 +855,7 @@ int ft_cmd_import_db(int argc, char **argv)
     rc = FT_EXIT_ERROR;
     const uint64_t t0_ns = ft_plat_monotonic_ns();
     GDALAllRegister();
+    GDALSetCacheMax64(FT_IMPORT_DB_GDAL_CACHE_BYTES);
     for (uint32_t i = 0u; i < J.n_in; ++i) {
         if (!open_input(&J.in[i], assume_wgs84)) {
             goto done;

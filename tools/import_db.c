@@ -622,8 +622,8 @@ static int take_input(db_job *J, uint32_t src, uint32_t k, uint32_t tx, uint32_t
     /* The bounds cover the input's own samples too, not only the lattice
      * points sampled from them: a resampled (coarser) input's peak between
      * lattice points must not escape the tile's max. Each input sample
-     * counts for the tile of its nearest lattice point, unless a finer
-     * level supplied that point. */
+     * counts for the tile of its nearest lattice point when this input
+     * supplied that point (not a finer level, not another input). */
     for (int y = 0; y < wh; ++y) {
         const double lat = gt[3] + ((double)(wy0 + y) + 0.5) * gt[5];
         const double fj = floor((lat - lat_a) / d + 0.5);
@@ -636,8 +636,9 @@ static int take_input(db_job *J, uint32_t src, uint32_t k, uint32_t tx, uint32_t
             if (fi < 0.0 || fi >= (double)T || (uint64_t)tx * T + (uint64_t)fi >= nx) {
                 continue;
             }
-            if (J->origin[(size_t)fj * T + (size_t)fi] == ORIGIN_FINER) {
-                continue;
+            const size_t p = (size_t)fj * T + (size_t)fi;
+            if (J->origin[p] != ORIGIN_NATIVE || J->src_of[p] != src) {
+                continue; /* that point came from a finer level or another input */
             }
             const float v = J->win[(size_t)y * (size_t)ww + (size_t)x];
             *fmin = v < *fmin ? v : *fmin;

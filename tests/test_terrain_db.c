@@ -430,6 +430,24 @@ static void mixed(void)
             if (t.state != FT_TDB_DATA) {
                 continue;
             }
+            /* a global input covers every lattice point, the seam between
+             * its last and first column and both poles included */
+            if (t.entry.nodata_count != 0u) {
+                uint32_t lattice_cols = 0u, lattice_rows = 0u;
+                ft_tdb_lattice_tiles(1200u, TILE, k, &lattice_cols, &lattice_rows);
+                /* only the lattice's east and north edge tiles reach past it */
+                CHECK(tx == lattice_cols - 1u || ty == lattice_rows - 1u);
+                for (uint32_t s = 0u; s < TILE * TILE; ++s) {
+                    const uint64_t li = (uint64_t)tx * TILE + s % TILE;
+                    const uint64_t lj = (uint64_t)ty * TILE + s / TILE;
+                    if (li < 3375u && lj <= 1687u && t.heights_m[s] == FT_TDB_NODATA_M) {
+                        fprintf(stderr, "mixed: level 7 sample %llu,%llu uncovered\n",
+                                (unsigned long long)li, (unsigned long long)lj);
+                        CHECK(0);
+                        break;
+                    }
+                }
+            }
             for (uint32_t s = 0u; s < TILE * TILE; ++s) {
                 const uint64_t i = ((uint64_t)tx * TILE + s % TILE) << k;
                 const uint64_t j = ((uint64_t)ty * TILE + s / TILE) << k;

@@ -546,6 +546,12 @@ static int take_input(db_job *J, uint32_t src, uint32_t k, uint32_t tx, uint32_t
     uint64_t nx = 0u, ny = 0u;
     lattice_samples(J, k, &nx, &ny);
     const double tol = FT_IMPORT_DB_ALIGN_TOL;
+    /* A global input (ETOPO5: 0 .. 359.92 deg E) leaves a seam between its
+     * last and first column: points there take the nearer edge column (the
+     * bilinear weights clamp), instead of a strip of no data around the
+     * globe. Each side reaches half the seam. */
+    const double seam_px = 360.0 / gt[1] - (double)(s->w - 1);
+    const double xtol = (s->full_lon && seam_px > 0.0) ? 0.5 * seam_px + tol : tol;
     for (uint32_t tj = 0u; tj < T; ++tj) {
         const uint64_t j = (uint64_t)ty * T + tj;
         if (j >= ny) {
@@ -565,9 +571,12 @@ static int take_input(db_job *J, uint32_t src, uint32_t k, uint32_t tx, uint32_t
             if (J->origin[p] == ORIGIN_FINER) {
                 continue; /* the finer level's sample wins */
             }
+            if (J->origin[p] == ORIGIN_NATIVE && J->src_of[p] == src) {
+                continue; /* this input gave it already, under another shift */
+            }
             const double lon = -180.0 + (double)i * d + shift;
             const double gx = (lon - gt[0]) / gt[1] - 0.5;
-            if (gx < -tol || gx > (double)(s->w - 1) + tol) {
+            if (gx < -xtol || gx > (double)(s->w - 1) + xtol) {
                 continue;
             }
             double rx = floor(gx + 0.5), ry = floor(gy + 0.5);

@@ -670,10 +670,43 @@ static int input_overlaps(const db_job *J, const db_input *s, uint32_t k, uint32
            lat_a <= s->lat_hi + e;
 }
 
+static const double k_shifts[3] = {0.0, 360.0, -360.0};
+
+/* 1 when a child tile has data or an input entering at level k overlaps
+ * tile (k, tx, ty): most tiles of a sparse region have neither, and are
+ * recorded as no data without touching the tile buffers. */
+static int tile_has_sources(const db_job *J, uint32_t k, uint32_t tx, uint32_t ty)
+{
+    if (k > 0u) {
+        const ft_tdb_level *cl = &J->hdr.levels[k - 1u];
+        for (uint32_t c = 0u; c < 4u; ++c) {
+            const uint32_t cx = 2u * tx + (c & 1u), cy = 2u * ty + (c >> 1);
+            if (cx >= cl->tx0 && cy >= cl->ty0 && cx - cl->tx0 < cl->cols &&
+                cy - cl->ty0 < cl->rows &&
+                J->entries[cl->first_entry + (cy - cl->ty0) * cl->cols + (cx - cl->tx0)]
+                        .state == FT_TDB_DATA) {
+                return 1;
+            }
+        }
+    }
+    for (uint32_t src = 0u; src < J->n_in; ++src) {
+        for (uint32_t sh = 0u; sh < 3u && J->in[src].entry_level == k; ++sh) {
+            if (input_overlaps(J, &J->in[src], k, tx, ty, k_shifts[sh])) {
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 static int build_tile(db_job *J, uint32_t k, uint32_t tx, uint32_t ty, ft_tdb_entry *e)
 {
     const uint32_t T = J->T;
     const size_t n = (size_t)T * T;
+    memset(e, 0, sizeof *e);
+    if (!tile_has_sources(J, k, tx, ty)) {
+        return 1; /* no data: recorded in the index, nothing written */
+    }
     for (size_t i = 0u; i < n; ++i) {
         J->hv[i] = FT_TDB_NODATA_M;
     }
@@ -683,14 +716,13 @@ static int build_tile(db_job *J, uint32_t k, uint32_t tx, uint32_t ty, ft_tdb_en
     if (k > 0u && !take_children(J, k, tx, ty, &fmin, &fmax)) {
         return 0;
     }
-    static const double shifts[3] = {0.0, 360.0, -360.0};
     for (uint32_t src = 0u; src < J->n_in; ++src) {
         if (J->in[src].entry_level != k) {
             continue;
         }
         for (uint32_t sh = 0u; sh < 3u; ++sh) {
-            if (input_overlaps(J, &J->in[src], k, tx, ty, shifts[sh]) &&
-                !take_input(J, src, k, tx, ty, shifts[sh], &fmin, &fmax)) {
+            if (input_overlaps(J, &J->in[src], k, tx, ty, k_shifts[sh]) &&
+                !take_input(J, src, k, tx, ty, k_shifts[sh], &fmin, &fmax)) {
                 return 0;
             }
         }
@@ -699,7 +731,6 @@ static int build_tile(db_job *J, uint32_t k, uint32_t tx, uint32_t ty, ft_tdb_en
     for (size_t i = 0u; i < n && !covered; ++i) {
         covered = J->hv[i] != FT_TDB_NODATA_M;
     }
-    memset(e, 0, sizeof *e);
     if (!covered) {
         return 1; /* no data: recorded in the index, nothing written */
     }
@@ -849,6 +880,10 @@ int ft_cmd_import_db(int argc, char **argv)
             J.T = (uint32_t)t;
         } else if (strcmp(arg, "--assume-wgs84") == 0) {
             assume_wgs84 = 1;
+        } else if (strcmp(arg, "--database") == 0 || strcmp(arg, "--tile") == 0) {
+            fprintf(stderr, "fixterrain import: %s needs a value\n", arg);
+            usage(stderr);
+            goto done;
         } else if (arg[0] == '-' && arg[1] == '-') {
             fprintf(stderr, "fixterrain import: unknown option %s\n", arg);
             usage(stderr);

@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <fcntl.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -32,6 +33,35 @@ static ft_status fd_read(void *ctx, void *dst, size_t bytes, size_t *got)
         done += (size_t)n;
     }
     f->pos += done;
+    *got = done;
+    return FT_OK;
+}
+
+/* pread: no shared position, so positional reads never disturb the
+ * sequential reader of the same file. */
+static ft_status fd_read_at(void *ctx, uint64_t offset, void *dst, size_t bytes, size_t *got)
+{
+    const ft_file *f = (const ft_file *)ctx;
+    size_t done = 0;
+    int retries = 0;
+    *got = 0;
+    if (offset > (uint64_t)INT64_MAX - (uint64_t)bytes) {
+        return FT_ERR_ARG;
+    }
+    while (done < bytes) {
+        ssize_t n = pread(f->fd, (char *)dst + done, bytes - done, (off_t)(offset + done));
+        if (n < 0) {
+            if (errno == EINTR && ++retries < FT_IO_RETRY_MAX) {
+                continue;
+            }
+            *got = done;
+            return FT_ERR_IO;
+        }
+        if (n == 0) {
+            break; /* end of file */
+        }
+        done += (size_t)n;
+    }
     *got = done;
     return FT_OK;
 }
@@ -77,6 +107,10 @@ ft_status ft_plat_file_open_read(ft_file *f, const char *path, ft_error *err)
     f->reader.read = fd_read;
     f->reader.size_bytes = (uint64_t)st.st_size;
     f->reader.name = f->path;
+    f->reader_at.ctx = f;
+    f->reader_at.read_at = fd_read_at;
+    f->reader_at.size_bytes = (uint64_t)st.st_size;
+    f->reader_at.name = f->path;
     return FT_OK;
 }
 

@@ -14,17 +14,22 @@
 set(FT_FUZZ_DIR ${CMAKE_SOURCE_DIR}/tests/fuzz)
 
 # target | harness source | corpus and regress directory | compile definitions
-set(FT_FUZZ_TARGETS canaero candump scene ftt ftt_crc hgt waypoints)
+set(FT_FUZZ_TARGETS canaero candump scene ftt ftt_crc ftd ftd_crc hgt waypoints)
 set(FT_FUZZ_SRC_canaero fuzz_canaero.c)
 set(FT_FUZZ_SRC_candump fuzz_candump.c)
 set(FT_FUZZ_SRC_scene fuzz_scene.c)
 set(FT_FUZZ_SRC_ftt fuzz_ftt.c)
 set(FT_FUZZ_SRC_ftt_crc fuzz_ftt.c)
+set(FT_FUZZ_SRC_ftd fuzz_ftd.c)
+set(FT_FUZZ_SRC_ftd_crc fuzz_ftd.c)
 set(FT_FUZZ_SRC_hgt fuzz_hgt.c)
 set(FT_FUZZ_SRC_waypoints fuzz_waypoints.c)
 set(FT_FUZZ_DATA_ftt_crc ftt)  # both .ftt modes share one corpus and regress dir
 set(FT_FUZZ_DEFS_ftt FUZZ_FTT_FIX_CRC=0)
 set(FT_FUZZ_DEFS_ftt_crc FUZZ_FTT_FIX_CRC=1)
+set(FT_FUZZ_DATA_ftd_crc ftd)  # both .ftd modes share one corpus and regress dir
+set(FT_FUZZ_DEFS_ftd FUZZ_FTD_FIX_CRC=0)
+set(FT_FUZZ_DEFS_ftd_crc FUZZ_FTD_FIX_CRC=1)
 
 add_custom_target(fuzz_all)
 foreach(t ${FT_FUZZ_TARGETS})

@@ -16,6 +16,7 @@
  * This is an offline tool: it allocates with malloc and frees everything. */
 #define _POSIX_C_SOURCE 200809L
 #include "import_gdal.h"
+#include "import_db.h"
 
 #include <cpl_conv.h>
 #include <gdal.h>
@@ -39,6 +40,7 @@
 static void usage(FILE *to)
 {
     fprintf(to, "usage: fixterrain import IN OUT\n"
+                "       fixterrain import --database OUT.ftd [--tile T] IN...  (--database --help)\n"
                 "Converts a DEM that GDAL reads (GeoTIFF, SRTM .hgt, DTED, ...) into a\n"
                 "fixterrain terrain file (.ftt): float32 heights plus avg/min/max pyramids,\n"
                 "voids filled (8-direction inverse-distance rule) and counted.\n");
@@ -114,6 +116,11 @@ static int void_value(float v, int has_nodata, double nodata, int int16)
 
 int ft_cmd_import(int argc, char **argv)
 {
+    for (int a = 1; a < argc; ++a) {
+        if (strcmp(argv[a], "--database") == 0) {
+            return ft_cmd_import_db(argc, argv); /* many DEMs -> one tiled database */
+        }
+    }
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
         usage(stdout);
         return FT_EXIT_OK;

@@ -9,7 +9,7 @@ runtime="build-essential cmake pkg-config
   libegl-dev libegl-mesa0 libgles-dev libgl1-mesa-dri
   libosmesa6-dev libpng-dev zlib1g-dev libinih-dev libx11-dev libgpiod-dev
   libdrm-dev libgbm-dev"
-tools="libgdal-dev glslang-tools clang libclang-rt-14-dev xvfb xauth"
+tools="libgdal-dev glslang-tools clang libclang-rt-14-dev xvfb xauth ferret-datasets"
 # Test VM (tests/vm/): qemu boots Debian's kernel with a busybox initramfs;
 # vcan + can-utils and an out-of-tree gpio-sim (built from linux-source-6.1
 # against linux-headers) + libgpiod tools run in it.

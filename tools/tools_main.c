@@ -22,7 +22,8 @@ static void print_help(void)
     printf("usage: fixterrain-tools COMMAND [options]   (COMMAND --help for details)\n\n"
            "commands:\n"
            "  bench     error against run time: every method and setting over flight paths%s\n"
-           "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file%s\n"
+           "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file, or\n"
+           "            many DEMs to a tiled .ftd database (--database)%s\n"
            "  help      this text\n\n"
            "The display runtime is the separate binary 'fixterrain'; it forwards its\n"
            "'bench' and 'import' commands here.\n",

@@ -22,6 +22,21 @@ typedef struct ft_writer {
     const char *name;
 } ft_writer;
 
+/* Random access (the tiled terrain database reads one tile where it lies).
+ * Reads up to `bytes` at `offset` into dst, sets *got; *got < bytes only when
+ * the data ends first. Keeps no position: calls do not depend on each other. */
+typedef struct ft_reader_at {
+    void *ctx;
+    ft_status (*read_at)(void *ctx, uint64_t offset, void *dst, size_t bytes, size_t *got);
+    uint64_t size_bytes; /* total size, known up front */
+    const char *name;    /* for error messages (file path) */
+} ft_reader_at;
+
+/* Reads exactly `bytes` at `offset` or fails with FT_ERR_TRUNCATED naming
+ * the stream (an offset + bytes past size_bytes is refused before reading). */
+ft_status ft_read_at_exact(const ft_reader_at *r, uint64_t offset, void *dst, size_t bytes,
+                           ft_error *err);
+
 /* Reads exactly `bytes` or fails with FT_ERR_TRUNCATED naming the stream. */
 ft_status ft_read_exact(const ft_reader *r, void *dst, size_t bytes, ft_error *err);
 
@@ -33,6 +48,10 @@ typedef struct ft_mem_reader {
 } ft_mem_reader;
 void ft_mem_reader_init(ft_reader *r, ft_mem_reader *m, const void *data, size_t size_bytes,
                         const char *name);
+
+/* Positional reads over the same memory block (pos unused). */
+void ft_mem_reader_at_init(ft_reader_at *r, ft_mem_reader *m, const void *data,
+                           size_t size_bytes, const char *name);
 
 /* A writer into a caller-owned memory block; fails FT_ERR_OVERSIZED when full. */
 typedef struct ft_mem_writer {

@@ -21,6 +21,7 @@ typedef struct ft_file {
     uint64_t pos;
     char path[FT_PATH_MAX];
     ft_reader reader; /* valid after ft_plat_file_open_read */
+    ft_reader_at reader_at; /* the same file by position (pread), same lifetime */
     ft_writer writer; /* valid after ft_plat_file_open_write */
 } ft_file;
 

@@ -1,0 +1,181 @@
+/* terrain_db.h - the tiled, multi-resolution terrain database (".ftd").
+ *
+ * A region (many SRTM tiles, or the planet at coarse resolution) in fixed-size
+ * tiles a runtime reads one at a time by position; nothing is loaded whole.
+ *
+ * Lattice (geographic, lon/lat degrees on WGS 84):
+ *   level 0 spacing is 1/N degree, N = samples_per_deg (the finest input's
+ *   spacing, e.g. N = 1200 for SRTM3, 3600 for SRTM1); level k has spacing
+ *   2^k / N degree. Sample (i, j) of level k lies at
+ *     lon = -180 + i * 2^k / N,   lat = -90 + j * 2^k / N
+ *   (i runs east, j runs north: row 0 = south, as in terrain.h), so level k+1
+ *   sample (i, j) is level k sample (2i, 2j) and whole-degree SRTM tiles fall
+ *   on the lattice. Tile (k, tx, ty) holds samples i in [tx*T, tx*T + T),
+ *   j in [ty*T, ty*T + T) of level k, T = tile_samples: tiles share no rows;
+ *   the sample east of a tile's last column is column 0 of tile (k, tx+1, ty).
+ *   A tile's lon/lat is fixed by (k, tx, ty) alone.
+ *
+ * Layout (all little-endian, written field by field):
+ *   header, FT_TDB_HEADER_BYTES (512) long:
+ *     0   char[8]  magic "FXTRDB\r\n"
+ *     8   u32      version (FT_TDB_VERSION)
+ *     12  u32      header_bytes (512)
+ *     16  u32      tile_samples T (power of two, FT_TDB_TILE_MIN..MAX)
+ *     20  u32      level_count L (1..FT_TDB_LEVELS_MAX)
+ *     24  u32      samples_per_deg N (1..FT_TDB_SAMPLES_PER_DEG_MAX)
+ *     28  u32      entry_count (sum over levels of cols * rows)
+ *     32  u32      data_tiles (entries with state data)
+ *     36  u32      index_crc32 (zlib crc32 of the index bytes)
+ *     40  u32      void_fill_rule (FT_VOID_FILL_RULE_IDW8, void_fill.h)
+ *     44  f32      min_height_m, 48 f32 max_height_m (over every data tile)
+ *     52  u32      reserved (0)
+ *     56  u64      file_bytes (the whole file)
+ *     64  ..123    reserved (0)
+ *     124 u32      header_crc32 (crc32 of bytes 0..511 with this field zeroed)
+ *     128 level table, FT_TDB_LEVELS_MAX records of 16 bytes; record k:
+ *         u32 tx0, u32 ty0, u32 cols, u32 rows: the tiles of level k the
+ *         index lists (every level's box lies inside the global lattice);
+ *         records at and past L are zero.
+ *   index at 512: entry_count records of FT_TDB_ENTRY_BYTES (40), level by
+ *   level, in each level row by row from (tx0, ty0) eastwards then north:
+ *     0  u32 state (0 no data, 1 data)
+ *     4  u32 byte_size (T*T*4, plus T*T/8 when void_count > 0)
+ *     8  u64 offset
+ *     16 u32 crc32 of the tile's bytes
+ *     20 f32 min_m, 24 f32 max_m: exact bounds of every level-0-and-coarser
+ *        sample under the tile's half-open footprint (the finest data there,
+ *        not only the tile's own samples), for error bounds;
+ *     28 f32 avg_m: mean of the tile's own covered samples
+ *     32 u32 void_count: samples void in the source and filled (void_fill.h)
+ *     36 u32 nodata_count: samples no input covers (FT_TDB_NODATA_M)
+ *   A "no data" entry (no input covers any of its samples) is all zero: missing
+ *   coverage is recorded, never invented.
+ *   tiles, from 512 + entry_count * 40, in index order, packed (each data
+ *   tile starts where the previous one ends, the last ends at file_bytes):
+ *     T*T f32 heights, row 0 = south; a sample no input covers holds exactly
+ *     FT_TDB_NODATA_M (outside the height range, so never mistaken for one);
+ *     then, when void_count > 0, the void bits (one per sample, as
+ *     ft_terrain.void_bits: set = void in the source and filled).
+ *
+ * Opening checks: magic, version, sizes, header crc, T, L, N, each level's box
+ * (inside the lattice; ntiles and entries within FT_TDB_ENTRIES_MAX and the
+ * caller's capacity), file size == file_bytes, index crc, every entry (state,
+ * exact byte size, offsets packed from the data start to the file end: no
+ * overlap, no gap, none past the end; min <= avg <= max within the height
+ * range; counts within T*T; a no-data entry all zero). Reading a tile checks
+ * its crc, then every height (finite, in range or the no-data value), the
+ * counts and min/max/avg against the index, and the void bits. Never trusts a
+ * size before checking it. */
+#ifndef FT_TERRAIN_DB_H
+#define FT_TERRAIN_DB_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/io.h"
+
+#define FT_TDB_MAGIC "FXTRDB\r\n"
+#define FT_TDB_VERSION 1u
+#define FT_TDB_HEADER_BYTES 512u
+#define FT_TDB_ENTRY_BYTES 40u
+/* Level table records in the header: at most this many levels. */
+#define FT_TDB_LEVELS_MAX 24u
+#define FT_TDB_TILE_MIN 16u
+#define FT_TDB_TILE_MAX 1024u
+/* 36000 per degree = 0.1 arc-second: finer than any DEM this is for. */
+#define FT_TDB_SAMPLES_PER_DEG_MAX 36000u
+/* Index entries a database may list (40 MB of index on disk). */
+#define FT_TDB_ENTRIES_MAX (1u << 20)
+/* The stored value of a sample no input covers. */
+#define FT_TDB_NODATA_M (-32768.0f)
+
+typedef enum ft_tdb_state { FT_TDB_NO_DATA = 0, FT_TDB_DATA = 1 } ft_tdb_state;
+
+typedef struct ft_tdb_entry {
+    uint32_t state; /* ft_tdb_state */
+    uint32_t byte_size;
+    uint64_t offset;
+    uint32_t crc32;
+    float min_m, max_m, avg_m;
+    uint32_t void_count;
+    uint32_t nodata_count;
+} ft_tdb_entry;
+
+typedef struct ft_tdb_level {
+    uint32_t tx0, ty0, cols, rows; /* tiles the index lists */
+    uint32_t first_entry;          /* index of (tx0, ty0) in the entry array */
+} ft_tdb_level;
+
+typedef struct ft_tdb_header {
+    uint32_t tile_samples;
+    uint32_t level_count;
+    uint32_t samples_per_deg;
+    uint32_t entry_count;
+    uint32_t data_tiles;
+    uint32_t index_crc32;
+    uint32_t void_fill_rule;
+    float min_height_m, max_height_m;
+    uint64_t file_bytes;
+    ft_tdb_level levels[FT_TDB_LEVELS_MAX];
+} ft_tdb_header;
+
+/* An open database: the header, and the index in the caller's array. */
+typedef struct ft_tdb {
+    const ft_reader_at *r;
+    ft_tdb_header hdr;
+    ft_tdb_entry *entries; /* caller storage, hdr.entry_count used */
+} ft_tdb;
+
+/* A tile read into caller storage. */
+typedef struct ft_tdb_tile {
+    float *heights_m;   /* T*T, row 0 = south; FT_TDB_NODATA_M where not covered */
+    uint8_t *void_bits; /* T*T/8 bytes; all zero when the tile filled no sample */
+    ft_tdb_state state; /* FT_TDB_NO_DATA: nothing was read, heights untouched */
+    ft_tdb_entry entry; /* the index entry (zero for no data) */
+} ft_tdb_tile;
+
+/* Number of tiles of level `level` across the lattice (columns, rows). */
+void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint32_t level,
+                          uint32_t *cols, uint32_t *rows);
+
+/* Reads and validates header and index into `entries` (capacity
+ * entries_cap). The reader must stay valid while db is used. */
+ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
+                      uint32_t entries_cap, ft_error *err);
+
+/* The index entry of tile (level, tx, ty), or NULL when the index does not
+ * list it (outside the level's box: no data as well). */
+const ft_tdb_entry *ft_tdb_find(const ft_tdb *db, uint32_t level, uint32_t tx, uint32_t ty);
+
+/* Reads tile (level, tx, ty) into heights_m (heights_cap floats) and
+ * void_bits (bits_cap bytes). FT_OK with out->state FT_TDB_NO_DATA when the
+ * database has no data there; an error (with the file, tile and reason)
+ * when the tile is damaged or the arguments are outside the lattice. */
+ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32_t ty,
+                           float *heights_m, size_t heights_cap, uint8_t *void_bits,
+                           size_t bits_cap, ft_tdb_tile *out, ft_error *err);
+
+/* ---- writing (the importer; the same checks as the reader) -------------- */
+
+/* Bytes of one data tile (T*T floats, plus the void bits when voids > 0). */
+uint32_t ft_tdb_tile_bytes(uint32_t tile_samples, uint32_t void_count);
+
+/* Serialises the header (crc included) into out[FT_TDB_HEADER_BYTES]; fails
+ * on a header the reader would refuse (except the index crc and file size,
+ * which it cannot see). */
+ft_status ft_tdb_encode_header(const ft_tdb_header *h, uint8_t *out, const char *name,
+                               ft_error *err);
+/* Serialises one entry into out[FT_TDB_ENTRY_BYTES]. */
+void ft_tdb_encode_entry(const ft_tdb_entry *e, uint8_t *out);
+
+/* Serialises a tile into out (ft_tdb_tile_bytes bytes) and fills the
+ * entry's byte_size, crc32, counts, avg and own min/max (the caller widens
+ * min/max to the footprint). Checks each height as the reader will. */
+ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
+                             uint32_t tile_samples, uint8_t *out, size_t out_cap,
+                             ft_tdb_entry *e, const char *what, ft_error *err);
+
+/* crc32 helper (zlib) over a block, continuing from crc. */
+uint32_t ft_tdb_crc(uint32_t crc, const void *data, size_t bytes);
+
+#endif

@@ -1,4 +1,4 @@
-# fixterrain bench (issue 6): the plot rasteriser and Pareto front (unit
+# fixterrain bench: the plot rasteriser and Pareto front (unit
 # test), and a smoke run of `fixterrain bench` on a real DEM whose CSV and
 # PNG are checked by test_plot --check-bench (skipped without ../shared/data;
 # the bintree rows carry the oracle's columns, tools/bench_oracle.h).

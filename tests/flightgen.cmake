@@ -1,4 +1,4 @@
-# fixterrain-flightgen (issue 5): flight path -> CANaerospace candump log,
+# fixterrain-flightgen: flight path -> CANaerospace candump log,
 # decoded back through candump.h + canaero.h + pose_state.h.
 ft_add_test(test_flightgen SOURCES test_flightgen.c ${CMAKE_SOURCE_DIR}/tools/flight_path.c
             LIBS m)

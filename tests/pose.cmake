@@ -1,4 +1,4 @@
-# Pose input (issue 5): CANaerospace decoding, candump logs, pose assembly
+# Pose input: CANaerospace decoding, candump logs, pose assembly
 # and attitude prediction. Pure core, no GPU.
 ft_add_test(test_pose_state SOURCES test_pose_state.c)
 ft_add_test(test_canaero SOURCES test_canaero.c)

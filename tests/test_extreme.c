@@ -1,5 +1,5 @@
 /* test_extreme.c - stiff and extreme cases through every method built in
- * and the reference (issue 6): the camera at the horizon, nadir, looking up,
+ * and the reference: the camera at the horizon, nadir, looking up,
  * under the terrain, 1 m above it, at 100 km, at 1e7 m coordinates, FOV 1 and
  * 170 deg, roll 180, pitch +-90, heading wrap, a 1000 m cliff between two
  * samples, a single-sample needle, a flat sea, an all-void tile, a 3x3 grid,

@@ -1,4 +1,4 @@
-# The cockpit display path (issue 7): DRM/KMS + GBM + EGL.
+# The cockpit display path: DRM/KMS + GBM + EGL.
 # kms_pick, kms_cli: on the host (decisions without a device; the errors).
 # vm_kms: in the test VM, one boot per display device (bochs-drm, virtio-gpu):
 # the frame on KMS, captured by qemu's screendump, against the offscreen

@@ -1,4 +1,4 @@
-/* bench.h - `fixterrain bench`: error against run time (issue 6).
+/* bench.h - `fixterrain bench`: error against run time.
  *
  *   fixterrain bench [--scene FILE] [--dem FILE] [--methods LIST] [--path NAME|FILE[,...]]
  *                    [--csv OUT.csv] [--plot OUT.png] [--report OUT.md] [--size WxH]

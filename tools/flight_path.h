@@ -1,5 +1,5 @@
 /* flight_path.h - a flight path (waypoint file or built-in manoeuvre) and
- * the CANaerospace candump log it produces (issue 5, fixterrain-flightgen).
+ * the CANaerospace candump log it produces (fixterrain-flightgen).
  * Used by tools/flightgen.c and by the tests, which decode the log back.
  *
  * ---- path model ------------------------------------------------------------

@@ -1,5 +1,5 @@
 /* flightgen.c - fixterrain-flightgen: a flight path -> a CANaerospace
- * candump -l log at the rates an AHRS and a GPS send (issue 5), for tests,
+ * candump -l log at the rates an AHRS and a GPS send, for tests,
  * benchmarks and canplayer on a vcan bus.
  *
  *   fixterrain-flightgen (--path orbit|climb|dive|turn360|valley | --waypoints FILE)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# pgrid-report.sh - the projective grids' report (issue 4): every grid size
+# pgrid-report.sh - the projective grids' report: every grid size
 # of the issue, uniform and view-dependent rows, ray casting off and on, with
 # brute force in the same run (its frame time is the ratio's base), from
 # `fixterrain bench`: a CSV row, a plot point and a report line per setting.

@@ -1,5 +1,5 @@
 /* degrade.h - keeps frames inside the frame budget when the scene is too
- * heavy, by coarsening the LOD, with hysteresis (issue 6).
+ * heavy, by coarsening the LOD, with hysteresis.
  *
  * Input per frame: the frame's measured time (LOD selection + draw + GPU
  * finish) against the budget (frame.budget_ms). Output: a LOD scale >= 1

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The cockpit display path (issue 7) proven in the test VM, one boot per
+# The cockpit display path proven in the test VM, one boot per
 # display device (bochs-drm, virtio-gpu):
 #   kms-test.sh BUILD_DIR OUT_DIR COMPARE_IMAGE QMP_SCREENDUMP KMS_CRTC [DEVICES]
 # On the host: the scene (320x240, set as the preferred mode of the emulated

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The live pose path on real vcan and GPIO lines (issue 5), in one VM boot:
+# The live pose path on real vcan and GPIO lines, in one VM boot:
 #   live-test.sh BUILD_DIR OUT_DIR COMPARE_LIVE_BINARY HB_SAMPLER_BINARY
 # 1. fixterrain-flightgen writes a 12 s orbit as a CANaerospace candump log
 #    with faults: a NaN pitch at 3 s, every 10th attitude frame dropped, a

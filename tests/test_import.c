@@ -24,6 +24,7 @@
 #include "terrain/dem_hgt.h"
 #include "terrain/pyramid.h"
 #include "terrain/terrain_file.h"
+#include "test_stderr.h"
 #include "test_util.h"
 
 typedef struct stdio_src {
@@ -116,22 +117,10 @@ static int file_exists(const char *path)
 static int run_import_msg(const char *in, const char *out, char *msg, size_t cap)
 {
     const char *log = FT_TEST_OUT_DIR "/import-stderr.txt";
-    fflush(stderr);
-    int saved = dup(2);
-    REQUIRE(saved >= 0);
-    FILE *sink = fopen(log, "wb");
-    REQUIRE(sink != NULL);
-    REQUIRE(dup2(fileno(sink), 2) >= 0);
+    ft_test_stderr cap_err;
+    ft_test_stderr_begin(&cap_err, log);
     int rc = run_import(in, out);
-    fflush(stderr);
-    REQUIRE(dup2(saved, 2) >= 0);
-    close(saved);
-    fclose(sink);
-    FILE *f = fopen(log, "rb");
-    REQUIRE(f != NULL);
-    size_t n = fread(msg, 1, cap - 1u, f);
-    msg[n] = '\0';
-    fclose(f);
+    ft_test_stderr_end(&cap_err, msg, cap);
     fprintf(stdout, "  import %s -> %d: %s", in, rc, msg);
     return rc;
 }

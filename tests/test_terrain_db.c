@@ -27,9 +27,12 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include "ftd_synth.h"
 #include "../tools/import_db.h"
+#include "core/byte_codec.h"
 #include "core/platform_api.h"
 #include "terrain/terrain_db.h"
+#include "test_stderr.h"
 #include "test_util.h"
 
 #define HGT_SIDE 1201
@@ -263,22 +266,10 @@ static int run_import_msg(const char *out, const char *in1, const char *in2, cha
                           size_t cap)
 {
     const char *log = FT_TEST_OUT_DIR "/import-db-stderr.txt";
-    fflush(stderr);
-    int saved = dup(2);
-    REQUIRE(saved >= 0);
-    FILE *sink = fopen(log, "wb");
-    REQUIRE(sink != NULL);
-    REQUIRE(dup2(fileno(sink), 2) >= 0);
+    ft_test_stderr cap_err;
+    ft_test_stderr_begin(&cap_err, log);
     int rc = run_import(out, NULL, in1, in2);
-    fflush(stderr);
-    REQUIRE(dup2(saved, 2) >= 0);
-    close(saved);
-    fclose(sink);
-    FILE *f = fopen(log, "rb");
-    REQUIRE(f != NULL);
-    size_t n = fread(msg, 1, cap - 1u, f);
-    msg[n] = '\0';
-    fclose(f);
+    ft_test_stderr_end(&cap_err, msg, cap);
     printf("  import %s + %s -> %d: %s", in1, in2, rc, msg);
     return rc;
 }
@@ -710,54 +701,18 @@ static void corrupt(void)
 
 
 /* ---- a database made here (no shared data needed) ------------------------------------ */
-/* 16-sample tiles at 1 sample per degree: level 0 lists (10, 5) with data
- * (3 filled samples, 6 uncovered) and (11, 5) without; level 1 lists (5, 2). */
-#define SYN_T 16u
+/* tests/ftd_synth.h: a small database made with the encoders */
+#define SYN_T FT_SYNTH_FTD_T
 static uint8_t g_syn[8192];
 
 static size_t synth_db(void)
 {
-    const uint32_t T = SYN_T, n = T * T;
     ft_tdb_header h;
-    memset(&h, 0, sizeof h);
-    h.tile_samples = T;
-    h.level_count = 2u;
-    h.samples_per_deg = 1u;
-    h.entry_count = 3u;
-    h.void_fill_rule = 1u;
-    h.levels[0] = (ft_tdb_level){10u, 5u, 2u, 1u, 0u};
-    h.levels[1] = (ft_tdb_level){5u, 2u, 1u, 1u, 2u};
-    ft_tdb_entry e[3];
-    memset(e, 0, sizeof e);
-    float hv[SYN_T * SYN_T];
-    uint8_t bits[SYN_T * SYN_T / 8u];
-    size_t pos = FT_TDB_HEADER_BYTES + 3u * FT_TDB_ENTRY_BYTES;
     ft_error err;
-    for (uint32_t t = 0u; t < 3u; t += 2u) {
-        memset(bits, 0, sizeof bits);
-        for (uint32_t i = 0u; i < n; ++i) {
-            hv[i] = (i % T < 3u && i / T < 2u) ? FT_TDB_NODATA_M : (float)(i % 97u) - 20.0f;
-        }
-        if (t == 0u) {
-            bits[5] = 0x0bu; /* samples 40, 41, 43 */
-        }
-        REQUIRE(ft_tdb_encode_tile(hv, bits, T, g_syn + pos, sizeof g_syn - pos, &e[t], "syn",
-                                   &err) == FT_OK);
-        e[t].offset = pos;
-        pos += e[t].byte_size;
-    }
-    uint32_t crc = ft_tdb_crc(0u, NULL, 0u);
-    for (uint32_t t = 0u; t < 3u; ++t) {
-        uint8_t *rec = g_syn + FT_TDB_HEADER_BYTES + t * FT_TDB_ENTRY_BYTES;
-        ft_tdb_encode_entry(&e[t], rec);
-        crc = ft_tdb_crc(crc, rec, FT_TDB_ENTRY_BYTES);
-    }
-    h.index_crc32 = crc;
-    h.data_tiles = 2u;
-    h.min_height_m = -20.0f;
-    h.max_height_m = 76.0f;
-    h.file_bytes = pos;
-    REQUIRE(ft_tdb_encode_header(&h, g_syn, "syn", &err) == FT_OK);
+    const size_t size = ft_synth_ftd(g_syn, sizeof g_syn, 0.0f, &h, &err);
+    if (size == 0u) fprintf(stderr, "synth_db: %s\n", err.text);
+    REQUIRE(size > 0u);
+    CHECK(h.min_height_m == -20.0f && h.max_height_m == 76.0f);
     /* the encoder refuses what the reader refuses */
     ft_tdb_header bad = h;
     bad.levels[0].tx0 = 23u; /* level 0 has 23 tile columns: 0..22 */
@@ -766,10 +721,15 @@ static size_t synth_db(void)
     bad = h;
     bad.tile_samples = 24u;
     CHECK(ft_tdb_encode_header(&bad, scratch, "syn", &err) == FT_ERR_FORMAT);
+    float hv[SYN_T * SYN_T];
+    uint8_t bits[SYN_T * SYN_T / 8u];
+    memset(bits, 0, sizeof bits);
+    ft_synth_ftd_heights(hv);
     hv[7] = NAN;
-    CHECK(ft_tdb_encode_tile(hv, bits, T, scratch, sizeof scratch, &e[0], "syn", &err) ==
+    ft_tdb_entry e;
+    CHECK(ft_tdb_encode_tile(hv, bits, SYN_T, scratch, sizeof scratch, &e, "syn", &err) ==
           FT_ERR_NUMERIC);
-    return pos;
+    return size;
 }
 
 static ft_status syn_open(const uint8_t *b, size_t size, ft_tdb *db, ft_mem_reader *m,

@@ -35,6 +35,7 @@
  *    index; uncovered samples of a data tile hold FT_TDB_NODATA_M.
  * This is an offline tool: it allocates with malloc and frees everything. */
 #define _POSIX_C_SOURCE 200809L
+#include "core/byte_codec.h"
 #include "import_db.h"
 
 #include <cpl_conv.h>
@@ -813,7 +814,7 @@ static void free_job(db_job *J)
 static int write_index_and_header(db_job *J)
 {
     uint8_t rec[FT_TDB_ENTRY_BYTES];
-    uint32_t crc = ft_tdb_crc(0u, NULL, 0u);
+    uint32_t crc = ft_crc32(0u, NULL, 0u);
     if (fseeko(J->out, (off_t)FT_TDB_HEADER_BYTES, SEEK_SET) != 0) {
         return 0;
     }
@@ -822,7 +823,7 @@ static int write_index_and_header(db_job *J)
     for (uint32_t n = 0u; n < J->hdr.entry_count; ++n) {
         const ft_tdb_entry *e = &J->entries[n];
         ft_tdb_encode_entry(e, rec);
-        crc = ft_tdb_crc(crc, rec, sizeof rec);
+        crc = ft_crc32(crc, rec, sizeof rec);
         if (fwrite(rec, 1, sizeof rec, J->out) != sizeof rec) {
             return 0;
         }

@@ -8,8 +8,8 @@
 
 #include <math.h>
 #include <string.h>
-#include <zlib.h>
 
+#include "core/byte_codec.h"
 #include "terrain/terrain.h"
 #include "terrain/void_fill.h"
 
@@ -36,73 +36,12 @@ enum {
 
 /* Entries parsed per read while opening (a 2.5 KB stack block). */
 #define FT_TDB_INDEX_CHUNK 64u
-/* Largest block given to one zlib crc32 call (it takes a uInt). */
-#define FT_TDB_CRC_CHUNK ((size_t)1u << 24)
-
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
-
-static void put_u64(uint8_t *p, uint64_t v)
-{
-    put_u32(p, (uint32_t)v);
-    put_u32(p + 4, (uint32_t)(v >> 32));
-}
-
-static void put_f32(uint8_t *p, float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    put_u32(p, u);
-}
-
-static uint32_t get_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-           ((uint32_t)p[3] << 24);
-}
-
-static uint64_t get_u64(const uint8_t *p)
-{
-    return (uint64_t)get_u32(p) | ((uint64_t)get_u32(p + 4) << 32);
-}
-
-static float get_f32(const uint8_t *p)
-{
-    uint32_t u = get_u32(p);
-    float f;
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-uint32_t ft_tdb_crc(uint32_t crc, const void *data, size_t bytes)
-{
-    const Bytef *p = (const Bytef *)data;
-    uLong c = crc;
-    for (size_t guard = 0u; bytes > 0u && guard < ((size_t)-1 / 2u); ++guard) {
-        size_t n = bytes < FT_TDB_CRC_CHUNK ? bytes : FT_TDB_CRC_CHUNK;
-        c = crc32(c, p, (uInt)n);
-        p += n;
-        bytes -= n;
-    }
-    return (uint32_t)c;
-}
-
-static uint32_t crc_start(void)
-{
-    return (uint32_t)crc32(0L, Z_NULL, 0);
-}
-
 static uint32_t header_crc(const uint8_t *hdr)
 {
     uint8_t copy[FT_TDB_HEADER_BYTES];
     memcpy(copy, hdr, sizeof copy);
-    put_u32(copy + OFF_HEADER_CRC, 0u);
-    return ft_tdb_crc(crc_start(), copy, sizeof copy);
+    ft_le_put_u32(copy + OFF_HEADER_CRC, 0u);
+    return ft_crc32(0u, copy, sizeof copy);
 }
 
 void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint32_t level,
@@ -205,53 +144,53 @@ ft_status ft_tdb_encode_header(const ft_tdb_header *h, uint8_t *out, const char 
     }
     memset(out, 0, FT_TDB_HEADER_BYTES);
     memcpy(out + OFF_MAGIC, FT_TDB_MAGIC, 8u);
-    put_u32(out + OFF_VERSION, FT_TDB_VERSION);
-    put_u32(out + OFF_HEADER_BYTES, FT_TDB_HEADER_BYTES);
-    put_u32(out + OFF_TILE, h->tile_samples);
-    put_u32(out + OFF_LEVELS, h->level_count);
-    put_u32(out + OFF_PER_DEG, h->samples_per_deg);
-    put_u32(out + OFF_ENTRIES, h->entry_count);
-    put_u32(out + OFF_DATA_TILES, h->data_tiles);
-    put_u32(out + OFF_INDEX_CRC, h->index_crc32);
-    put_u32(out + OFF_FILL_RULE, h->void_fill_rule);
-    put_f32(out + OFF_MIN_H, h->data_tiles > 0u ? h->min_height_m : 0.0f);
-    put_f32(out + OFF_MAX_H, h->data_tiles > 0u ? h->max_height_m : 0.0f);
-    put_u64(out + OFF_FILE_BYTES, h->file_bytes);
+    ft_le_put_u32(out + OFF_VERSION, FT_TDB_VERSION);
+    ft_le_put_u32(out + OFF_HEADER_BYTES, FT_TDB_HEADER_BYTES);
+    ft_le_put_u32(out + OFF_TILE, h->tile_samples);
+    ft_le_put_u32(out + OFF_LEVELS, h->level_count);
+    ft_le_put_u32(out + OFF_PER_DEG, h->samples_per_deg);
+    ft_le_put_u32(out + OFF_ENTRIES, h->entry_count);
+    ft_le_put_u32(out + OFF_DATA_TILES, h->data_tiles);
+    ft_le_put_u32(out + OFF_INDEX_CRC, h->index_crc32);
+    ft_le_put_u32(out + OFF_FILL_RULE, h->void_fill_rule);
+    ft_le_put_f32(out + OFF_MIN_H, h->data_tiles > 0u ? h->min_height_m : 0.0f);
+    ft_le_put_f32(out + OFF_MAX_H, h->data_tiles > 0u ? h->max_height_m : 0.0f);
+    ft_le_put_u64(out + OFF_FILE_BYTES, h->file_bytes);
     for (uint32_t k = 0u; k < h->level_count; ++k) {
         uint8_t *p = out + OFF_LEVEL_TABLE + k * LEVEL_RECORD_BYTES;
-        put_u32(p, h->levels[k].tx0);
-        put_u32(p + 4, h->levels[k].ty0);
-        put_u32(p + 8, h->levels[k].cols);
-        put_u32(p + 12, h->levels[k].rows);
+        ft_le_put_u32(p, h->levels[k].tx0);
+        ft_le_put_u32(p + 4, h->levels[k].ty0);
+        ft_le_put_u32(p + 8, h->levels[k].cols);
+        ft_le_put_u32(p + 12, h->levels[k].rows);
     }
-    put_u32(out + OFF_HEADER_CRC, header_crc(out));
+    ft_le_put_u32(out + OFF_HEADER_CRC, header_crc(out));
     return FT_OK;
 }
 
 void ft_tdb_encode_entry(const ft_tdb_entry *e, uint8_t *out)
 {
-    put_u32(out, e->state);
-    put_u32(out + 4, e->byte_size);
-    put_u64(out + 8, e->offset);
-    put_u32(out + 16, e->crc32);
-    put_f32(out + 20, e->min_m);
-    put_f32(out + 24, e->max_m);
-    put_f32(out + 28, e->avg_m);
-    put_u32(out + 32, e->void_count);
-    put_u32(out + 36, e->nodata_count);
+    ft_le_put_u32(out, e->state);
+    ft_le_put_u32(out + 4, e->byte_size);
+    ft_le_put_u64(out + 8, e->offset);
+    ft_le_put_u32(out + 16, e->crc32);
+    ft_le_put_f32(out + 20, e->min_m);
+    ft_le_put_f32(out + 24, e->max_m);
+    ft_le_put_f32(out + 28, e->avg_m);
+    ft_le_put_u32(out + 32, e->void_count);
+    ft_le_put_u32(out + 36, e->nodata_count);
 }
 
 static void decode_entry(const uint8_t *p, ft_tdb_entry *e)
 {
-    e->state = get_u32(p);
-    e->byte_size = get_u32(p + 4);
-    e->offset = get_u64(p + 8);
-    e->crc32 = get_u32(p + 16);
-    e->min_m = get_f32(p + 20);
-    e->max_m = get_f32(p + 24);
-    e->avg_m = get_f32(p + 28);
-    e->void_count = get_u32(p + 32);
-    e->nodata_count = get_u32(p + 36);
+    e->state = ft_le_get_u32(p);
+    e->byte_size = ft_le_get_u32(p + 4);
+    e->offset = ft_le_get_u64(p + 8);
+    e->crc32 = ft_le_get_u32(p + 16);
+    e->min_m = ft_le_get_f32(p + 20);
+    e->max_m = ft_le_get_f32(p + 24);
+    e->avg_m = ft_le_get_f32(p + 28);
+    e->void_count = ft_le_get_u32(p + 32);
+    e->nodata_count = ft_le_get_u32(p + 36);
 }
 
 /* Level and tile of entry number n (for messages). */
@@ -354,33 +293,33 @@ ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
     if (st != FT_OK) {
         return st;
     }
-    const uint32_t version = get_u32(hb + OFF_VERSION);
+    const uint32_t version = ft_le_get_u32(hb + OFF_VERSION);
     if (version != FT_TDB_VERSION) {
         return ft_fail(err, FT_ERR_VERSION, "%s: database version %u, this build reads %u", name,
                        version, FT_TDB_VERSION);
     }
-    if (get_u32(hb + OFF_HEADER_BYTES) != FT_TDB_HEADER_BYTES) {
+    if (ft_le_get_u32(hb + OFF_HEADER_BYTES) != FT_TDB_HEADER_BYTES) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: header_bytes is %u, expected %u", name,
-                       get_u32(hb + OFF_HEADER_BYTES), FT_TDB_HEADER_BYTES);
+                       ft_le_get_u32(hb + OFF_HEADER_BYTES), FT_TDB_HEADER_BYTES);
     }
-    const uint32_t crc_stored = get_u32(hb + OFF_HEADER_CRC), crc_calc = header_crc(hb);
+    const uint32_t crc_stored = ft_le_get_u32(hb + OFF_HEADER_CRC), crc_calc = header_crc(hb);
     if (crc_stored != crc_calc) {
         return ft_fail(err, FT_ERR_CHECKSUM,
                        "%s: header crc32 is 0x%08x, the header bytes give 0x%08x", name,
                        crc_stored, crc_calc);
     }
     ft_tdb_header *h = &db->hdr;
-    h->tile_samples = get_u32(hb + OFF_TILE);
-    h->level_count = get_u32(hb + OFF_LEVELS);
-    h->samples_per_deg = get_u32(hb + OFF_PER_DEG);
-    h->entry_count = get_u32(hb + OFF_ENTRIES);
-    h->data_tiles = get_u32(hb + OFF_DATA_TILES);
-    h->index_crc32 = get_u32(hb + OFF_INDEX_CRC);
-    h->void_fill_rule = get_u32(hb + OFF_FILL_RULE);
-    h->min_height_m = get_f32(hb + OFF_MIN_H);
-    h->max_height_m = get_f32(hb + OFF_MAX_H);
-    h->file_bytes = get_u64(hb + OFF_FILE_BYTES);
-    if (get_u32(hb + OFF_RESERVED0) != 0u) {
+    h->tile_samples = ft_le_get_u32(hb + OFF_TILE);
+    h->level_count = ft_le_get_u32(hb + OFF_LEVELS);
+    h->samples_per_deg = ft_le_get_u32(hb + OFF_PER_DEG);
+    h->entry_count = ft_le_get_u32(hb + OFF_ENTRIES);
+    h->data_tiles = ft_le_get_u32(hb + OFF_DATA_TILES);
+    h->index_crc32 = ft_le_get_u32(hb + OFF_INDEX_CRC);
+    h->void_fill_rule = ft_le_get_u32(hb + OFF_FILL_RULE);
+    h->min_height_m = ft_le_get_f32(hb + OFF_MIN_H);
+    h->max_height_m = ft_le_get_f32(hb + OFF_MAX_H);
+    h->file_bytes = ft_le_get_u64(hb + OFF_FILE_BYTES);
+    if (ft_le_get_u32(hb + OFF_RESERVED0) != 0u) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: reserved header bytes %u..%u are not 0", name,
                        (unsigned)OFF_RESERVED0, (unsigned)OFF_RESERVED0 + 3u);
     }
@@ -408,10 +347,10 @@ ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
             continue;
         }
         ft_tdb_level *lv = &h->levels[k];
-        lv->tx0 = get_u32(p);
-        lv->ty0 = get_u32(p + 4);
-        lv->cols = get_u32(p + 8);
-        lv->rows = get_u32(p + 12);
+        lv->tx0 = ft_le_get_u32(p);
+        lv->ty0 = ft_le_get_u32(p + 4);
+        lv->cols = ft_le_get_u32(p + 8);
+        lv->rows = ft_le_get_u32(p + 12);
         lv->first_entry = first;
         /* bounded: cols, rows checked against the lattice by check_header */
         uint64_t next = (uint64_t)first + (uint64_t)lv->cols * lv->rows;
@@ -444,7 +383,7 @@ ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
     /* The index: crc over its bytes, each entry checked, and the tiles packed
      * in index order from data_start to the end: no overlap, gap or overrun. */
     uint8_t chunk[FT_TDB_INDEX_CHUNK * FT_TDB_ENTRY_BYTES];
-    uint32_t crc = crc_start();
+    uint32_t crc = 0u;
     uint64_t next_offset = data_start;
     uint32_t prev_data = UINT32_MAX;
     uint32_t data_tiles = 0u;
@@ -456,7 +395,7 @@ ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
         if (st != FT_OK) {
             return st;
         }
-        crc = ft_tdb_crc(crc, chunk, (size_t)cnt * FT_TDB_ENTRY_BYTES);
+        crc = ft_crc32(crc, chunk, (size_t)cnt * FT_TDB_ENTRY_BYTES);
         for (uint32_t i = 0u; i < cnt; ++i) {
             decode_entry(chunk + (size_t)i * FT_TDB_ENTRY_BYTES, &entries[n0 + i]);
         }
@@ -548,7 +487,7 @@ static float le_float(const float *p)
 {
     uint8_t b[4];
     memcpy(b, p, 4u);
-    return get_f32(b);
+    return ft_le_get_f32(b);
 }
 
 /* Own statistics of a tile's samples, the same arithmetic on both sides. */
@@ -628,14 +567,14 @@ ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
                        out_cap, bytes);
     }
     for (uint32_t i = 0u; i < n; ++i) {
-        put_f32(out + (size_t)i * 4u, heights_m[i]);
+        ft_le_put_f32(out + (size_t)i * 4u, heights_m[i]);
     }
     if (s.voids > 0u) {
         memcpy(out + (size_t)n * 4u, void_bits, n / 8u);
     }
     e->state = FT_TDB_DATA;
     e->byte_size = bytes;
-    e->crc32 = ft_tdb_crc(crc_start(), out, bytes);
+    e->crc32 = ft_crc32(0u, out, bytes);
     e->min_m = s.min_m;
     e->max_m = s.max_m;
     e->avg_m = stats_avg(&s, n);
@@ -682,13 +621,13 @@ ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32
     if (st != FT_OK) {
         return st;
     }
-    uint32_t crc = ft_tdb_crc(crc_start(), heights_m, (size_t)n * 4u);
+    uint32_t crc = ft_crc32(0u, heights_m, (size_t)n * 4u);
     if (e->void_count > 0u) {
         st = ft_read_at_exact(db->r, e->offset + (uint64_t)n * 4u, void_bits, n / 8u, err);
         if (st != FT_OK) {
             return st;
         }
-        crc = ft_tdb_crc(crc, void_bits, n / 8u);
+        crc = ft_crc32(crc, void_bits, n / 8u);
     } else {
         memset(void_bits, 0, n / 8u);
     }

@@ -175,7 +175,4 @@ ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
                              uint32_t tile_samples, uint8_t *out, size_t out_cap,
                              ft_tdb_entry *e, const char *what, ft_error *err);
 
-/* crc32 helper (zlib) over a block, continuing from crc. */
-uint32_t ft_tdb_crc(uint32_t crc, const void *data, size_t bytes);
-
 #endif

@@ -8,8 +8,8 @@
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
-#include <zlib.h>
 
+#include "core/byte_codec.h"
 #include "terrain/pyramid.h"
 #include "terrain/void_fill.h"
 
@@ -43,12 +43,11 @@ enum {
     OFF_RESERVED = 192
 };
 
-/* Largest block handed to one read/write/crc32 call: zlib takes a uInt and
- * a short block keeps the per-call cost bounded. */
+/* Largest block handed to one read or write call: a short block keeps the
+ * per-call cost bounded. */
 #define FT_TFILE_CHUNK_BYTES ((size_t)1u << 24)
 /* Floats converted per step when the host is big-endian. */
 #define FT_TFILE_SWAP_FLOATS 1024u
-
 
 static int host_is_little_endian(void)
 {
@@ -58,81 +57,13 @@ static int host_is_little_endian(void)
     return b == 1u;
 }
 
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
-
-static void put_u64(uint8_t *p, uint64_t v)
-{
-    put_u32(p, (uint32_t)v);
-    put_u32(p + 4, (uint32_t)(v >> 32));
-}
-
-static void put_f32(uint8_t *p, float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    put_u32(p, u);
-}
-
-static void put_f64(uint8_t *p, double d)
-{
-    uint64_t u;
-    memcpy(&u, &d, sizeof u);
-    put_u64(p, u);
-}
-
-static uint32_t get_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-           ((uint32_t)p[3] << 24);
-}
-
-static uint64_t get_u64(const uint8_t *p)
-{
-    return (uint64_t)get_u32(p) | ((uint64_t)get_u32(p + 4) << 32);
-}
-
-static float get_f32(const uint8_t *p)
-{
-    uint32_t u = get_u32(p);
-    float f;
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-static double get_f64(const uint8_t *p)
-{
-    uint64_t u = get_u64(p);
-    double d;
-    memcpy(&d, &u, sizeof d);
-    return d;
-}
-
-static uint32_t crc_bytes(uint32_t crc, const void *data, size_t bytes)
-{
-    const Bytef *p = (const Bytef *)data;
-    uLong c = crc;
-    for (size_t guard = 0u; bytes > 0u && guard < ((size_t)-1 / 2u); ++guard) {
-        size_t n = bytes < FT_TFILE_CHUNK_BYTES ? bytes : FT_TFILE_CHUNK_BYTES;
-        c = crc32(c, p, (uInt)n);
-        p += n;
-        bytes -= n;
-    }
-    return (uint32_t)c;
-}
-
 /* crc32 of the header with its own crc field taken as zero. */
 static uint32_t header_crc(const uint8_t hdr[FT_TFILE_HEADER_BYTES])
 {
     uint8_t copy[FT_TFILE_HEADER_BYTES];
     memcpy(copy, hdr, sizeof copy);
-    put_u32(copy + OFF_HEADER_CRC, 0u);
-    return crc_bytes((uint32_t)crc32(0L, Z_NULL, 0), copy, sizeof copy);
+    ft_le_put_u32(copy + OFF_HEADER_CRC, 0u);
+    return ft_crc32(0u, copy, sizeof copy);
 }
 
 /* The arrays of the payload in file order (heights, avg 1.., min/max per
@@ -215,7 +146,7 @@ static ft_status emit_bytes(const uint8_t *src, size_t left, const ft_writer *w,
     for (size_t guard = 0u; left > 0u && guard < ((size_t)-1 / 2u); ++guard) {
         size_t n = left < FT_TFILE_CHUNK_BYTES ? left : FT_TFILE_CHUNK_BYTES;
         if (crc != NULL) {
-            *crc = crc_bytes(*crc, src, n);
+            *crc = ft_crc32(*crc, src, n);
         }
         if (w != NULL) {
             ft_status st = w->write(w->ctx, src, n);
@@ -280,42 +211,42 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
         return ft_fail(err, FT_ERR_TRUNCATED, "%s: truncated inside the header (%zu of %u bytes)",
                        name, got, FT_TFILE_HEADER_BYTES);
     }
-    uint32_t version = get_u32(hdr + OFF_VERSION);
+    uint32_t version = ft_le_get_u32(hdr + OFF_VERSION);
     if (version != FT_TFILE_VERSION && version != FT_TFILE_VERSION_NO_VOID_BITS) {
         return ft_fail(err, FT_ERR_VERSION, "%s: file version %u, this build reads versions %u and %u",
                        name, version, FT_TFILE_VERSION_NO_VOID_BITS, FT_TFILE_VERSION);
     }
-    uint32_t header_bytes = get_u32(hdr + OFF_HEADER_BYTES);
+    uint32_t header_bytes = ft_le_get_u32(hdr + OFF_HEADER_BYTES);
     if (header_bytes != FT_TFILE_HEADER_BYTES) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: header_bytes is %u, expected %u", name,
                        header_bytes, FT_TFILE_HEADER_BYTES);
     }
-    uint32_t crc_stored = get_u32(hdr + OFF_HEADER_CRC);
+    uint32_t crc_stored = ft_le_get_u32(hdr + OFF_HEADER_CRC);
     uint32_t crc_calc = header_crc(hdr);
     if (crc_stored != crc_calc) {
         return ft_fail(err, FT_ERR_CHECKSUM,
                        "%s: header crc32 is 0x%08x, the header bytes give 0x%08x", name,
                        crc_stored, crc_calc);
     }
-    uint32_t w = get_u32(hdr + OFF_WIDTH), h = get_u32(hdr + OFF_HEIGHT);
+    uint32_t w = ft_le_get_u32(hdr + OFF_WIDTH), h = ft_le_get_u32(hdr + OFF_HEIGHT);
     if (!dims_ok(w, h)) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: grid %ux%u is outside %u..%u samples per side",
                        name, w, h, FT_GRID_SIDE_MIN, FT_GRID_SIDE_MAX);
     }
-    uint32_t unit = get_u32(hdr + OFF_UNIT);
+    uint32_t unit = ft_le_get_u32(hdr + OFF_UNIT);
     if (unit != (uint32_t)FT_UNIT_METRE && unit != (uint32_t)FT_UNIT_DEGREE) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: spacing_unit %u is neither 0 (m) nor 1 (deg)",
                        name, unit);
     }
-    uint32_t avg_levels = get_u32(hdr + OFF_AVG_LEVELS);
-    uint32_t mm_levels = get_u32(hdr + OFF_MINMAX_LEVELS);
+    uint32_t avg_levels = ft_le_get_u32(hdr + OFF_AVG_LEVELS);
+    uint32_t mm_levels = ft_le_get_u32(hdr + OFF_MINMAX_LEVELS);
     uint32_t avg_want = ft_pyramid_avg_levels(w, h), mm_want = ft_pyramid_minmax_levels(w, h);
     if (avg_levels != avg_want || mm_levels != mm_want) {
         return ft_fail(err, FT_ERR_FORMAT,
                        "%s: level counts avg %u / minmax %u, a %ux%u grid has %u / %u", name,
                        avg_levels, mm_levels, w, h, avg_want, mm_want);
     }
-    uint32_t void_count = get_u32(hdr + OFF_VOID_COUNT);
+    uint32_t void_count = ft_le_get_u32(hdr + OFF_VOID_COUNT);
     if ((uint64_t)void_count > (uint64_t)w * h) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: void_count %u exceeds the %llu samples", name,
                        void_count, (unsigned long long)((uint64_t)w * h));
@@ -328,9 +259,9 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
                        "import the DEM again (version 2 records them)",
                        name, void_count);
     }
-    double sx = get_f64(hdr + OFF_SPACING_X), sy = get_f64(hdr + OFF_SPACING_Y);
-    double ox = get_f64(hdr + OFF_ORIGIN_X), oy = get_f64(hdr + OFF_ORIGIN_Y);
-    double alat = get_f64(hdr + OFF_ANCHOR_LAT), alon = get_f64(hdr + OFF_ANCHOR_LON);
+    double sx = ft_le_get_f64(hdr + OFF_SPACING_X), sy = ft_le_get_f64(hdr + OFF_SPACING_Y);
+    double ox = ft_le_get_f64(hdr + OFF_ORIGIN_X), oy = ft_le_get_f64(hdr + OFF_ORIGIN_Y);
+    double alat = ft_le_get_f64(hdr + OFF_ANCHOR_LAT), alon = ft_le_get_f64(hdr + OFF_ANCHOR_LON);
     if (!isfinite(sx) || !isfinite(sy) || !(sx > 0.0) || !(sy > 0.0)) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: spacing %g x %g is not positive and finite", name,
                        sx, sy);
@@ -340,26 +271,26 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
                        "%s: origin (%g, %g) or anchor (%g, %g) is not finite", name, ox, oy, alat,
                        alon);
     }
-    float vscale = get_f32(hdr + OFF_VSCALE), voffset = get_f32(hdr + OFF_VOFFSET);
+    float vscale = ft_le_get_f32(hdr + OFF_VSCALE), voffset = ft_le_get_f32(hdr + OFF_VOFFSET);
     if (!isfinite(vscale) || !(vscale > 0.0f) || !isfinite(voffset)) {
         return ft_fail(err, FT_ERR_FORMAT,
                        "%s: vertical scale %g must be positive and finite, offset %g finite", name,
                        (double)vscale, (double)voffset);
     }
-    uint32_t rule = get_u32(hdr + OFF_FILL_RULE);
+    uint32_t rule = ft_le_get_u32(hdr + OFF_FILL_RULE);
     if (rule > FT_VOID_FILL_RULE_IDW8 || (rule == 0u && void_count != 0u)) {
         return ft_fail(err, FT_ERR_FORMAT,
                        "%s: void_fill_rule %u unknown (or 0 with %u voids filled)", name, rule,
                        void_count);
     }
-    float hmin = get_f32(hdr + OFF_MIN_H), hmax = get_f32(hdr + OFF_MAX_H);
+    float hmin = ft_le_get_f32(hdr + OFF_MIN_H), hmax = ft_le_get_f32(hdr + OFF_MAX_H);
     if (!ft_terrain_height_ok((double)hmin) || !ft_terrain_height_ok((double)hmax) ||
         hmin > hmax) {
         return ft_fail(err, FT_ERR_NUMERIC,
                        "%s: header height range %g..%g m is not ordered within %g..%g m", name,
                        (double)hmin, (double)hmax, FT_HEIGHT_MIN_M, FT_HEIGHT_MAX_M);
     }
-    uint64_t payload = get_u64(hdr + OFF_PAYLOAD_BYTES);
+    uint64_t payload = ft_le_get_u64(hdr + OFF_PAYLOAD_BYTES);
     uint64_t payload_want = payload_bytes_for(w, h, void_count);
     if (payload != payload_want) {
         return ft_fail(err, FT_ERR_FORMAT,
@@ -410,7 +341,7 @@ ft_status ft_tfile_probe(const ft_reader *r, ft_terrain *t, ft_tfile_header *hdr
     if (st != FT_OK) {
         return prefix_name(err, st, name);
     }
-    hdr_out->payload_crc32 = get_u32(hdr + OFF_PAYLOAD_CRC);
+    hdr_out->payload_crc32 = ft_le_get_u32(hdr + OFF_PAYLOAD_CRC);
     hdr_out->vertical_scale = vscale;
     hdr_out->vertical_offset = voffset;
     hdr_out->header_min_m = hmin;
@@ -451,7 +382,7 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
         return ft_fail(err, FT_ERR_ARG, "%s: %u void-filled samples but no void_bits storage",
                        name, t->void_count);
     }
-    uint32_t crc = (uint32_t)crc32(0L, Z_NULL, 0);
+    uint32_t crc = 0u;
     for (uint32_t a = 0u; a <= n_arr; ++a) {
         if (a == n_arr && pend.void_bits_bytes == 0u) {
             break;
@@ -465,7 +396,7 @@ ft_status ft_tfile_load_payload(const ft_reader *r, ft_terrain *t, ft_tfile_head
             if (st != FT_OK) {
                 return st;
             }
-            crc = crc_bytes(crc, dst, n);
+            crc = ft_crc32(crc, dst, n);
             dst += n;
             left -= n;
         }
@@ -565,7 +496,7 @@ static ft_status emit_array(const tfile_array *a, const ft_writer *w, uint32_t *
         memcpy(buf, a->data + k, n * sizeof(float));
         swap_floats(buf, n);
         if (crc != NULL) {
-            *crc = crc_bytes(*crc, buf, n * sizeof(float));
+            *crc = ft_crc32(*crc, buf, n * sizeof(float));
         }
         if (w != NULL) {
             ft_status st = w->write(w->ctx, buf, n * sizeof(float));
@@ -641,7 +572,7 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
         }
     }
     /* First pass: the payload crc, so the header can go out first. */
-    uint32_t crc = (uint32_t)crc32(0L, Z_NULL, 0);
+    uint32_t crc = 0u;
     for (uint32_t a = 0u; a < n_arr; ++a) {
         st = emit_array(&arr[a], NULL, &crc, err);
         if (st != FT_OK) {
@@ -655,30 +586,30 @@ ft_status ft_tfile_write(const ft_terrain *t, float nodata_value, const ft_write
     uint8_t hdr[FT_TFILE_HEADER_BYTES];
     memset(hdr, 0, sizeof hdr);
     memcpy(hdr + OFF_MAGIC, FT_TFILE_MAGIC, 8u);
-    put_u32(hdr + OFF_VERSION, FT_TFILE_VERSION);
-    put_u32(hdr + OFF_HEADER_BYTES, FT_TFILE_HEADER_BYTES);
-    put_u32(hdr + OFF_WIDTH, t->width);
-    put_u32(hdr + OFF_HEIGHT, t->height);
-    put_u32(hdr + OFF_UNIT, (uint32_t)t->unit);
-    put_u32(hdr + OFF_AVG_LEVELS, t->pyr.avg_levels);
-    put_u32(hdr + OFF_MINMAX_LEVELS, t->pyr.minmax_levels);
-    put_u32(hdr + OFF_VOID_COUNT, t->void_count);
-    put_f64(hdr + OFF_SPACING_X, t->spacing_x);
-    put_f64(hdr + OFF_SPACING_Y, t->spacing_y);
-    put_f64(hdr + OFF_ORIGIN_X, t->origin_x);
-    put_f64(hdr + OFF_ORIGIN_Y, t->origin_y);
-    put_f64(hdr + OFF_ANCHOR_LAT, t->anchor_lat_deg);
-    put_f64(hdr + OFF_ANCHOR_LON, t->anchor_lon_deg);
-    put_f32(hdr + OFF_VSCALE, 1.0f);
-    put_f32(hdr + OFF_VOFFSET, 0.0f);
-    put_f32(hdr + OFF_NODATA, nodata_value);
-    put_u32(hdr + OFF_FILL_RULE, FT_VOID_FILL_RULE_IDW8);
-    put_f32(hdr + OFF_MIN_H, lo);
-    put_f32(hdr + OFF_MAX_H, hi);
-    put_u64(hdr + OFF_PAYLOAD_BYTES, payload_bytes_for(t->width, t->height, t->void_count));
-    put_u32(hdr + OFF_PAYLOAD_CRC, crc);
+    ft_le_put_u32(hdr + OFF_VERSION, FT_TFILE_VERSION);
+    ft_le_put_u32(hdr + OFF_HEADER_BYTES, FT_TFILE_HEADER_BYTES);
+    ft_le_put_u32(hdr + OFF_WIDTH, t->width);
+    ft_le_put_u32(hdr + OFF_HEIGHT, t->height);
+    ft_le_put_u32(hdr + OFF_UNIT, (uint32_t)t->unit);
+    ft_le_put_u32(hdr + OFF_AVG_LEVELS, t->pyr.avg_levels);
+    ft_le_put_u32(hdr + OFF_MINMAX_LEVELS, t->pyr.minmax_levels);
+    ft_le_put_u32(hdr + OFF_VOID_COUNT, t->void_count);
+    ft_le_put_f64(hdr + OFF_SPACING_X, t->spacing_x);
+    ft_le_put_f64(hdr + OFF_SPACING_Y, t->spacing_y);
+    ft_le_put_f64(hdr + OFF_ORIGIN_X, t->origin_x);
+    ft_le_put_f64(hdr + OFF_ORIGIN_Y, t->origin_y);
+    ft_le_put_f64(hdr + OFF_ANCHOR_LAT, t->anchor_lat_deg);
+    ft_le_put_f64(hdr + OFF_ANCHOR_LON, t->anchor_lon_deg);
+    ft_le_put_f32(hdr + OFF_VSCALE, 1.0f);
+    ft_le_put_f32(hdr + OFF_VOFFSET, 0.0f);
+    ft_le_put_f32(hdr + OFF_NODATA, nodata_value);
+    ft_le_put_u32(hdr + OFF_FILL_RULE, FT_VOID_FILL_RULE_IDW8);
+    ft_le_put_f32(hdr + OFF_MIN_H, lo);
+    ft_le_put_f32(hdr + OFF_MAX_H, hi);
+    ft_le_put_u64(hdr + OFF_PAYLOAD_BYTES, payload_bytes_for(t->width, t->height, t->void_count));
+    ft_le_put_u32(hdr + OFF_PAYLOAD_CRC, crc);
     memcpy(hdr + OFF_CRS, t->crs, crs_len);
-    put_u32(hdr + OFF_HEADER_CRC, header_crc(hdr));
+    ft_le_put_u32(hdr + OFF_HEADER_CRC, header_crc(hdr));
     st = w->write(w->ctx, hdr, sizeof hdr);
     if (st != FT_OK) {
         return ft_fail(err, st, "%s: writing the %u-byte header failed", name,

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../ftd_synth.h"
 #include "core/io.h"
 #include "input/canaero.h"
 #include "terrain/pyramid.h"
@@ -107,63 +108,18 @@ static void make_ftt(void)
 }
 
 /* ---- .ftd --------------------------------------------------------------- */
-/* A 16-sample-tile database at 1 sample per degree: level 0 lists tiles
- * (10, 5) with data (3 filled samples, a no-data corner) and (11, 5) without;
- * level 1 lists tile (5, 2) with data. */
-#define SEED_FTD_T 16u
+/* tests/ftd_synth.h, with level 1's max raised 5 m (a footprint wider than
+ * the tile's own samples) */
 static size_t ftd_bytes(uint8_t *out)
 {
-    const uint32_t T = SEED_FTD_T, n = T * T;
     ft_tdb_header h;
-    memset(&h, 0, sizeof h);
-    h.tile_samples = T;
-    h.level_count = 2u;
-    h.samples_per_deg = 1u;
-    h.entry_count = 3u;
-    h.void_fill_rule = 1u;
-    h.levels[0] = (ft_tdb_level){10u, 5u, 2u, 1u, 0u};
-    h.levels[1] = (ft_tdb_level){5u, 2u, 1u, 1u, 2u};
-    ft_tdb_entry e[3];
-    memset(e, 0, sizeof e);
-    float hv[SEED_FTD_T * SEED_FTD_T];
-    uint8_t bits[SEED_FTD_T * SEED_FTD_T / 8u];
-    memset(bits, 0, sizeof bits);
-    size_t pos = FT_TDB_HEADER_BYTES + 3u * FT_TDB_ENTRY_BYTES;
     ft_error err;
-    for (uint32_t t = 0u; t < 3u; t += 2u) {
-        for (uint32_t i = 0u; i < n; ++i) {
-            hv[i] = (i % T < 3u && i / T < 2u) ? FT_TDB_NODATA_M : (float)(i % 97u) - 20.0f;
-        }
-        if (t == 0u) {
-            bits[5] = 0x0bu; /* samples 40, 41, 43 were filled */
-        } else {
-            memset(bits, 0, sizeof bits);
-        }
-        if (ft_tdb_encode_tile(hv, bits, T, out + pos, SEED_MAX_BYTES - pos, &e[t], "seed",
-                               &err) != FT_OK) {
-            fprintf(stderr, "make_seeds: %s\n", err.text);
-            exit(1);
-        }
-        e[t].offset = pos;
-        pos += e[t].byte_size;
-    }
-    e[2].max_m += 5.0f; /* a footprint wider than the tile's own samples */
-    uint32_t crc = ft_tdb_crc(0u, NULL, 0u);
-    for (uint32_t t = 0u; t < 3u; ++t) {
-        uint8_t *rec = out + FT_TDB_HEADER_BYTES + t * FT_TDB_ENTRY_BYTES;
-        ft_tdb_encode_entry(&e[t], rec);
-        crc = ft_tdb_crc(crc, rec, FT_TDB_ENTRY_BYTES);
-    }
-    h.index_crc32 = crc;
-    h.data_tiles = 2u;
-    h.min_height_m = -20.0f;
-    h.max_height_m = 81.0f;
-    h.file_bytes = pos;
-    if (ft_tdb_encode_header(&h, out, "seed", &err) != FT_OK) {
+    const size_t n = ft_synth_ftd(out, SEED_MAX_BYTES, 5.0f, &h, &err);
+    if (n == 0u) {
         fprintf(stderr, "make_seeds: %s\n", err.text);
         exit(1);
     }
-    return pos;
+    return n;
 }
 
 static void make_ftd(void)

@@ -51,10 +51,10 @@ endfunction()
 
 # ---- the table ---------------------------------------------------------------
 ft_build_option(EGL ON "EGL backends (egl-gles3, egl-gles2)")
-# X11 is only compiled inside the EGL backend (platform/gpu_egl.c), so without
-# EGL it has no effect; it has no NEEDS, so FT_WITH_X11 follows the option
-# alone and a build without EGL says nothing about it.
-ft_build_option(X11 ON "EGL window-surface path on X11 (display.kind = x11)")
+# X11 is only compiled inside the EGL backend (platform/gpu_egl.c): a build
+# without EGL leaves it out and says so, like KMS.
+ft_build_option(X11 ON "EGL window-surface path on X11 (scene.display = x11; needs EGL)"
+                NEEDS EGL LEFT_OUT "the X11 window path")
 ft_build_option(KMS ON "full-screen DRM/KMS display, EGL on GBM (scene.display = kms; needs EGL)"
                 NEEDS EGL LEFT_OUT "the KMS display")
 ft_build_option(OSMESA ON "OSMesa offscreen backend (removed from Mesa >= 25.1)")

@@ -216,7 +216,7 @@ void ft_program_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
     u->void_cells = gl->GetUniformLocation(prog, "u_void_cells");
     u->void_map = gl->GetUniformLocation(prog, "u_void_map");
     u->void_size = gl->GetUniformLocation(prog, "u_void_size");
-    u->grid = gl->GetUniformLocation(prog, "u_grid");
+    u->grid = gl->GetUniformLocation(prog, "u_ground_grid");
 }
 
 /* Program must be current. A few dozen floats: set every frame, so a

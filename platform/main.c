@@ -805,7 +805,9 @@ static void print_shader_variants(const ft_scene *s, const ft_terrain *t, int es
     printf("], colour fragment shaders [");
     char buf[FT_SHADE_DEFINES_MAX];
     print_defines(ft_program_shade_defines(s, t, buf));
-    printf("]\n");
+    char built[FT_SHADE_PARTS_MAX], left_out[FT_SHADE_PARTS_MAX];
+    printf("] (colour parts in this build: %s; left out: %s)\n",
+           ft_program_shade_parts(1, built), ft_program_shade_parts(0, left_out));
 }
 
 static int cmd_budget(int argc, char **argv)

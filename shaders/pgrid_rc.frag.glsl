@@ -50,6 +50,8 @@ uniform float u_earth_drop_per_m2; /* k: 1 / (2 R) or 0 */
 
 #include "decode.glsl"
 #include "shade_relative.glsl"
+#include "shade_grid.glsl"
+#include "shade_haze.glsl"
 #include "shade.glsl"
 
 float hs(vec2 ij)

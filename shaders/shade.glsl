@@ -1,7 +1,11 @@
 /* shade.glsl - the terrain colour of a fragment at height h (m) with normal
  * n: the palette's height ramp, the relative-altitude band painted over it
- * (only in the FT_SHADE_RELATIVE variant), times one Lambert light; then
- * (FT_SHADE_HAZE variant) ft_haze by the fragment's distance.
+ * (only in the FT_SHADE_RELATIVE variant), times one Lambert light; then the
+ * ground grid (FT_SHADE_GRID), the unmeasured-terrain mark (FT_SHADE_VOID)
+ * and the haze by the fragment's distance (FT_SHADE_HAZE). The optional
+ * parts live in files of their own (shade_relative.glsl, shade_grid.glsl,
+ * shade_haze.glsl), included before this one, so a build without a part
+ * embeds none of its text; only the calls below name them.
  * src/gpu/shade.c (ft_shade_rgba8_state) is the same rule on the CPU; the
  * uniforms come from the same C tables. */
 #define FT_RAMP_STOPS 6
@@ -29,22 +33,6 @@ vec3 ft_shade(float h, vec3 n)
     return clamp(rgb * light, 0.0, 1.0);
 }
 
-#ifdef FT_SHADE_GRID
-/* Ground grid (presentation.grid_m; src/gpu/shade.h FT_GRID_*): lines every
- * spacing metres along the terrain's x and y, about a pixel wide at any
- * distance, darkening the lit colour, fading out by 40 spacings. */
-uniform highp vec4 u_grid; /* (terrain origin rel. eye x, y m, spacing m, K px per rad) */
-vec3 ft_ground_grid(vec3 rgb, highp vec2 rel_eye_xy_m, float dist_m)
-{
-    highp vec2 g = (rel_eye_xy_m - u_grid.xy) / u_grid.z;
-    highp vec2 d = abs(g - floor(g + 0.5)) * u_grid.z;
-    float half_w = 0.5 * max(u_grid.z * 0.02, dist_m / u_grid.w);
-    float fade = clamp(1.0 - dist_m / (40.0 * u_grid.z), 0.0, 1.0);
-    float on = min(d.x, d.y) < half_w ? fade : 0.0;
-    return rgb * (1.0 - 0.45 * on);
-}
-#endif
-
 #ifdef FT_SHADE_VOID
 /* Unmeasured terrain (src/gpu/shade.h): where the bilinear surface depends on a
  * void-filled sample (a cell with such a corner) the lit colour turns grey
@@ -66,16 +54,6 @@ vec3 ft_mark_unmeasured(vec3 rgb)
 {
     float m = mod(floor(gl_FragCoord.x) + floor(gl_FragCoord.y), 8.0);
     return m < 2.0 ? vec3(0.8, 0.0, 0.8) : vec3(dot(rgb, vec3(0.299, 0.587, 0.114)));
-}
-#endif
-
-#ifdef FT_SHADE_HAZE
-/* Distance haze (presentation.haze_km): towards the sky colour, capped so
- * far ridgelines keep a quarter of their contrast (src/gpu/shade.h). */
-uniform vec4 u_haze; /* (sky r, g, b, 1 / visibility m) */
-vec3 ft_haze(vec3 rgb, float dist_m)
-{
-    return mix(rgb, u_haze.rgb, 0.75 * (1.0 - exp(-dist_m * u_haze.w)));
 }
 #endif
 

@@ -9,6 +9,8 @@ precision mediump float;
 #include "frag_out.glsl"
 
 #include "shade_relative.glsl"
+#include "shade_grid.glsl"
+#include "shade_haze.glsl"
 #include "shade.glsl"
 
 FT_IN_FS vec3 v_pos_rel_eye_m;

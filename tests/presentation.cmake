@@ -1,6 +1,10 @@
 # Presentation: the [presentation] keys and band rule (no GPU), and a
-# staircase terrain coloured by relative altitude on real contexts.
-if(NOT FIXTERRAIN_WITH_RELATIVE_COLOURING)
+# staircase terrain coloured by relative altitude on real contexts. The
+# program exercises every optional part (relative colouring and the night
+# palette in the staircase, haze, horizon, ground grid): a build that leaves
+# one out does not build it (tests/test_lean_build.sh checks those builds).
+if(NOT (FIXTERRAIN_WITH_RELATIVE_COLOURING AND FIXTERRAIN_WITH_HORIZON AND FIXTERRAIN_WITH_HAZE
+        AND FIXTERRAIN_WITH_GROUND_GRID AND FIXTERRAIN_WITH_NIGHT_PALETTE))
   return()
 endif()
 ft_add_test(test_presentation SOURCES test_presentation.c ARGS parse LIBS m)

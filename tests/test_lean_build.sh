@@ -53,20 +53,47 @@ for left_out in "run --frames 1" "render --method brute"; do
 done
 "$pbin" budget --scene "$src/config/minimal.ini" > "$dir/profile-budget.txt" 2>&1 \
   || { cat "$dir/profile-budget.txt"; exit 1; }
-# Relative colouring (presentation.colouring) is not in the minimal scene:
-# neither its shader text nor its code is in the binary, and a scene that
-# asks for it is refused by name. The full build has both (the check can see).
-if grep -q "u_band_rgba" "$pbin" || nm "$pbin" | grep -q " T ft_shade_bands_gpu$"; then
-  echo "FAIL: the minimal profile contains relative colouring"; exit 1
-fi
-if [ -n "$full" ] && ! { grep -q "u_band_rgba" "$full" && nm "$full" | grep -q " T ft_shade_bands_gpu$"; }; then
-  echo "FAIL: the full build lacks relative colouring: the check above sees nothing"; exit 1
-fi
-{ cat "$src/config/minimal.ini"; printf '[presentation]\ncolouring = relative\n'; } > "$dir/relative.ini"
-if "$pbin" render --scene "$dir/relative.ini" --size 64x48 --out "$dir/x.png" > "$dir/rel.log" 2>&1 \
-   || ! grep -q "colouring = relative was left out of this build" "$dir/rel.log"; then
-  echo "FAIL: the minimal profile did not refuse relative colouring by name:"; cat "$dir/rel.log"; exit 1
-fi
+# The optional presentation parts are not in the minimal scene: the profile
+# binary holds none of their shader text or code, the full build holds all of
+# it (so the checks can see), and a scene that asks for a part is refused by
+# its key and its build option. One row a part (a second for a second key):
+#   option | text only its shader or code carries ("-": none) |
+#   symbols only its code defines ("-": none) | scene lines asking for it |
+#   the refusal's start
+carries() { # carries BINARY TEXT SYMBOLS: 0 when it has the text or any symbol
+  if [ "$2" != - ] && grep -q "$2" "$1"; then return 0; fi
+  [ "$3" = - ] && return 1
+  for sym in $3; do nm "$1" | grep -q " [A-Za-z] $sym\$" && return 0; done
+  return 1
+}
+carries_all() { # carries_all BINARY TEXT SYMBOLS: 0 when it has the text and every symbol
+  if [ "$2" != - ] && ! grep -q "$2" "$1"; then return 1; fi
+  [ "$3" = - ] && return 0
+  for sym in $3; do nm "$1" | grep -q " [A-Za-z] $sym\$" || return 1; done
+  return 0
+}
+while IFS='|' read -r opt text syms ask says; do
+  if carries "$pbin" "$text" "$syms"; then
+    echo "FAIL: the minimal profile contains $opt ($text / $syms)"; exit 1
+  fi
+  if [ -n "$full" ] && ! carries_all "$full" "$text" "$syms"; then
+    echo "FAIL: the full build lacks $opt ($text / $syms): the check above sees nothing"; exit 1
+  fi
+  { cat "$src/config/minimal.ini"; printf '%b\n' "$ask"; } > "$dir/part.ini"
+  if "$pbin" render --scene "$dir/part.ini" --size 64x48 --out "$dir/x.png" > "$dir/part.log" 2>&1 \
+     || ! grep -qF "$says was left out of this build (FIXTERRAIN_WITH_$opt=OFF)" "$dir/part.log"; then
+    echo "FAIL: the minimal profile did not refuse '$ask' by name:"; cat "$dir/part.log"; exit 1
+  fi
+done <<'PARTS'
+RELATIVE_COLOURING|u_band_rgba|ft_shade_bands_gpu|[presentation]\ncolouring = relative|presentation.colouring = relative
+HORIZON|-|ft_camera_horizon_px ft_overlay_draw_line|[presentation]\nhorizon = 1|presentation.horizon = 1
+HAZE|u_haze|-|[presentation]\nhaze_km = 20|presentation.haze_km = 20
+GROUND_GRID|u_ground_grid|ft_shade_grid_weight|[presentation]\ngrid_m = 100|presentation.grid_m = 100
+NIGHT_PALETTE|-|k_palette_night|[presentation]\npalette = night|presentation.palette = night
+NIGHT_PALETTE|-|k_palette_night|[gpio]\nnight_line = 3|gpio.night_line = 3
+PARTS
+grep -q "left out: FT_SHADE_RELATIVE FT_SHADE_GRID FT_SHADE_HAZE)" "$dir/profile-budget.txt" \
+  || { echo "FAIL: budget does not list the colour parts left out"; cat "$dir/profile-budget.txt"; exit 1; }
 grep -q "shader variants: bintree.vert.glsl" "$dir/profile-budget.txt" \
   || { echo "FAIL: budget lists no shader variants"; cat "$dir/profile-budget.txt"; exit 1; }
 sizes() { size "$1" | awk 'NR == 2 { printf "text %d, data %d, bss %d bytes", $1, $2, $3 }'; }

@@ -62,7 +62,16 @@ printf '[build]\ninputs = replay\npng = 0\n[can_map]\ndefaults = 1\n' > "$dir/ma
 chosen "$dir/map.ini" CAN=OFF GPIO=OFF PNG=OFF
 # keys absent: the runtime's defaults (pgrid, EGL, replay+can+gpio, PNG, no metric)
 printf '[view]\nwidth_px = 64\n' > "$dir/empty.ini"
-chosen "$dir/empty.ini" METHOD_PGRID=ON METHOD_BRUTE=OFF EGL=ON OSMESA=OFF CAN=ON GPIO=ON PNG=ON REFERENCE=OFF GDAL_TOOLS=OFF
+chosen "$dir/empty.ini" METHOD_PGRID=ON METHOD_BRUTE=OFF EGL=ON OSMESA=OFF CAN=ON GPIO=ON PNG=ON REFERENCE=OFF GDAL_TOOLS=OFF \
+  RELATIVE_COLOURING=OFF HORIZON=OFF HAZE=OFF GROUND_GRID=OFF NIGHT_PALETTE=OFF
+# each presentation part where the scene uses it, and only there
+printf '[presentation]\nhorizon = 1\nhaze_km = 20\n' > "$dir/pres1.ini"
+chosen "$dir/pres1.ini" HORIZON=ON HAZE=ON GROUND_GRID=OFF NIGHT_PALETTE=OFF RELATIVE_COLOURING=OFF
+printf '[presentation]\ngrid_m = 100\npalette = night\ncolouring = relative\n' > "$dir/pres2.ini"
+chosen "$dir/pres2.ini" HORIZON=OFF HAZE=OFF GROUND_GRID=ON NIGHT_PALETTE=ON RELATIVE_COLOURING=ON
+# a GPIO line that switches to night needs the night palette in a day scene
+printf '[gpio]\nnight_line = 3\n' > "$dir/night-line.ini"
+chosen "$dir/night-line.ini" NIGHT_PALETTE=ON HORIZON=OFF
 # any other error the runtime finds: same message
 printf '[view]\nwidht_px = 64\n' > "$dir/typo.ini"
 refused "$dir/typo.ini"

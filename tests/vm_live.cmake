@@ -1,7 +1,8 @@
 # The live pose path in the test VM: fixterrain run on vcan0 + gpio-sim,
 # compared with fixterrain replay of the same log (tests/vm/live-test.sh).
+# Its scene switches the night palette on a GPIO line.
 if(CMAKE_SYSTEM_NAME STREQUAL "Linux" AND TARGET fixterrain-flightgen AND FIXTERRAIN_WITH_CAN
-   AND FIXTERRAIN_WITH_GPIO AND FIXTERRAIN_WITH_EGL)
+   AND FIXTERRAIN_WITH_GPIO AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_NIGHT_PALETTE)
   add_executable(vm_compare_live ${CMAKE_SOURCE_DIR}/tests/vm/compare-live.c)
   target_compile_options(vm_compare_live PRIVATE ${FT_WARNINGS})
   target_link_libraries(vm_compare_live PRIVATE m)

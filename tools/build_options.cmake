@@ -51,10 +51,10 @@ endfunction()
 
 # ---- the table ---------------------------------------------------------------
 ft_build_option(EGL ON "EGL backends (egl-gles3, egl-gles2)")
-# X11 is only compiled inside the EGL backend (platform/gpu_egl.c), so without
-# EGL it has no effect; it has no NEEDS, so FT_WITH_X11 follows the option
-# alone and a build without EGL says nothing about it.
-ft_build_option(X11 ON "EGL window-surface path on X11 (display.kind = x11)")
+# X11 is only compiled inside the EGL backend (platform/gpu_egl.c): a build
+# without EGL leaves it out and says so, like KMS.
+ft_build_option(X11 ON "EGL window-surface path on X11 (scene.display = x11; needs EGL)"
+                NEEDS EGL LEFT_OUT "the X11 window path")
 ft_build_option(KMS ON "full-screen DRM/KMS display, EGL on GBM (scene.display = kms; needs EGL)"
                 NEEDS EGL LEFT_OUT "the KMS display")
 ft_build_option(OSMESA ON "OSMesa offscreen backend (removed from Mesa >= 25.1)")
@@ -65,6 +65,10 @@ ft_build_option(METHOD_PGRID ON "terrain method 'pgrid' (error-bounded projectiv
 ft_build_option(REFERENCE ON "CPU reference ray caster and error metric")
 ft_build_option(PNG ON "PNG output (libpng)")
 ft_build_option(RELATIVE_COLOURING ON "presentation.colouring = relative (TAWS-style bands)")
+ft_build_option(HORIZON ON "presentation.horizon = 1 (the conformal zero-pitch line)")
+ft_build_option(HAZE ON "presentation.haze_km > 0 (distance haze towards the sky colour)")
+ft_build_option(GROUND_GRID ON "presentation.grid_m > 0 (ground grid, a low-level motion cue)")
+ft_build_option(NIGHT_PALETTE ON "presentation.palette = night and gpio.night_line (night palette)")
 ft_build_option(GDAL_TOOLS ON "'fixterrain import' (GDAL; tools only, never the runtime)")
 ft_build_option(CAN ON "live CAN input over SocketCAN (can.interface)")
 ft_build_option(GPIO ON "discrete inputs and heartbeat output over libgpiod 1.6 (gpio.*)")

@@ -5,7 +5,9 @@
 # first all OFF, then ON what the scene uses: its method (scene.method),
 # backend (scene.backend), display (scene.display), pose inputs (build.inputs:
 # replay, can, gpio), PNG output (build.png), error metric (metric.enabled)
-# and relative colouring (presentation.colouring). Everything else stays OFF,
+# and the presentation parts: relative colouring (presentation.colouring),
+# horizon, haze (haze_km), ground grid (grid_m), night palette (palette =
+# night, or a gpio.night_line). Everything else stays OFF,
 # the GDAL import tool and any option this file does not know about
 # included. Included by CMakeLists.txt before option().
 #
@@ -60,7 +62,8 @@ if(FIXTERRAIN_PROFILE)
     string(REGEX MATCH "^([a-z_]+)=(.*)$" _kv "${_kv}")
     set(_p_${CMAKE_MATCH_1} "${CMAKE_MATCH_2}")
   endforeach()
-  foreach(_k method backend display inputs_replay inputs_can inputs_gpio png metric relative)
+  foreach(_k method backend display inputs_replay inputs_can inputs_gpio png metric relative
+             horizon haze ground_grid night_palette)
     if(NOT DEFINED _p_${_k})
       message(FATAL_ERROR "FIXTERRAIN_PROFILE: the scene parser did not say '${_k}':\n${_p_out}")
     endif()
@@ -93,7 +96,8 @@ if(FIXTERRAIN_PROFILE)
   endif()
   # the parser's 0/1 answers, never CMake truthiness of the file's text
   foreach(_pair "CAN;inputs_can" "GPIO;inputs_gpio" "PNG;png" "REFERENCE;metric"
-                "RELATIVE_COLOURING;relative")
+                "RELATIVE_COLOURING;relative" "HORIZON;horizon" "HAZE;haze"
+                "GROUND_GRID;ground_grid" "NIGHT_PALETTE;night_palette")
     list(GET _pair 0 _opt)
     list(GET _pair 1 _k)
     if(_p_${_k} STREQUAL "1")
@@ -103,5 +107,7 @@ if(FIXTERRAIN_PROFILE)
   message(STATUS "fixterrain profile ${FIXTERRAIN_PROFILE} (read by the runtime's parser): "
                  "method ${_p_method}, backend ${_p_backend}, display ${_p_display}, inputs "
                  "replay ${_p_inputs_replay} can ${_p_inputs_can} gpio ${_p_inputs_gpio}, "
-                 "png ${_p_png}, metric ${_p_metric}, relative colouring ${_p_relative}")
+                 "png ${_p_png}, metric ${_p_metric}, relative colouring ${_p_relative}, "
+                 "horizon ${_p_horizon}, haze ${_p_haze}, ground grid ${_p_ground_grid}, "
+                 "night palette ${_p_night_palette}")
 endif()

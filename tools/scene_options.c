@@ -8,6 +8,8 @@
  *   method=brute|bintree|pgm|pgrid   backend=egl-gles3|egl-gles2|osmesa
  *   display=none|x11|kms   inputs_replay=0|1   inputs_can=0|1   inputs_gpio=0|1
  *   png=0|1   metric=0|1   relative=0|1 (presentation.colouring)
+ *   horizon=0|1   haze=0|1   ground_grid=0|1 (presentation.horizon, haze_km, grid_m)
+ *   night_palette=0|1 (presentation.palette = night, or a gpio.night_line)
  * A scene the runtime refuses: the runtime's message on stderr
  * ("fixterrain: scene: ..."), exit status 1; a usage error: 2.
  * Compiled and run on the build host at configure time; never installed. */
@@ -42,5 +44,8 @@ int main(int argc, char **argv)
            (s.build_inputs & FT_BUILD_INPUT_GPIO) != 0u);
     printf("png=%d\nmetric=%d\nrelative=%d\n", s.build_png != 0, s.metric_enabled != 0,
            s.present_relative != 0);
+    printf("horizon=%d\nhaze=%d\nground_grid=%d\nnight_palette=%d\n", s.present_horizon != 0,
+           s.present_haze_km > 0.0, s.present_grid_m > 0.0,
+           s.present_palette == FT_PALETTE_NIGHT || s.gpio_input_line[FT_GPIO_NIGHT] >= 0);
     return fflush(stdout) == 0 ? 0 : 1;
 }

@@ -166,6 +166,42 @@ static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
     }
 }
 
+/* The presentation parts a build may leave out (FIXTERRAIN_WITH_*): a scene
+ * that asks for one is refused before anything is loaded, by the key that
+ * asks and the option that would bring it. The scene parser itself knows no
+ * build options, so the lean-build profile (tools/profile.cmake) reads every
+ * scene alike. */
+static ft_status check_build_parts(const ft_scene *s, ft_error *err)
+{
+    char haze_km[32], grid_m[32], night_line[16];
+    (void)snprintf(haze_km, sizeof haze_km, "%g", s->present_haze_km);
+    (void)snprintf(grid_m, sizeof grid_m, "%g", s->present_grid_m);
+    (void)snprintf(night_line, sizeof night_line, "%d", s->gpio_input_line[FT_GPIO_NIGHT]);
+    const struct {
+        int used, built;
+        const char *key, *value, *option;
+    } parts[] = {
+        {s->present_relative, FT_WITH_RELATIVE_COLOURING, "presentation.colouring", "relative",
+         "RELATIVE_COLOURING"},
+        {s->present_horizon, FT_WITH_HORIZON, "presentation.horizon", "1", "HORIZON"},
+        {s->present_haze_km > 0.0, FT_WITH_HAZE, "presentation.haze_km", haze_km, "HAZE"},
+        {s->present_grid_m > 0.0, FT_WITH_GROUND_GRID, "presentation.grid_m", grid_m,
+         "GROUND_GRID"},
+        {s->present_palette == FT_PALETTE_NIGHT, FT_WITH_NIGHT_PALETTE, "presentation.palette",
+         "night", "NIGHT_PALETTE"},
+        {s->gpio_input_line[FT_GPIO_NIGHT] >= 0, FT_WITH_NIGHT_PALETTE, "gpio.night_line",
+         night_line, "NIGHT_PALETTE"},
+    };
+    for (size_t i = 0; i < sizeof parts / sizeof parts[0]; ++i) {
+        if (parts[i].used && !parts[i].built) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "%s = %s was left out of this build (FIXTERRAIN_WITH_%s=OFF)",
+                           parts[i].key, parts[i].value, parts[i].option);
+        }
+    }
+    return FT_OK;
+}
+
 ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
 {
     ft_file file;
@@ -177,6 +213,9 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
     app->scene = *scene;
 
     st = ft_scene_validate(&app->scene, err);
+    if (st == FT_OK) {
+        st = check_build_parts(&app->scene, err);
+    }
     if (st != FT_OK) {
         return st;
     }

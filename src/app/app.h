@@ -2,7 +2,9 @@
  * arena once, load the terrain into it, open the GPU, lock the arena.
  *
  * Init order (each step fails with a message naming what and why):
- *   probe terrain (header only) -> plan every pool -> check pools against the
+ *   validate the scene, and refuse a presentation part this build left out
+ *   (naming the key and the FIXTERRAIN_WITH_* option) -> probe terrain
+ *   (header only) -> plan every pool -> check pools against the
  *   scene's budgets -> reserve one arena (platform mmap) -> load heights and
  *   pyramids straight into their pools -> GPU context + renderer -> reference
  *   and metric buffers -> lock. After ft_app_init returns, the renderer takes

@@ -251,10 +251,15 @@ ft_status ft_app_run_live(ft_app *app, const ft_live_desc *d, ft_live *lv, ft_po
         }
         frozen = freeze;
         const ft_pose *draw_pose = frozen ? &frozen_pose : &v.pose;
-        /* the palette switch takes effect on this very frame */
-        const ft_palette palette =
-            input_active(lv, FT_GPIO_NIGHT) ? FT_PALETTE_NIGHT : app->scene.present_palette;
+        ft_palette palette = app->scene.present_palette;
+#if FT_WITH_NIGHT_PALETTE
+        /* the palette switch takes effect on this very frame (a build
+         * without the night palette refuses gpio.night_line at init) */
+        if (input_active(lv, FT_GPIO_NIGHT)) {
+            palette = FT_PALETTE_NIGHT;
+        }
         ft_renderer_set_palette(&app->renderer, palette);
+#endif
         const int test = input_active(lv, FT_GPIO_TEST);
         const char *reason = test ? FT_LIVE_TEST_REASON : (v.annunciate ? v.reason : NULL);
         ft_frame fr;

@@ -85,6 +85,7 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
     return FT_OK;
 }
 
+#if FT_WITH_HORIZON
 int ft_camera_horizon_px(const ft_camera *c, double p0[2], double p1[2])
 {
     /* d(sx, sy) = forward + sx right + sy up (sx, sy: image-plane tangents)
@@ -115,6 +116,7 @@ int ft_camera_horizon_px(const ft_camera *c, double p0[2], double p1[2])
     }
     return isfinite(p0[0]) && isfinite(p0[1]) && isfinite(p1[0]) && isfinite(p1[1]);
 }
+#endif
 
 void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3])
 {

@@ -54,6 +54,7 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
                          double pitch_rad, double roll_rad, double fovy_rad, uint32_t width_px,
                          uint32_t height_px, double near_m, double far_m, ft_error *err);
 
+#if FT_WITH_HORIZON
 /* The zero-pitch line (the horizon of the eye's horizontal plane: every
  * view direction with no vertical component) in pixel coordinates (origin
  * top-left, y down): two points on it at the view's left and right edges
@@ -62,6 +63,7 @@ ft_status ft_camera_init(ft_camera *c, const double eye_m[3], double heading_rad
  * plane's finite part). On a flat sea the visible sea edge lies below it by
  * the dip sqrt(2 h / R) (h the eye's height, R the earth's radius). */
 int ft_camera_horizon_px(const ft_camera *c, double p0[2], double p1[2]);
+#endif
 
 /* Unit ray direction (world) through image point (px, py) in pixel units:
  * pass (x + 0.5, y + 0.5) for the centre of pixel (x, y). */

@@ -242,6 +242,7 @@ static void begin_draw(const ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
     gl->Uniform2f(ov->u_px_to_ndc, 2.0f / (float)width_px, 2.0f / (float)height_px);
 }
 
+#if FT_WITH_HORIZON
 ft_status ft_overlay_draw_line(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
                                uint32_t height_px, const double p0[2], const double p1[2],
                                double thickness_px, const float rgba[4], ft_error *err)
@@ -278,6 +279,7 @@ ft_status ft_overlay_draw_line(ft_overlay *ov, const ft_gl *gl, uint32_t width_p
     }
     return FT_OK;
 }
+#endif
 
 ft_status ft_overlay_draw_annunciation(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
                                        uint32_t height_px, const char *reason, ft_error *err)

@@ -41,8 +41,13 @@
       FT_OVERLAY_TEXT_MAX * FT_OVERLAY_QUADS_PER_GLYPH_MAX))
 /* Vertices are int16 pixel coordinates: views up to this size per side. */
 #define FT_OVERLAY_VIEW_MAX_PX 8192u
-/* One line across the view (the conformal horizon): a quad after them. */
+/* One line across the view (the conformal horizon): a quad after them; none
+ * in a build without the horizon. */
+#if FT_WITH_HORIZON
 #define FT_OVERLAY_LINE_VERTICES FT_OVERLAY_VERTICES_PER_QUAD
+#else
+#define FT_OVERLAY_LINE_VERTICES 0u
+#endif
 /* Bytes of the GPU vertex buffer (for the scene's GPU budget). */
 #define FT_OVERLAY_GPU_BYTES                                                         \
     ((uint64_t)(FT_OVERLAY_VERTICES_MAX + FT_OVERLAY_LINE_VERTICES) * 2u * sizeof(int16_t))
@@ -70,7 +75,9 @@ typedef struct ft_overlay {
     ft_overlay_layout layout;
     uint32_t cross_vertices, box_vertices, text_vertices;
     int16_t verts[FT_OVERLAY_VERTICES_MAX][2];
+#if FT_WITH_HORIZON
     int16_t line_verts[FT_OVERLAY_LINE_VERTICES][2];
+#endif
 } ft_overlay;
 
 /* Computes the layout for a width_px x height_px view (both 1 ..
@@ -94,6 +101,7 @@ ft_status ft_overlay_init(ft_overlay *ov, const ft_gl *gl, ft_error *err);
 ft_status ft_overlay_draw_annunciation(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
                                        uint32_t height_px, const char *reason, ft_error *err);
 
+#if FT_WITH_HORIZON
 /* Draws a line of thickness_px through p0 and p1 (pixels, origin top-left,
  * y down; two points on the view's border, ft_camera_horizon_px) in colour
  * rgba, with the same state rules as ft_overlay_draw_annunciation. Its
@@ -102,6 +110,7 @@ ft_status ft_overlay_draw_annunciation(ft_overlay *ov, const ft_gl *gl, uint32_t
 ft_status ft_overlay_draw_line(ft_overlay *ov, const ft_gl *gl, uint32_t width_px,
                                uint32_t height_px, const double p0[2], const double p1[2],
                                double thickness_px, const float rgba[4], ft_error *err);
+#endif
 
 /* Deletes the GL objects (context current); safe on a zeroed or failed ov. */
 void ft_overlay_shutdown(ft_overlay *ov, const ft_gl *gl);

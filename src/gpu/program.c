@@ -190,13 +190,40 @@ const char *ft_program_shade_defines(const ft_scene *s, const ft_terrain *t,
                                      char buf[FT_SHADE_DEFINES_MAX])
 {
     const int unmeasured = t != NULL && t->void_count > 0u && t->void_bits != NULL;
-    /* at most 4 lines of 28 characters: always fits */
+    /* A part left out of the build is never asked for (the scene is refused
+     * at init), and its define is not in the binary either. At most 4 lines
+     * of 28 characters: always fits. */
     (void)snprintf(buf, FT_SHADE_DEFINES_MAX, "%s%s%s%s",
-                   s->present_relative ? "#define FT_SHADE_RELATIVE 1\n" : "",
-                   s->present_haze_km > 0.0 ? "#define FT_SHADE_HAZE 1\n" : "",
-                   s->present_grid_m > 0.0 ? "#define FT_SHADE_GRID 1\n" : "",
+                   FT_WITH_RELATIVE_COLOURING && s->present_relative
+                       ? "#define FT_SHADE_RELATIVE 1\n" : "",
+                   FT_WITH_HAZE && s->present_haze_km > 0.0 ? "#define FT_SHADE_HAZE 1\n" : "",
+                   FT_WITH_GROUND_GRID && s->present_grid_m > 0.0 ? "#define FT_SHADE_GRID 1\n"
+                                                                   : "",
                    unmeasured ? "#define FT_SHADE_VOID 1\n" : "");
     return buf;
+}
+
+const char *ft_program_shade_parts(int built, char buf[FT_SHADE_PARTS_MAX])
+{
+    static const struct {
+        const char *define;
+        int built;
+    } parts[] = {
+        {"FT_SHADE_RELATIVE", FT_WITH_RELATIVE_COLOURING},
+        {"FT_SHADE_GRID", FT_WITH_GROUND_GRID},
+        {"FT_SHADE_HAZE", FT_WITH_HAZE},
+        {"FT_SHADE_VOID", 1}, /* unmeasured terrain is always marked */
+    };
+    size_t n = 0u;
+    buf[0] = '\0';
+    for (size_t i = 0; i < sizeof parts / sizeof parts[0]; ++i) {
+        if ((parts[i].built != 0) == (built != 0)) {
+            /* 4 names of at most 18 characters and a space: always fits */
+            n += (size_t)snprintf(buf + n, FT_SHADE_PARTS_MAX - n, "%s%s", n > 0u ? " " : "",
+                                  parts[i].define);
+        }
+    }
+    return n > 0u ? buf : "none";
 }
 
 void ft_program_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
@@ -212,11 +239,19 @@ void ft_program_shade_locate(const ft_gl *gl, GLuint prog, ft_shade_locs *u)
 #else
     u->band_edge = u->band_rgba = u->aircraft_alt = -1;
 #endif
+#if FT_WITH_HAZE
     u->haze = gl->GetUniformLocation(prog, "u_haze");
+#else
+    u->haze = -1;
+#endif
     u->void_cells = gl->GetUniformLocation(prog, "u_void_cells");
     u->void_map = gl->GetUniformLocation(prog, "u_void_map");
     u->void_size = gl->GetUniformLocation(prog, "u_void_size");
-    u->grid = gl->GetUniformLocation(prog, "u_grid");
+#if FT_WITH_GROUND_GRID
+    u->grid = gl->GetUniformLocation(prog, "u_ground_grid");
+#else
+    u->grid = -1;
+#endif
 }
 
 /* Program must be current. A few dozen floats: set every frame, so a
@@ -240,14 +275,18 @@ void ft_program_shade_uniforms(const ft_gl *gl, const ft_shade_locs *u, const ft
                       st->void_map[3]);
         gl->Uniform2f(u->void_size, st->void_size[0], st->void_size[1]);
     }
+#if FT_WITH_GROUND_GRID
     if (u->grid >= 0) {
         gl->Uniform4f(u->grid, st->void_map[0], st->void_map[1], st->grid_m, st->px_per_rad);
     }
+#endif
+#if FT_WITH_HAZE
     if (u->haze >= 0) {
         float sky[3];
         ft_shade_palette_sky(st->palette, sky);
         gl->Uniform4f(u->haze, sky[0], sky[1], sky[2], st->haze_per_m);
     }
+#endif
 #if FT_WITH_RELATIVE_COLOURING
     if (u->band_rgba >= 0) {
         float edge_m[FT_BANDS_MAX - 1u], rgba[FT_BANDS_MAX][4];

@@ -31,7 +31,8 @@
 #define FT_TEX_UNIT_VOID 8
 
 /* The colour uniforms of shaders/shade.glsl (-1 where a program lacks them:
- * position passes; the band uniforms outside the relative variant). */
+ * position passes; a part's outside its variant, and always in a build
+ * without the part). */
 typedef struct ft_shade_locs {
     GLint ramp_h, ramp_rgb, sun, light;
     GLint band_edge, band_rgba, aircraft_alt;
@@ -125,6 +126,12 @@ void ft_terrain_program_relocate(const ft_gl *gl, const ft_terrain *t, const ft_
 #define FT_SHADE_DEFINES_MAX 160u
 const char *ft_program_shade_defines(const ft_scene *s, const ft_terrain *t,
                                      char buf[FT_SHADE_DEFINES_MAX]);
+/* The colour parts this build has (built = 1) or left out (built = 0), as
+ * their define names ("FT_SHADE_RELATIVE FT_SHADE_GRID ..."; "none"),
+ * written into buf and returned. Unmeasured-terrain marking (FT_SHADE_VOID)
+ * is in every build. */
+#define FT_SHADE_PARTS_MAX 96u
+const char *ft_program_shade_parts(int built, char buf[FT_SHADE_PARTS_MAX]);
 /* shade.glsl's uniform locations of a program, and their values for a
  * colour state (palette ramp, sun, light; bands and aircraft altitude in the
  * relative variant). The program must be current for the values. */

@@ -287,11 +287,6 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     r->height_px = s->height_px;
     const ft_gl *gl = r->gl;
 
-    if (s->present_relative && !FT_WITH_RELATIVE_COLOURING) {
-        return ft_fail(err, FT_ERR_UNSUPPORTED,
-                       "presentation.colouring = relative was left out of this build "
-                       "(FIXTERRAIN_WITH_RELATIVE_COLOURING=OFF)");
-    }
     if (gl->caps.max_vertex_texture_units < 1) {
         return ft_fail(err, FT_ERR_UNSUPPORTED,
                        "this device has no vertex texture units "
@@ -539,6 +534,7 @@ void ft_renderer_select(ft_renderer *r, const ft_camera *cam)
     ft_method_select(&r->method, r->terrain, cam);
 }
 
+#if FT_WITH_HORIZON
 /* Liang-Barsky: clips segment a-b to [x0, x1] x [y0, y1]; 0 if outside. */
 static int clip_segment(double a[2], double b[2], double x0, double y0, double x1, double y1)
 {
@@ -578,12 +574,12 @@ static ft_status draw_horizon(ft_renderer *r, const ft_camera *cam, ft_error *er
         !clip_segment(p0, p1, -m, -m, (double)r->width_px + m, (double)r->height_px + m)) {
         return FT_OK; /* looking straight up or down, or the line is off the view */
     }
-    const float g =
-        r->shade.palette == FT_PALETTE_NIGHT ? FT_HORIZON_NIGHT_GREY : FT_HORIZON_DAY_GREY;
+    const float g = ft_palette_colours_of(r->shade.palette)->horizon_grey;
     const float rgba[4] = {g, g, g, 1.0f};
     return ft_overlay_draw_line(&r->overlay, r->gl, r->width_px, r->height_px, p0, p1,
                                 FT_HORIZON_LINE_PX, rgba, err);
 }
+#endif
 
 ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats *st,
                            ft_error *err)
@@ -604,12 +600,14 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     ft_renderer_frame_shade(r, cam, &shade);
     r->shade = shade;
     draw_pass(r, &r->prog_color, cam, &ms);
+#if FT_WITH_HORIZON
     if (r->scene->present_horizon) {
         const ft_status hs = draw_horizon(r, cam, err);
         if (hs != FT_OK) {
             return hs;
         }
     }
+#endif
     if (r->timer_query != 0u) {
         gl->EndQuery(GL_TIME_ELAPSED_EXT);
     }

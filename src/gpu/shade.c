@@ -17,9 +17,29 @@ static float clamp01(float x)
     return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
 }
 
+static const ft_palette_colours k_palette_day = {
+    1.0f, 1.0f, {FT_SKY_R, FT_SKY_G, FT_SKY_B}, FT_HORIZON_DAY_GREY};
+#if FT_WITH_NIGHT_PALETTE
+static const ft_palette_colours k_palette_night = {
+    FT_NIGHT_TERRAIN_GAIN, FT_NIGHT_BAND_GAIN, {FT_NIGHT_SKY_R, FT_NIGHT_SKY_G, FT_NIGHT_SKY_B},
+    FT_HORIZON_NIGHT_GREY};
+#endif
+
+const ft_palette_colours *ft_palette_colours_of(ft_palette p)
+{
+#if FT_WITH_NIGHT_PALETTE
+    if (p == FT_PALETTE_NIGHT) {
+        return &k_palette_night;
+    }
+#else
+    (void)p; /* the night palette is refused at init in this build */
+#endif
+    return &k_palette_day;
+}
+
 void ft_shade_palette_ramp(ft_palette p, float rgb[FT_RAMP_STOPS][3])
 {
-    const float gain = p == FT_PALETTE_NIGHT ? FT_NIGHT_TERRAIN_GAIN : 1.0f;
+    const float gain = ft_palette_colours_of(p)->terrain_gain;
     for (int i = 0; i < FT_RAMP_STOPS; ++i) {
         for (int c = 0; c < 3; ++c) {
             rgb[i][c] = ft_ramp_rgb[i][c] * gain;
@@ -29,10 +49,10 @@ void ft_shade_palette_ramp(ft_palette p, float rgb[FT_RAMP_STOPS][3])
 
 void ft_shade_palette_sky(ft_palette p, float rgb[3])
 {
-    const int night = (p == FT_PALETTE_NIGHT);
-    rgb[0] = night ? FT_NIGHT_SKY_R : FT_SKY_R;
-    rgb[1] = night ? FT_NIGHT_SKY_G : FT_SKY_G;
-    rgb[2] = night ? FT_NIGHT_SKY_B : FT_SKY_B;
+    const float *sky = ft_palette_colours_of(p)->sky_rgb;
+    for (int c = 0; c < 3; ++c) {
+        rgb[c] = sky[c];
+    }
 }
 
 void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s)
@@ -49,7 +69,7 @@ void ft_shade_state_from_scene(ft_shade_state *st, const ft_scene *s)
 void ft_shade_bands_gpu(const ft_shade_state *st, float edge_m[FT_BANDS_MAX - 1u],
                         float rgba[FT_BANDS_MAX][4])
 {
-    const float gain = st->palette == FT_PALETTE_NIGHT ? FT_NIGHT_BAND_GAIN : 1.0f;
+    const float gain = ft_palette_colours_of(st->palette)->band_gain;
     for (uint32_t i = 0; i < FT_BANDS_MAX - 1u; ++i) {
         edge_m[i] = i < st->bands.edges ? (float)((double)st->bands.edge_ft[i] * FT_M_PER_FT)
                                         : FT_BAND_EDGE_NONE_M;
@@ -83,6 +103,7 @@ uint32_t ft_shade_band_of(const ft_shade_state *st, float height_m)
 }
 #endif
 
+#if FT_WITH_GROUND_GRID
 float ft_shade_grid_weight(const ft_shade_state *st, const float rel_xy_m[2], float dist_m)
 {
     if (!(st->grid_m > 0.0f) || !(st->px_per_rad > 0.0f)) {
@@ -100,6 +121,7 @@ float ft_shade_grid_weight(const ft_shade_state *st, const float rel_xy_m[2], fl
     const float fade = clamp01(1.0f - dist_m / (FT_GRID_FADE_SPACINGS * st->grid_m));
     return dmin < half_w ? fade : 0.0f;
 }
+#endif
 
 /* haze: NULL, or (sky r, g, b, fraction); frag_xy: NULL, or the window
  * coordinates of an unmeasured fragment */
@@ -155,6 +177,8 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
                           float dist_m, const float *rel_xy_m, const float *frag_xy,
                           uint8_t out[4])
 {
+    (void)dist_m; /* unused in a build without haze and ground grid */
+    (void)rel_xy_m;
     float ramp[FT_RAMP_STOPS][3];
     ft_shade_palette_ramp(st->palette, ramp);
     const float *band = NULL;
@@ -165,12 +189,20 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
         band = rgba[band_index(edge_m, height_m - st->aircraft_alt_m)];
     }
 #endif
-    float haze[4];
+    const float *haze = NULL;
+#if FT_WITH_HAZE
+    float haze_rgba[4];
     if (st->haze_per_m > 0.0f) {
-        ft_shade_palette_sky(st->palette, haze);
-        haze[3] = FT_HAZE_MAX * (1.0f - expf(-dist_m * st->haze_per_m));
+        ft_shade_palette_sky(st->palette, haze_rgba);
+        haze_rgba[3] = FT_HAZE_MAX * (1.0f - expf(-dist_m * st->haze_per_m));
+        haze = haze_rgba;
     }
-    const float grid = rel_xy_m != NULL ? ft_shade_grid_weight(st, rel_xy_m, dist_m) : 0.0f;
-    shade((const float(*)[3])ramp, band, st->haze_per_m > 0.0f ? haze : NULL, grid, frag_xy,
-          height_m, n, out);
+#endif
+    float grid = 0.0f;
+#if FT_WITH_GROUND_GRID
+    if (rel_xy_m != NULL) {
+        grid = ft_shade_grid_weight(st, rel_xy_m, dist_m);
+    }
+#endif
+    shade((const float(*)[3])ramp, band, haze, grid, frag_xy, height_m, n, out);
 }

@@ -57,6 +57,17 @@ void ft_shade_rgba8(float height_m, const float n[3], uint8_t out[4]);
 #define FT_HORIZON_DAY_GREY 1.0f
 #define FT_HORIZON_NIGHT_GREY 0.55f
 
+/* What a palette sets. A build without the night palette
+ * (FIXTERRAIN_WITH_NIGHT_PALETTE=OFF) has the day palette's only, and its
+ * scenes cannot ask for the night one (src/app/app.c). */
+typedef struct ft_palette_colours {
+    float terrain_gain; /* times the ramp's colours */
+    float band_gain;    /* times the relative-altitude bands' colours */
+    float sky_rgb[3];   /* the clear colour, which the haze fades towards */
+    float horizon_grey; /* the horizon line's grey */
+} ft_palette_colours;
+const ft_palette_colours *ft_palette_colours_of(ft_palette p);
+
 /* Everything the colour depends on besides the fragment: what the scene
  * chose, the palette in force and the aircraft's altitude this frame. */
 typedef struct ft_shade_state {
@@ -110,8 +121,10 @@ void ft_shade_rgba8_state(const ft_shade_state *st, float height_m, const float 
 #define FT_GRID_WIDTH_FRAC 0.02f
 #define FT_GRID_DARKEN 0.45f
 #define FT_GRID_FADE_SPACINGS 40.0f
+#if FT_WITH_GROUND_GRID
 /* The grid's line weight (0..1, before the darkening) at a point rel_xy_m
  * (metres from the eye, world axes) at distance dist_m. */
 float ft_shade_grid_weight(const ft_shade_state *st, const float rel_xy_m[2], float dist_m);
+#endif
 
 #endif

@@ -8,7 +8,9 @@
  *    the samples east of 2 deg E are marked and drawn at the window's lowest
  *    height, the covered half as in (a); (c) a level past the database's, a
  *    window without data, one past a pole and a corrupt tile are refused,
- *    each naming the key or the file and tile, and the reason.
+ *    each naming the key or the file and tile, and the reason; (d) with
+ *    ETOPO5 under N42E001, the half past N42E001 is drawn from level 7 and
+ *    marked, none at the floor.
  *  render BACKEND METHOD: a nadir frame over the mosaic's edge hatches the
  *    missing half and counts it (unmeasured_px), one inside counts 0. */
 #define _POSIX_C_SOURCE 200809L
@@ -99,10 +101,10 @@ static ft_status load_window(const char *path, uint32_t level, uint32_t side, do
 }
 
 /* Compares the window with the .hgt files: covered samples equal and marked
- * exactly where the source was void; uncovered ones at the floor, marked.
- * Returns the number of uncovered samples. */
+ * exactly where the source was void; uncovered ones marked (and, with
+ * at_floor, at the floor). Returns the number of uncovered samples. */
 static uint64_t compare_window(const ft_dbw *w, const ft_terrain *t, const ft_dbw_counts *c,
-                               uint64_t *voids_out)
+                               int at_floor, uint64_t *voids_out)
 {
     uint64_t uncovered = 0u, voids = 0u, wrong = 0u;
     for (uint32_t y = 0; y < t->height; ++y) {
@@ -112,7 +114,7 @@ static uint64_t compare_window(const ft_dbw *w, const ft_terrain *t, const ft_db
             int v = 0;
             if (!hgt_at(w->i0 + x, w->j0 + y, &v)) {
                 ++uncovered;
-                wrong += !(marked && t->heights_m[k] == c->fill_m);
+                wrong += !(marked && (!at_floor || t->heights_m[k] == c->fill_m));
             } else if (v == FT_HGT_VOID) {
                 ++voids;
                 wrong += !marked;
@@ -194,6 +196,69 @@ static void corrupt_copy(void)
     free(bytes);
 }
 
+/* N42E001 (3") over ETOPO5 (5', levels 7 and up), when ferret-datasets is
+ * installed: a level-0 window half east of N42E001 draws that half from
+ * level 7 (bilinear between its samples), marks it, and leaves no sample
+ * at the floor; on level 7's own lattice points it is level 7's sample. */
+static void mixed_levels(void)
+{
+    const char *etopo = "/usr/share/ferret-vis/data/etopo5.cdf";
+    FILE *probe = fopen(etopo, "rb");
+    if (probe == NULL) {
+        printf("(d) %s missing: coarser-level fill not checked\n", etopo);
+        return;
+    }
+    fclose(probe);
+    char db_path[300];
+    (void)snprintf(db_path, sizeof db_path, "%s/dbw_mixed.ftd", FT_TEST_OUT_DIR);
+    char *argv[] = {(char *)"import", (char *)"--database", db_path, (char *)"--assume-wgs84",
+                    (char *)FT_SHARED_DATA_DIR "/N42E001.hgt", (char *)etopo};
+    REQUIRE(ft_cmd_import_db(6, argv) == 0);
+    ft_dbw w;
+    ft_terrain t;
+    ft_dbw_counts c;
+    ft_error err;
+    uint64_t voids = 0u;
+    REQUIRE(load_window(db_path, 0u, 1201u, 42.5, 2.0, &w, &t, &c, &err) == FT_OK);
+    const uint64_t uncovered = compare_window(&w, &t, &c, 0, &voids);
+    CHECK(uncovered == 600u * 1201u);
+    CHECK(c.coarser_samples == uncovered && c.missing_samples == 0u);
+    CHECK(t.void_count == uncovered + voids);
+    printf("(d) 1201 samples at 42.5 N 2 E over N42E001 + ETOPO5: %llu from coarser levels, "
+           "%llu at the floor, %u marked\n",
+           (unsigned long long)c.coarser_samples, (unsigned long long)c.missing_samples,
+           t.void_count);
+    /* level 7's lattice points east of the .hgt: level 7's own samples */
+    ft_file f;
+    ft_tdb db;
+    static ft_tdb_entry entries[512];
+    static float tile_m[256u * 256u];
+    static uint8_t tile_bits[256u * 256u / 8u];
+    REQUIRE(ft_plat_file_open_read(&f, db_path, &err) == FT_OK);
+    REQUIRE(ft_tdb_open(&db, &f.reader_at, entries, 512u, &err) == FT_OK);
+    uint32_t on_lattice = 0u, wrong = 0u;
+    for (uint32_t y = 0; y < t.height; ++y) {
+        for (uint32_t x = 0; x < t.width; ++x) {
+            const int64_t i = w.i0 + x, j = w.j0 + y;
+            int v = 0;
+            if (i % 128 != 0 || j % 128 != 0 || hgt_at(i, j, &v)) {
+                continue;
+            }
+            const uint64_t ci = (uint64_t)(i / 128), cj = (uint64_t)(j / 128);
+            ft_tdb_tile tile;
+            REQUIRE(ft_tdb_read_tile(&db, 7u, (uint32_t)(ci / 256u), (uint32_t)(cj / 256u),
+                                     tile_m, 256u * 256u, tile_bits, sizeof tile_bits, &tile,
+                                     &err) == FT_OK);
+            REQUIRE(tile.state == FT_TDB_DATA);
+            ++on_lattice;
+            wrong += t.heights_m[(size_t)y * t.width + x] != tile_m[(cj % 256u) * 256u + ci % 256u];
+        }
+    }
+    ft_plat_file_close(&f);
+    CHECK(on_lattice > 0u && wrong == 0u);
+    printf("(d) %u samples on level 7's lattice equal its samples\n", on_lattice);
+}
+
 static int run_samples(void)
 {
     ft_dbw w;
@@ -204,7 +269,7 @@ static int run_samples(void)
 
     /* (a) inside N41E001, no source void in it: nothing marked */
     REQUIRE(load_window(k_db, 0u, 601u, 41.5, 1.35, &w, &t, &c, &err) == FT_OK);
-    CHECK(compare_window(&w, &t, &c, &voids) == 0u);
+    CHECK(compare_window(&w, &t, &c, 1, &voids) == 0u);
     CHECK(voids == 0u && t.void_count == 0u && c.missing_samples == 0u);
     CHECK_NEAR(t.origin_y, 41.25, 1e-9);
     CHECK_NEAR(t.origin_x, 1.1, 1e-9);
@@ -213,7 +278,7 @@ static int run_samples(void)
 
     /* (a) across both files: the source voids and nothing else marked */
     REQUIRE(load_window(k_db, 0u, 1201u, 42.0, 1.5, &w, &t, &c, &err) == FT_OK);
-    CHECK(compare_window(&w, &t, &c, &voids) == 0u);
+    CHECK(compare_window(&w, &t, &c, 1, &voids) == 0u);
     CHECK(voids > 0u && t.void_count == voids && c.filled_samples == voids);
     CHECK(c.missing_samples == 0u);
     printf("(a) 1201 samples at 42 N 1.5 E: %u tiles read, %u marked = %llu source voids\n",
@@ -221,9 +286,9 @@ static int run_samples(void)
 
     /* (b) half past the east edge (2 deg E): 600 of 1201 columns uncovered */
     REQUIRE(load_window(k_db, 0u, 1201u, 42.0, 2.0, &w, &t, &c, &err) == FT_OK);
-    const uint64_t uncovered = compare_window(&w, &t, &c, &voids);
+    const uint64_t uncovered = compare_window(&w, &t, &c, 1, &voids);
     CHECK(uncovered == 600u * 1201u);
-    CHECK(c.missing_samples == uncovered);
+    CHECK(c.missing_samples == uncovered && c.coarser_samples == 0u); /* none has data there */
     CHECK(t.void_count == uncovered + voids);
     CHECK(c.tiles_no_data > 0u); /* east of the listed tiles */
     CHECK(c.fill_m == t.min_height_m);
@@ -245,6 +310,8 @@ static int run_samples(void)
     }
     CHECK(wrong == 0u && c.missing_samples == 0u);
     CHECK_NEAR(t.spacing_x, 4.0 / 1200.0, 1e-15);
+
+    mixed_levels();
 
     /* (c) errors, through the app as a scene meets them */
     expect_error(scene("brute", "egl-gles3", k_db, 5u, 1201u, "42", "1.5"), "level past",

@@ -109,10 +109,24 @@ size_t ft_dbw_index_bytes(const ft_dbw *w)
     return (size_t)w->hdr.entry_count * sizeof(ft_tdb_entry);
 }
 
+/* Side of the grid of a coarser level's samples around the window: the
+ * window spans at most (side - 1) / 2 + 1 samples of level + 1 (fewer
+ * further up), plus one on each side for the bilinear cell. */
+static uint32_t coarse_side(const ft_dbw *w)
+{
+    return (w->side - 1u) / 2u + 3u;
+}
+
+static int has_coarser(const ft_dbw *w)
+{
+    return w->level + 1u < w->hdr.level_count;
+}
+
 size_t ft_dbw_staging_bytes(const ft_dbw *w)
 {
     const size_t n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;
-    return n * sizeof(float) + n / 8u;
+    const size_t c = has_coarser(w) ? (size_t)coarse_side(w) * coarse_side(w) : 0u;
+    return n * sizeof(float) + n / 8u + c * sizeof(float);
 }
 
 static void mark(uint8_t *bits, size_t i)
@@ -120,12 +134,29 @@ static void mark(uint8_t *bits, size_t i)
     bits[i >> 3] = (uint8_t)(bits[i >> 3] | (1u << (i & 7u)));
 }
 
-/* The window's lattice samples [lo, hi) on one axis that the lattice holds;
- * 0 when none. */
-static int clip_axis(int64_t w0, uint32_t side, uint64_t n, uint64_t *lo, uint64_t *hi)
+/* floor(a / b) for b > 0 (a may be negative: west of -180 deg). */
+static int64_t floor_div(int64_t a, int64_t b)
 {
-    const int64_t a = w0 < 0 ? 0 : w0;
-    const int64_t b = w0 + (int64_t)side;
+    const int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+/* A w x h block of one level's lattice samples from (i0, j0), row 0 = south;
+ * bits (NULL: none) marks the samples the database void-filled. */
+typedef struct lattice_grid {
+    uint32_t level;
+    int64_t i0, j0;
+    uint32_t w, h;
+    float *m;
+    uint8_t *bits;
+} lattice_grid;
+
+/* The grid's samples [lo, hi) on one axis that the lattice (n samples)
+ * holds; 0 when none. */
+static int clip_axis(int64_t g0, uint32_t len, uint64_t n, uint64_t *lo, uint64_t *hi)
+{
+    const int64_t a = g0 < 0 ? 0 : g0;
+    const int64_t b = g0 + (int64_t)len;
     const int64_t bn = b < (int64_t)n ? b : (int64_t)n;
     if (bn <= a) {
         return 0;
@@ -135,28 +166,124 @@ static int clip_axis(int64_t w0, uint32_t side, uint64_t n, uint64_t *lo, uint64
     return 1;
 }
 
-/* Copies the part of tile (tx, ty) inside [ilo, ihi) x [jlo, jhi) into the
- * window; marks the samples the database void-filled. */
-static void copy_tile(const ft_dbw *w, const ft_tdb_tile *tile, uint64_t tx, uint64_t ty,
-                      uint64_t ilo, uint64_t ihi, uint64_t jlo, uint64_t jhi, ft_terrain *t,
+/* Copies the part of tile (tx, ty) inside [ilo, ihi) x [jlo, jhi) into g. */
+static void copy_tile(const ft_tdb_tile *tile, uint64_t T, uint64_t tx, uint64_t ty, uint64_t ilo,
+                      uint64_t ihi, uint64_t jlo, uint64_t jhi, lattice_grid *g,
                       ft_dbw_counts *c)
 {
-    const uint64_t T = w->hdr.tile_samples;
-    const uint64_t i_a = tx * T > ilo ? tx * T : ilo, i_b = (tx + 1u) * T < ihi ? (tx + 1u) * T : ihi;
-    const uint64_t j_a = ty * T > jlo ? ty * T : jlo, j_b = (ty + 1u) * T < jhi ? (ty + 1u) * T : jhi;
+    const uint64_t i_a = tx * T > ilo ? tx * T : ilo;
+    const uint64_t i_b = (tx + 1u) * T < ihi ? (tx + 1u) * T : ihi;
+    const uint64_t j_a = ty * T > jlo ? ty * T : jlo;
+    const uint64_t j_b = (ty + 1u) * T < jhi ? (ty + 1u) * T : jhi;
     for (uint64_t j = j_a; j < j_b; ++j) {
         const size_t src_row = (size_t)((j - ty * T) * T);
-        const size_t dst_row = (size_t)((int64_t)j - w->j0) * w->side;
+        const size_t dst_row = (size_t)((int64_t)j - g->j0) * g->w;
         for (uint64_t i = i_a; i < i_b; ++i) {
             const size_t s = src_row + (size_t)(i - tx * T);
-            const size_t o = dst_row + (size_t)((int64_t)i - w->i0);
-            t->heights_m[o] = tile->heights_m[s];
-            if (((tile->void_bits[s >> 3] >> (s & 7u)) & 1u) != 0u) {
-                mark(t->void_bits, o);
+            const size_t o = dst_row + (size_t)((int64_t)i - g->i0);
+            g->m[o] = tile->heights_m[s];
+            if (g->bits != NULL && ((tile->void_bits[s >> 3] >> (s & 7u)) & 1u) != 0u) {
+                mark(g->bits, o);
                 ++c->filled_samples;
             }
         }
     }
+}
+
+/* Reads g from the database tile by tile through the staging buffer;
+ * samples no tile covers (no data, outside the lattice) hold
+ * FT_TDB_NODATA_M. */
+static ft_status read_grid(const ft_tdb *db, lattice_grid *g, float *stage_m, uint8_t *stage_bits,
+                           ft_dbw_counts *c, ft_error *err)
+{
+    const size_t n = (size_t)g->w * g->h;
+    for (size_t k = 0u; k < n; ++k) {
+        g->m[k] = FT_TDB_NODATA_M; /* until a tile says otherwise */
+    }
+    uint64_t nx = 0u, ny = 0u, ilo = 0u, ihi = 0u, jlo = 0u, jhi = 0u;
+    ft_tdb_lattice_samples(db->hdr.samples_per_deg, g->level, &nx, &ny);
+    if (!clip_axis(g->i0, g->w, nx, &ilo, &ihi) || !clip_axis(g->j0, g->h, ny, &jlo, &jhi)) {
+        return FT_OK;
+    }
+    const uint64_t T = db->hdr.tile_samples;
+    const size_t tile_n = (size_t)T * T;
+    for (uint64_t ty = jlo / T; ty <= (jhi - 1u) / T; ++ty) {
+        for (uint64_t tx = ilo / T; tx <= (ihi - 1u) / T; ++tx) {
+            ft_tdb_tile tile;
+            ft_status st = ft_tdb_read_tile(db, g->level, (uint32_t)tx, (uint32_t)ty, stage_m,
+                                            tile_n, stage_bits, tile_n / 8u, &tile, err);
+            if (st != FT_OK) {
+                return st;
+            }
+            if (tile.state != FT_TDB_DATA) {
+                ++c->tiles_no_data;
+                continue;
+            }
+            ++c->tiles_read;
+            copy_tile(&tile, T, tx, ty, ilo, ihi, jlo, jhi, g, c);
+        }
+    }
+    return FT_OK;
+}
+
+/* Draws the window's samples still without data from coarser level
+ * `level` (grid cg, read here): the bilinear interpolant of the coarser
+ * samples around each, when every one with a weight has data. Marks them
+ * (coarser data is real but not the level's). Returns how many remain. */
+static ft_status fill_from_coarser(const ft_tdb *db, const ft_dbw *w, uint32_t level,
+                                   lattice_grid *win, lattice_grid *cg, float *stage_m,
+                                   uint8_t *stage_bits, ft_dbw_counts *c, uint64_t *remaining,
+                                   ft_error *err)
+{
+    const int64_t s = (int64_t)1 << (level - w->level);
+    cg->level = level;
+    cg->i0 = floor_div(w->i0, s);
+    cg->j0 = floor_div(w->j0, s);
+    cg->w = (uint32_t)(floor_div(w->i0 + (int64_t)w->side - 1, s) + 2 - cg->i0);
+    cg->h = (uint32_t)(floor_div(w->j0 + (int64_t)w->side - 1, s) + 2 - cg->j0);
+    cg->bits = NULL;
+    if (cg->w > coarse_side(w) || cg->h > coarse_side(w)) {
+        return ft_fail(err, FT_ERR_BUDGET,
+                       "window at level %u: a level-%u grid of %u x %u samples, planned %u", w->level,
+                       level, cg->w, cg->h, coarse_side(w));
+    }
+    ft_status st = read_grid(db, cg, stage_m, stage_bits, c, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    uint64_t left = 0u;
+    for (uint32_t y = 0u; y < w->side; ++y) {
+        for (uint32_t x = 0u; x < w->side; ++x) {
+            const size_t o = (size_t)y * w->side + x;
+            if (win->m[o] != FT_TDB_NODATA_M) {
+                continue;
+            }
+            const int64_t i = w->i0 + x, j = w->j0 + y;
+            const size_t ci = (size_t)(floor_div(i, s) - cg->i0);
+            const size_t cj = (size_t)(floor_div(j, s) - cg->j0);
+            const double fx = (double)(i - floor_div(i, s) * s) / (double)s;
+            const double fy = (double)(j - floor_div(j, s) * s) / (double)s;
+            const float *r0 = cg->m + cj * cg->w + ci, *r1 = r0 + cg->w;
+            const double wt[4] = {(1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy,
+                                  fx * fy};
+            const float v[4] = {r0[0], r0[1], r1[0], r1[1]};
+            double sum = 0.0;
+            int ok = 1;
+            for (int q = 0; q < 4; ++q) {
+                ok = ok && (wt[q] == 0.0 || v[q] != FT_TDB_NODATA_M);
+                sum += wt[q] > 0.0 ? wt[q] * (double)v[q] : 0.0;
+            }
+            if (!ok) {
+                ++left;
+                continue;
+            }
+            win->m[o] = (float)sum;
+            mark(win->bits, o);
+            ++c->coarser_samples;
+        }
+    }
+    *remaining = left;
+    return FT_OK;
 }
 
 ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, void *io,
@@ -165,13 +292,15 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
     const char *name = file_name(r);
     const size_t index_bytes = ft_dbw_index_bytes(w), staging_bytes = ft_dbw_staging_bytes(w);
     memset(counts, 0, sizeof *counts);
+    /* index_bytes is a multiple of sizeof(ft_tdb_entry), itself of 8: the
+     * staging after it is aligned for floats */
+    _Static_assert(sizeof(ft_tdb_entry) % sizeof(float) == 0u, "staging aligned after the index");
     if (io == NULL || io_bytes < index_bytes + staging_bytes || t->heights_m == NULL ||
         t->void_bits == NULL || t->width != w->side || t->height != w->side) {
         return ft_fail(err, FT_ERR_ARG, "%s: window load without its buffers", name);
     }
     ft_tdb db;
-    ft_tdb_entry *entries = (ft_tdb_entry *)io;
-    ft_status st = ft_tdb_open(&db, r, entries, w->hdr.entry_count, err);
+    ft_status st = ft_tdb_open(&db, r, (ft_tdb_entry *)io, w->hdr.entry_count, err);
     if (st != FT_OK) {
         return st;
     }
@@ -179,40 +308,29 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
         return ft_fail(err, FT_ERR_FORMAT, "%s: the header changed between probe and load", name);
     }
     const size_t tile_n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;
-    /* staging after the index, aligned for floats */
-    const size_t stage_at = (index_bytes + sizeof(float) - 1u) / sizeof(float) * sizeof(float);
-    if (io_bytes < stage_at + staging_bytes) {
-        return ft_fail(err, FT_ERR_ARG, "%s: window load without room for its staging", name);
-    }
-    float *stage_m = (float *)(void *)((uint8_t *)io + stage_at);
+    float *stage_m = (float *)(void *)((uint8_t *)io + index_bytes);
     uint8_t *stage_bits = (uint8_t *)(stage_m + tile_n);
+    float *coarse_m = (float *)(void *)(stage_bits + tile_n / 8u);
 
+    lattice_grid win = {w->level, w->i0, w->j0, w->side, w->side, t->heights_m, t->void_bits};
+    st = read_grid(&db, &win, stage_m, stage_bits, counts, err);
     const size_t n = (size_t)w->side * w->side;
+    uint64_t remaining = 0u;
     for (size_t k = 0u; k < n; ++k) {
-        t->heights_m[k] = FT_TDB_NODATA_M; /* until a tile says otherwise */
+        remaining += t->heights_m[k] == FT_TDB_NODATA_M;
     }
-    uint64_t ilo = 0u, ihi = 0u, jlo = 0u, jhi = 0u;
-    if (clip_axis(w->i0, w->side, w->nx, &ilo, &ihi) &&
-        clip_axis(w->j0, w->side, w->ny, &jlo, &jhi)) {
-        const uint64_t T = w->hdr.tile_samples;
-        for (uint64_t ty = jlo / T; ty <= (jhi - 1u) / T; ++ty) {
-            for (uint64_t tx = ilo / T; tx <= (ihi - 1u) / T; ++tx) {
-                ft_tdb_tile tile;
-                st = ft_tdb_read_tile(&db, w->level, (uint32_t)tx, (uint32_t)ty, stage_m, tile_n,
-                                      stage_bits, tile_n / 8u, &tile, err);
-                if (st != FT_OK) {
-                    return st;
-                }
-                if (tile.state != FT_TDB_DATA) {
-                    ++counts->tiles_no_data;
-                    continue;
-                }
-                ++counts->tiles_read;
-                copy_tile(w, &tile, tx, ty, ilo, ihi, jlo, jhi, t, counts);
-            }
-        }
+    /* Coarser levels, nearest first, while samples lack data. Bounded by
+     * the level count (at most FT_TDB_LEVELS_MAX). */
+    for (uint32_t k = w->level + 1u; st == FT_OK && remaining > 0u && k < w->hdr.level_count;
+         ++k) {
+        lattice_grid cg = {0u, 0, 0, 0u, 0u, coarse_m, NULL};
+        st = fill_from_coarser(&db, w, k, &win, &cg, stage_m, stage_bits, counts, &remaining,
+                               err);
     }
-    /* The floor: the lowest height the window's data has. */
+    if (st != FT_OK) {
+        return st;
+    }
+    /* The floor: the lowest height the window has. */
     float lo_m = INFINITY, hi_m = -INFINITY;
     for (size_t k = 0u; k < n; ++k) {
         const float v = t->heights_m[k];
@@ -225,7 +343,7 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
         return ft_fail(err, FT_ERR_CONFIG,
                        "terrain.db_centre_lat_deg / db_centre_lon_deg: the window of %u samples "
                        "at level %u (latitude %.6f, longitude %.6f deg at its south-west "
-                       "corner) holds no data of %s",
+                       "corner) holds no data of %s at any level",
                        w->side, w->level, t->origin_y, t->origin_x, name);
     }
     for (size_t k = 0u; k < n; ++k) {
@@ -238,7 +356,8 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
     counts->fill_m = lo_m;
     t->min_height_m = lo_m;
     t->max_height_m = hi_m;
-    t->void_count = (uint32_t)(counts->missing_samples + counts->filled_samples);
+    t->void_count =
+        (uint32_t)(counts->missing_samples + counts->filled_samples + counts->coarser_samples);
     return ft_terrain_check_void_bits(t->void_bits, t->width, t->height, t->void_count, name,
                                       err);
 }

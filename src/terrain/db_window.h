@@ -14,14 +14,19 @@
  * a time through a staging buffer there (ft_tdb_read_tile: crc, heights and
  * counts checked); the whole file is never read.
  *
- * Missing data is never invented silently. A window sample is "missing"
+ * Missing data is never invented silently. A window sample "lacks data"
  * when its tile is "no data", when it holds FT_TDB_NODATA_M, or when it lies
  * outside the lattice (north of 90 deg, south of -90 deg, at or east of 180
- * deg, west of -180 deg: the lattice does not wrap). Each missing sample is
- * drawn at the lowest height of the window's data (a flat floor, so the
- * methods have a height everywhere) and marked in ft_terrain.void_bits, as
- * are the samples the database itself void-filled: the renderer hatches
- * every cell with a marked corner and counts its pixels (unmeasured_px).
+ * deg, west of -180 deg: the lattice does not wrap). Such a sample is drawn
+ *  1. from the nearest coarser level that has data around it: the bilinear
+ *     interpolant of that level's samples around it (real data, coarser),
+ *     when every one of them with a weight has data; else
+ *  2. at the lowest height the window has (a flat floor, so the methods
+ *     have a height everywhere).
+ * Both are marked in ft_terrain.void_bits, as are the samples the database
+ * itself void-filled: the renderer hatches every cell with a marked corner
+ * and counts its pixels (unmeasured_px). The three are counted apart
+ * (ft_dbw_counts) but drawn with the one marking.
  * A window with no data at all is refused. */
 #ifndef FT_DB_WINDOW_H
 #define FT_DB_WINDOW_H
@@ -52,9 +57,10 @@ typedef struct ft_dbw {
 
 /* What the load found, for the report and the tests. */
 typedef struct ft_dbw_counts {
-    uint32_t tiles_read;       /* data tiles read */
-    uint32_t tiles_no_data;    /* tiles of the window the index lists as no data or not at all */
-    uint64_t missing_samples;  /* drawn at fill_m and marked */
+    uint32_t tiles_read;       /* data tiles read (the window's level and coarser ones) */
+    uint32_t tiles_no_data;    /* tiles (any level read) listed as no data or not at all */
+    uint64_t coarser_samples;  /* drawn from a coarser level and marked */
+    uint64_t missing_samples;  /* no level has data: drawn at fill_m and marked */
     uint64_t filled_samples;   /* void-filled by the database, marked */
     float fill_m;              /* the floor missing samples are drawn at */
 } ft_dbw_counts;
@@ -64,8 +70,9 @@ typedef struct ft_dbw_counts {
 ft_status ft_dbw_probe(const ft_reader_at *r, const ft_dbw_desc *d, ft_dbw *w, ft_terrain *t,
                        ft_error *err);
 
-/* FT_POOL_DEM_IO bytes of the load: the index, and one tile's heights and
- * void bits (staging). */
+/* FT_POOL_DEM_IO bytes of the load: the index; and the staging: one tile's
+ * heights and void bits, and (when the database has a coarser level) a grid
+ * of ((side - 1) / 2 + 3)^2 heights of a coarser level around the window. */
 size_t ft_dbw_index_bytes(const ft_dbw *w);
 size_t ft_dbw_staging_bytes(const ft_dbw *w);
 

@@ -236,11 +236,28 @@ static ft_status fill_from_coarser(const ft_tdb *db, const ft_dbw *w, uint32_t l
                                    ft_error *err)
 {
     const int64_t s = (int64_t)1 << (level - w->level);
+    /* Only the coarser tiles under the samples still without data are read:
+     * their box in the window, x0..x1, y0..y1. */
+    uint32_t x0 = w->side, y0 = w->side, x1 = 0u, y1 = 0u;
+    for (uint32_t y = 0u; y < w->side; ++y) {
+        for (uint32_t x = 0u; x < w->side; ++x) {
+            if (win->m[(size_t)y * w->side + x] == FT_TDB_NODATA_M) {
+                x0 = x < x0 ? x : x0;
+                x1 = x > x1 ? x : x1;
+                y0 = y < y0 ? y : y0;
+                y1 = y > y1 ? y : y1;
+            }
+        }
+    }
+    if (x0 > x1) {
+        *remaining = 0u;
+        return FT_OK;
+    }
     cg->level = level;
-    cg->i0 = floor_div(w->i0, s);
-    cg->j0 = floor_div(w->j0, s);
-    cg->w = (uint32_t)(floor_div(w->i0 + (int64_t)w->side - 1, s) + 2 - cg->i0);
-    cg->h = (uint32_t)(floor_div(w->j0 + (int64_t)w->side - 1, s) + 2 - cg->j0);
+    cg->i0 = floor_div(w->i0 + x0, s);
+    cg->j0 = floor_div(w->j0 + y0, s);
+    cg->w = (uint32_t)(floor_div(w->i0 + x1, s) + 2 - cg->i0);
+    cg->h = (uint32_t)(floor_div(w->j0 + y1, s) + 2 - cg->j0);
     cg->bits = NULL;
     if (cg->w > coarse_side(w) || cg->h > coarse_side(w)) {
         return ft_fail(err, FT_ERR_BUDGET,

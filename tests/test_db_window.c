@@ -10,7 +10,8 @@
  *    window without data, one past a pole and a corrupt tile are refused,
  *    each naming the key or the file and tile, and the reason; (d) with
  *    ETOPO5 under N42E001, the half past N42E001 is drawn from level 7 and
- *    marked, none at the floor.
+ *    marked, none at the floor; without a centre, the window sits on the
+ *    middle of the data tiles.
  *  render BACKEND METHOD: a nadir frame over the mosaic's edge hatches the
  *    missing half and counts it (unmeasured_px), one inside counts 0. */
 #define _POSIX_C_SOURCE 200809L
@@ -299,6 +300,18 @@ static int run_samples(void)
            "(drawn at %.1f m) + %llu source voids = %u marked\n",
            c.tiles_read, c.tiles_no_data, (unsigned long long)c.missing_samples, (double)c.fill_m,
            (unsigned long long)voids, t.void_count);
+
+    /* no centre given: the middle of level 0's data tiles, x 848..853 and
+     * y 614..623 of 256 samples (lattice 217855.5, 158463.5, rounded up),
+     * 56 columns east of 2 deg E uncovered */
+    REQUIRE(load_window(k_db, 0u, 1201u, NAN, NAN, &w, &t, &c, &err) == FT_OK);
+    CHECK(w.i0 == 217856 - 600 && w.j0 == 158464 - 600);
+    CHECK_NEAR(t.origin_x, -180.0 + 217256.0 / 1200.0, 1e-9);
+    CHECK_NEAR(t.origin_y, -90.0 + 157864.0 / 1200.0, 1e-9);
+    CHECK(compare_window(&w, &t, &c, 1, &voids) == 56u * 1201u);
+    CHECK(c.missing_samples == 56u * 1201u);
+    printf("default centre: south-west corner %.6f N %.6f E, %llu samples missing\n",
+           t.origin_y, t.origin_x, (unsigned long long)c.missing_samples);
 
     /* level 2: every 4th level-0 sample; the window's samples are the .hgt's */
     REQUIRE(load_window(k_db, 2u, 301u, 42.0, 1.5, &w, &t, &c, &err) == FT_OK);

@@ -4,8 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The scene's db_level rows allow levels up to this; the database says how
- * many it has. */
+/* A level's step 2^level (level < FT_TDB_LEVELS_MAX) is taken in 64 bits. */
 _Static_assert(FT_TDB_LEVELS_MAX <= 32u, "a level's step 2^level fits 32 bits");
 
 static const char *file_name(const ft_reader_at *r)
@@ -321,7 +320,11 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
     if (st != FT_OK) {
         return st;
     }
-    if (memcmp(&db.hdr, &w->hdr, sizeof db.hdr) != 0) {
+    /* the probe placed the window and planned the buffers from its header */
+    const ft_tdb_header *h0 = &w->hdr, *h1 = &db.hdr;
+    if (h1->index_crc32 != h0->index_crc32 || h1->entry_count != h0->entry_count ||
+        h1->file_bytes != h0->file_bytes || h1->tile_samples != h0->tile_samples ||
+        h1->samples_per_deg != h0->samples_per_deg || h1->level_count != h0->level_count) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: the header changed between probe and load", name);
     }
     const size_t tile_n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;

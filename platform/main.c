@@ -256,6 +256,18 @@ static int cmd_render(int argc, char **argv)
                g_app.terrain.width, g_app.terrain.height, g_app.terrain.cell_x_m,
                g_app.terrain.cell_y_m, (double)g_app.terrain.min_height_m,
                (double)g_app.terrain.max_height_m, g_app.terrain.void_count);
+        if (g_app.dem_kind == FT_DEM_FTD) {
+            const ft_dbw_counts *c = &g_app.dbw_counts;
+            printf("database window: level %u, south-west corner lat %.6f lon %.6f, %u tiles "
+                   "read, %u without data; marked unmeasured: %llu samples void-filled by the "
+                   "database, %llu drawn from coarser levels, %llu with no data (drawn at %.1f "
+                   "m); init %.1f ms\n",
+                   g_app.dbw.level, g_app.terrain.origin_y, g_app.terrain.origin_x,
+                   c->tiles_read, c->tiles_no_data, (unsigned long long)c->filled_samples,
+                   (unsigned long long)c->coarser_samples, (unsigned long long)c->missing_samples,
+                   (double)c->fill_m,
+                   (double)g_app.init_ns * 1e-6);
+        }
         printf("static memory (one arena of %zu bytes, locked after init):\n%s",
                g_app.arena_bytes, g_app.pool_table);
         printf("GPU memory: %llu of %llu bytes budgeted (gpu.texture_bytes)\n",

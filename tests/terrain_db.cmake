@@ -3,3 +3,14 @@
 if(TARGET ft_tools)
   ft_add_test(test_terrain_db SOURCES test_terrain_db.c LIBS ft_tools ft_platform)
 endif()
+
+# A scene's window of a .ftd (built in the test from N41E001 + N42E001):
+# samples against the .hgt files, missing data marked, errors; and frames
+# over the mosaic's edge (hatch and unmeasured_px).
+if(TARGET ft_tools AND TARGET ft_app)
+  ft_add_test(test_db_window SOURCES test_db_window.c ARGS samples LIBS ft_tools ft_app m)
+  if(FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_BRUTE)
+    add_test(NAME db_window_render_gles3 COMMAND test_db_window render egl-gles3 brute)
+    set_tests_properties(db_window_render_gles3 PROPERTIES SKIP_RETURN_CODE 77)
+  endif()
+endif()

@@ -42,7 +42,8 @@ static int ends_with(const char *s, const char *suffix)
 /* Header only: size, spacing, georeference (and the height range where the
  * header holds it). `file` is left open for the load that follows. */
 static ft_status probe_terrain_of(const ft_scene *s, ft_file *file, ft_terrain *t,
-                                  ft_dem_kind *kind, ft_tfile_header *hdr, ft_error *err)
+                                  ft_dem_kind *kind, ft_tfile_header *hdr, ft_dbw *dbw,
+                                  ft_error *err)
 {
     memset(t, 0, sizeof *t);
     if (s->dem_path[0] == '\0') {
@@ -57,6 +58,12 @@ static ft_status probe_terrain_of(const ft_scene *s, ft_file *file, ft_terrain *
         *kind = FT_DEM_HGT;
         return ft_hgt_probe(&file->reader, s->dem_path, t, err);
     }
+    if (ends_with(s->dem_path, ".ftd")) {
+        const ft_dbw_desc d = {s->db_level, s->db_side_samples, s->db_centre_lat_deg,
+                               s->db_centre_lon_deg};
+        *kind = FT_DEM_FTD;
+        return ft_dbw_probe(&file->reader_at, &d, dbw, t, err);
+    }
     *kind = FT_DEM_FTT;
     return ft_tfile_probe(&file->reader, t, hdr, err);
 }
@@ -64,7 +71,7 @@ static ft_status probe_terrain_of(const ft_scene *s, ft_file *file, ft_terrain *
 static ft_status probe_terrain(ft_app *app, ft_file *file, ft_error *err)
 {
     return probe_terrain_of(&app->scene, file, &app->terrain, &app->dem_kind,
-                            &app->tfile_header, err);
+                            &app->tfile_header, &app->dbw, err);
 }
 
 ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *err)
@@ -72,9 +79,10 @@ ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *e
     ft_file file;
     ft_dem_kind kind;
     ft_tfile_header hdr;
+    ft_dbw dbw;
     memset(&file, 0, sizeof file);
     file.fd = -1;
-    ft_status st = probe_terrain_of(scene, &file, t, &kind, &hdr, err);
+    ft_status st = probe_terrain_of(scene, &file, t, &kind, &hdr, &dbw, err);
     ft_plat_file_close(&file);
     if (st == FT_OK) {
         t->curv_drop_per_m2 = ft_terrain_curvature_drop(scene->curvature, t->unit);
@@ -82,11 +90,12 @@ ft_status ft_app_probe_terrain(const ft_scene *scene, ft_terrain *t, ft_error *e
     return st;
 }
 
-/* A .hgt says how many samples it fills only when read; a .ftt says it in
- * its header; a synthetic terrain has none. */
+/* A .hgt says how many samples it fills only when read, and so does a .ftd
+ * window (its filled and missing samples); a .ftt says it in its header; a
+ * synthetic terrain has none. */
 static int may_have_voids(const ft_app *app)
 {
-    return app->dem_kind == FT_DEM_HGT ||
+    return app->dem_kind == FT_DEM_HGT || app->dem_kind == FT_DEM_FTD ||
            (app->dem_kind == FT_DEM_FTT && app->terrain.void_count > 0u);
 }
 
@@ -103,6 +112,10 @@ static void plan(ft_app *app)
     ft_arena_plan(a, FT_POOL_PYRAMIDS, ft_pyramid_bytes(t->width, t->height));
     if (app->dem_kind == FT_DEM_HGT) {
         ft_arena_plan(a, FT_POOL_DEM_IO, ft_hgt_scratch_bytes(t->width, t->height));
+    }
+    if (app->dem_kind == FT_DEM_FTD) { /* the index, then one tile's staging */
+        ft_arena_plan(a, FT_POOL_DEM_IO,
+                      ft_dbw_index_bytes(&app->dbw) + ft_dbw_staging_bytes(&app->dbw));
     }
     ft_renderer_plan(s, t, a);
 #if FT_WITH_REFERENCE
@@ -161,6 +174,18 @@ static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
     }
     case FT_DEM_FTT:
         return ft_tfile_load_payload(&file->reader, t, &app->tfile_header, err);
+    case FT_DEM_FTD: {
+        const size_t io_bytes = ft_dbw_index_bytes(&app->dbw) + ft_dbw_staging_bytes(&app->dbw);
+        void *io = NULL;
+        st = ft_arena_take(a, FT_POOL_DEM_IO, io_bytes, &io, err);
+        if (st == FT_OK) {
+            st = ft_dbw_load(&file->reader_at, &app->dbw, t, io, io_bytes, &app->dbw_counts, err);
+        }
+        if (st == FT_OK) {
+            ft_pyramid_build(t);
+        }
+        return st;
+    }
     default:
         return ft_fail(err, FT_ERR_ARG, "unknown DEM kind");
     }

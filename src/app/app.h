@@ -19,6 +19,7 @@
 #include "gpu/gpu.h"
 #include "gpu/renderer.h"
 #include "terrain/terrain.h"
+#include "terrain/db_window.h"
 #include "terrain/terrain_file.h"
 #if FT_WITH_REFERENCE
 #include "measure/metric.h"
@@ -27,7 +28,7 @@
 
 #define FT_POOL_TABLE_TEXT_MAX 2048u
 
-typedef enum ft_dem_kind { FT_DEM_SYNTH = 0, FT_DEM_HGT, FT_DEM_FTT } ft_dem_kind;
+typedef enum ft_dem_kind { FT_DEM_SYNTH = 0, FT_DEM_HGT, FT_DEM_FTT, FT_DEM_FTD } ft_dem_kind;
 
 typedef struct ft_app {
     ft_scene scene;
@@ -36,6 +37,8 @@ typedef struct ft_app {
     size_t arena_bytes;
     ft_dem_kind dem_kind;
     ft_tfile_header tfile_header; /* between probe and load of a .ftt */
+    ft_dbw dbw;                   /* between probe and load of a .ftd window */
+    ft_dbw_counts dbw_counts;     /* what the .ftd window load found */
     ft_terrain terrain;
     ft_gpu_context gpu;
     ft_renderer renderer;

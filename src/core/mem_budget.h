@@ -21,7 +21,7 @@
 #define FT_POOL_LIST(X)                                                            \
     X(FT_POOL_HEIGHTS, "heights_bytes", "full-resolution heights (float32, m)")    \
     X(FT_POOL_PYRAMIDS, "pyramids_bytes", "avg/min/max pyramids (float32, m)")     \
-    X(FT_POOL_DEM_IO, "dem_io_bytes", "DEM file row buffer and void-fill marks")   \
+    X(FT_POOL_DEM_IO, "dem_io_bytes", "DEM row buffer, void-fill marks; .ftd index + tile")   \
     X(FT_POOL_FRAME_RGBA, "frame_rgba_bytes", "colour readback (RGBA8)")           \
     X(FT_POOL_FRAME_POS, "frame_pos_bytes", "position readback (RGBA32F)")         \
     X(FT_POOL_REFERENCE, "reference_bytes", "reference ray-caster output")         \

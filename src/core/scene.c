@@ -315,6 +315,27 @@ static int parse_display(ft_scene *s, const char *key, const char *value, char *
     return 1;
 }
 
+/* terrain.db_centre_lat_deg / _lon_deg: empty (NaN) = the middle of the
+ * database level's data, placed when the database is opened. */
+static int parse_db_centre(ft_scene *s, const char *key, const char *value, char *why,
+                           size_t cap)
+{
+    const int lat = strcmp(key, "db_centre_lat_deg") == 0;
+    const double lim = lat ? 90.0 : 180.0;
+    double d = NAN;
+    if (value[0] != '\0' && !parse_f64(value, -lim, lim, &d)) {
+        (void)snprintf(why, cap, "expected -%g..%g deg, or empty (the middle of the data)", lim,
+                       lim);
+        return 0;
+    }
+    if (lat) {
+        s->db_centre_lat_deg = d;
+    } else {
+        s->db_centre_lon_deg = d;
+    }
+    return 1;
+}
+
 static int parse_display_mode(ft_scene *s, const char *key, const char *value, char *why,
                               size_t cap)
 {

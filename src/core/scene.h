@@ -18,6 +18,7 @@
 #include "core/output.h"
 #include "input/canaero.h"
 #include "terrain/synth_terrain.h"
+#include "terrain/terrain_db.h"
 
 #define FT_SCENE_TEXT_MAX 65536u /* scene files larger than this are rejected */
 #define FT_SCENE_NAME_MAX 64u
@@ -103,6 +104,10 @@ typedef struct ft_scene {
     ft_pose pose;
     int pose_given; /* 1 when the scene text has a [pose] section */
     char dem_path[FT_SCENE_PATH_MAX];
+    uint32_t db_level;        /* terrain.db_level (a .ftd window) */
+    uint32_t db_side_samples; /* terrain.db_side_samples */
+    double db_centre_lat_deg; /* terrain.db_centre_lat_deg, NaN = the data's middle */
+    double db_centre_lon_deg; /* terrain.db_centre_lon_deg, NaN = the data's middle */
     ft_synth_desc synth;
     ft_curvature curvature; /* terrain.curvature */
     ft_height_format height_format;
@@ -183,7 +188,12 @@ typedef struct ft_scene {
       "px", "image height")                                                                      \
     X(view, fovy_deg, F64, fovy_deg, 1, 170, NULL, "60", "deg", "vertical field of view")        \
     X(terrain, dem, TEXT, dem_path, 0, 0, NULL, "", "",                                          \
-      "path to a .ftt or .hgt, relative to the scene file; empty = the synthetic terrain")       \
+      "path to a .ftt, .hgt or .ftd (a window of it: db_*), relative to the scene file; "       \
+      "empty = the synthetic terrain")                                                           \
+    X(terrain, db_level, U32, db_level, 0, FT_TDB_LEVELS_MAX - 1u, NULL, "0", "",                \
+      ".ftd window: the database level (0 = finest; level k every 2^k level-0 samples)")         \
+    X(terrain, db_side_samples, U32, db_side_samples, FT_GRID_SIDE_MIN, FT_GRID_SIDE_MAX, NULL,  \
+      "1201", "samples", ".ftd window: samples per side")                                        \
     X(terrain, curvature, ENUM, curvature, 0, 0, "auto|sphere|flat|", "auto", "",                \
       "earth curvature: every method, ray caster and the metric's truth lower a point d from "   \
       "the eye by d^2 / (2 R); auto = sphere for a grid in degrees, flat for one in metres")     \
@@ -314,10 +324,14 @@ typedef struct ft_scene {
     FT_SCENE_BUDGET_KEY(X, FT_POOL_METHOD, method_bytes, "4M")                                   \
     FT_SCENE_BUDGET_KEY(X, FT_POOL_PNG, png_bytes, "512K")
 
-/* Keys whose value is a list or names a device, each parsed by its own
- * function in scene.c: X(section, key, parser, default, meaning); key `*`
+/* Keys whose value is a list, names a device or may be left empty, each
+ * parsed by its own function in scene.c: X(section, key, parser, default, meaning); key `*`
  * takes every key of the section that has no row of its own. */
 #define FT_SCENE_LIST_KEYS(X)                                                                    \
+    X(terrain, db_centre_lat_deg, parse_db_centre, "",                                           \
+      ".ftd window centre latitude -90..90 deg; empty = the middle of the level's data tiles")    \
+    X(terrain, db_centre_lon_deg, parse_db_centre, "",                                           \
+      ".ftd window centre longitude -180..180 deg; empty = the middle of the level's data tiles") \
     X(scene, display, parse_display, "none",                                                     \
       "where frames are shown: none (offscreen) | x11 | kms | kms:/dev/dri/cardN")               \
     X(display, mode, parse_display_mode, "",                                                     \

@@ -44,18 +44,30 @@ static uint32_t header_crc(const uint8_t *hdr)
     return ft_crc32(0u, copy, sizeof copy);
 }
 
+void ft_tdb_lattice_samples(uint32_t samples_per_deg, uint32_t level, uint64_t *nx,
+                            uint64_t *ny)
+{
+    *nx = 0u;
+    *ny = 0u;
+    if (samples_per_deg == 0u || level >= FT_TDB_LEVELS_MAX) {
+        return;
+    }
+    const uint64_t step = (uint64_t)1u << level;
+    /* samples with lon < 180 (the lattice does not wrap) and lat <= 90 */
+    *nx = ((uint64_t)360u * samples_per_deg + step - 1u) / step;
+    *ny = (uint64_t)180u * samples_per_deg / step + 1u;
+}
+
 void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint32_t level,
                           uint32_t *cols, uint32_t *rows)
 {
     *cols = 0u;
     *rows = 0u;
-    if (samples_per_deg == 0u || tile_samples == 0u || level >= FT_TDB_LEVELS_MAX) {
+    uint64_t nx = 0u, ny = 0u;
+    ft_tdb_lattice_samples(samples_per_deg, level, &nx, &ny);
+    if (nx == 0u || tile_samples == 0u) {
         return;
     }
-    const uint64_t step = (uint64_t)1u << level;
-    /* samples with lon < 180 (the lattice does not wrap) and lat <= 90 */
-    const uint64_t nx = ((uint64_t)360u * samples_per_deg + step - 1u) / step;
-    const uint64_t ny = (uint64_t)180u * samples_per_deg / step + 1u;
     *cols = (uint32_t)((nx + tile_samples - 1u) / tile_samples);
     *rows = (uint32_t)((ny + tile_samples - 1u) / tile_samples);
 }
@@ -263,13 +275,12 @@ static ft_status check_entry(const ft_tdb_header *h, const ft_tdb_entry *e, uint
     return FT_OK;
 }
 
-ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
-                      uint32_t entries_cap, ft_error *err)
+ft_status ft_tdb_read_header(const ft_reader_at *r, ft_tdb_header *h, ft_error *err)
 {
-    if (db == NULL || r == NULL || r->read_at == NULL || entries == NULL) {
-        return ft_fail(err, FT_ERR_ARG, "terrain database open: a NULL argument");
+    if (r == NULL || r->read_at == NULL || h == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "terrain database header: a NULL argument");
     }
-    memset(db, 0, sizeof *db);
+    memset(h, 0, sizeof *h);
     const char *name = (r->name != NULL) ? r->name : "(unnamed)";
     uint8_t hb[FT_TDB_HEADER_BYTES];
     if (r->size_bytes >= 8u) {
@@ -308,7 +319,6 @@ ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
                        "%s: header crc32 is 0x%08x, the header bytes give 0x%08x", name,
                        crc_stored, crc_calc);
     }
-    ft_tdb_header *h = &db->hdr;
     h->tile_samples = ft_le_get_u32(hb + OFF_TILE);
     h->level_count = ft_le_get_u32(hb + OFF_LEVELS);
     h->samples_per_deg = ft_le_get_u32(hb + OFF_PER_DEG);
@@ -356,7 +366,19 @@ ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
         uint64_t next = (uint64_t)first + (uint64_t)lv->cols * lv->rows;
         first = next > FT_TDB_ENTRIES_MAX ? FT_TDB_ENTRIES_MAX + 1u : (uint32_t)next;
     }
-    st = check_header(h, name, err);
+    return check_header(h, name, err);
+}
+
+ft_status ft_tdb_open(ft_tdb *db, const ft_reader_at *r, ft_tdb_entry *entries,
+                      uint32_t entries_cap, ft_error *err)
+{
+    if (db == NULL || r == NULL || r->read_at == NULL || entries == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "terrain database open: a NULL argument");
+    }
+    memset(db, 0, sizeof *db);
+    const char *name = (r->name != NULL) ? r->name : "(unnamed)";
+    ft_tdb_header *h = &db->hdr;
+    ft_status st = ft_tdb_read_header(r, h, err);
     if (st != FT_OK) {
         return st;
     }
@@ -473,6 +495,44 @@ const ft_tdb_entry *ft_tdb_find(const ft_tdb *db, uint32_t level, uint32_t tx, u
         return NULL;
     }
     return &db->entries[lv->first_entry + (ty - lv->ty0) * lv->cols + (tx - lv->tx0)];
+}
+
+ft_status ft_tdb_data_box(const ft_reader_at *r, const ft_tdb_header *h, uint32_t level,
+                          uint32_t box[4], uint32_t *data_tiles, ft_error *err)
+{
+    *data_tiles = 0u;
+    box[0] = box[1] = UINT32_MAX;
+    box[2] = box[3] = 0u;
+    if (level >= h->level_count) {
+        return ft_fail(err, FT_ERR_ARG, "%s: level %u: the database has %u levels",
+                       r->name != NULL ? r->name : "(unnamed)", level, h->level_count);
+    }
+    const ft_tdb_level *lv = &h->levels[level];
+    const uint32_t count = lv->cols * lv->rows; /* within FT_TDB_ENTRIES_MAX (checked) */
+    uint8_t chunk[FT_TDB_INDEX_CHUNK * FT_TDB_ENTRY_BYTES];
+    for (uint32_t n0 = 0u; n0 < count; n0 += FT_TDB_INDEX_CHUNK) {
+        const uint32_t cnt = count - n0 < FT_TDB_INDEX_CHUNK ? count - n0 : FT_TDB_INDEX_CHUNK;
+        const uint64_t at =
+            FT_TDB_HEADER_BYTES + ((uint64_t)lv->first_entry + n0) * FT_TDB_ENTRY_BYTES;
+        ft_status st = ft_read_at_exact(r, at, chunk, (size_t)cnt * FT_TDB_ENTRY_BYTES, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        for (uint32_t i = 0u; i < cnt; ++i) {
+            ft_tdb_entry e;
+            decode_entry(chunk + (size_t)i * FT_TDB_ENTRY_BYTES, &e);
+            if (e.state != (uint32_t)FT_TDB_DATA) {
+                continue;
+            }
+            const uint32_t tx = lv->tx0 + (n0 + i) % lv->cols, ty = lv->ty0 + (n0 + i) / lv->cols;
+            box[0] = tx < box[0] ? tx : box[0];
+            box[1] = ty < box[1] ? ty : box[1];
+            box[2] = tx > box[2] ? tx : box[2];
+            box[3] = ty > box[3] ? ty : box[3];
+            ++*data_tiles;
+        }
+    }
+    return FT_OK;
 }
 
 static int host_is_little_endian(void)

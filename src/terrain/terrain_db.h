@@ -134,9 +134,24 @@ typedef struct ft_tdb_tile {
     ft_tdb_entry entry; /* the index entry (zero for no data) */
 } ft_tdb_tile;
 
+/* Samples of level `level` across the lattice: i < nx (lon < 180), j < ny
+ * (lat <= 90). */
+void ft_tdb_lattice_samples(uint32_t samples_per_deg, uint32_t level, uint64_t *nx,
+                            uint64_t *ny);
 /* Number of tiles of level `level` across the lattice (columns, rows). */
 void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint32_t level,
                           uint32_t *cols, uint32_t *rows);
+
+/* Reads and validates the header alone (the first checks of ft_tdb_open):
+ * enough to plan the index and tile buffers before any memory is bound. */
+ft_status ft_tdb_read_header(const ft_reader_at *r, ft_tdb_header *h, ft_error *err);
+
+/* The tiles of `level` that hold data: box = {tx_min, ty_min, tx_max, ty_max}
+ * (inclusive) and their number (0: none, box unset). Reads that level's index
+ * entries in small chunks on the stack, with no memory bound; their crc is
+ * checked by ft_tdb_open, which a later load runs. */
+ft_status ft_tdb_data_box(const ft_reader_at *r, const ft_tdb_header *h, uint32_t level,
+                          uint32_t box[4], uint32_t *data_tiles, ft_error *err);
 
 /* Reads and validates header and index into `entries` (capacity
  * entries_cap). The reader must stay valid while db is used. */

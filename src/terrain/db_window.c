@@ -1,0 +1,383 @@
+#include "terrain/db_window.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* A level's step 2^level (level < FT_TDB_LEVELS_MAX) is taken in 64 bits. */
+_Static_assert(FT_TDB_LEVELS_MAX <= 32u, "a level's step 2^level fits 32 bits");
+
+static const char *file_name(const ft_reader_at *r)
+{
+    return (r->name != NULL) ? r->name : "(unnamed)";
+}
+
+static double spacing_deg(const ft_dbw *w)
+{
+    return (double)((uint64_t)1u << w->level) / (double)w->hdr.samples_per_deg;
+}
+
+/* Lattice index of the middle of the data tiles [t0, t1] of one axis, the
+ * last tile clipped to the lattice's n samples. */
+static double data_middle(uint32_t t0, uint32_t t1, uint32_t tile, uint64_t n)
+{
+    uint64_t end = ((uint64_t)t1 + 1u) * tile;
+    end = end < n ? end : n;
+    return 0.5 * ((double)t0 * tile + (double)(end - 1u));
+}
+
+ft_status ft_dbw_probe(const ft_reader_at *r, const ft_dbw_desc *d, ft_dbw *w, ft_terrain *t,
+                       ft_error *err)
+{
+    memset(w, 0, sizeof *w);
+    ft_status st = ft_tdb_read_header(r, &w->hdr, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    const char *name = file_name(r);
+    if (d->level >= w->hdr.level_count) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "terrain.db_level %u: %s has levels 0..%u (level 0 every 1/%u deg)",
+                       d->level, name, w->hdr.level_count - 1u, w->hdr.samples_per_deg);
+    }
+    if (d->side_samples < FT_GRID_SIDE_MIN || d->side_samples > FT_GRID_SIDE_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "terrain.db_side_samples %u is outside %u..%u",
+                       d->side_samples, FT_GRID_SIDE_MIN, FT_GRID_SIDE_MAX);
+    }
+    w->level = d->level;
+    w->side = d->side_samples;
+    ft_tdb_lattice_samples(w->hdr.samples_per_deg, w->level, &w->nx, &w->ny);
+    const double sp = spacing_deg(w);
+    double ic = 0.0, jc = 0.0;
+    if (isnan(d->centre_lat_deg) || isnan(d->centre_lon_deg)) {
+        uint32_t box[4], tiles = 0u;
+        st = ft_tdb_data_box(r, &w->hdr, w->level, box, &tiles, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        if (tiles == 0u) {
+            return ft_fail(err, FT_ERR_CONFIG, "terrain.db_level %u: %s has no data at that level",
+                           w->level, name);
+        }
+        ic = data_middle(box[0], box[2], w->hdr.tile_samples, w->nx);
+        jc = data_middle(box[1], box[3], w->hdr.tile_samples, w->ny);
+    }
+    if (!isnan(d->centre_lon_deg)) {
+        ic = (d->centre_lon_deg + 180.0) / sp;
+    }
+    if (!isnan(d->centre_lat_deg)) {
+        jc = (d->centre_lat_deg + 90.0) / sp;
+    }
+    const int64_t half = (int64_t)(w->side - 1u) / 2;
+    w->i0 = (int64_t)floor(ic + 0.5) - half;
+    w->j0 = (int64_t)floor(jc + 0.5) - half;
+    const double south = -90.0 + (double)w->j0 * sp;
+    const double north = south + (double)(w->side - 1u) * sp;
+    if (south < -90.0 || north > 90.0) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "terrain.db_centre_lat_deg / db_side_samples: the window of %u samples "
+                       "at level %u spans latitude %.6f..%.6f deg, past a pole",
+                       w->side, w->level, south, north);
+    }
+    const int64_t side = (int64_t)w->side;
+    if (w->i0 + side <= 0 || w->i0 >= (int64_t)w->nx) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "terrain.db_centre_lon_deg: the window of %u samples at level %u spans "
+                       "longitude %.6f..%.6f deg, outside the database's -180..180 deg",
+                       w->side, w->level, -180.0 + (double)w->i0 * sp,
+                       -180.0 + (double)(w->i0 + side - 1) * sp);
+    }
+    memset(t, 0, sizeof *t);
+    t->width = w->side;
+    t->height = w->side;
+    t->unit = FT_UNIT_DEGREE;
+    t->spacing_x = sp;
+    t->spacing_y = sp;
+    t->origin_x = -180.0 + (double)w->i0 * sp;
+    t->origin_y = south;
+    t->anchor_lat_deg = t->origin_y;
+    t->anchor_lon_deg = t->origin_x;
+    (void)snprintf(t->crs, sizeof t->crs, "EPSG:4326");
+    t->min_height_m = w->hdr.min_height_m;
+    t->max_height_m = w->hdr.max_height_m;
+    return ft_terrain_derive_frame(t, err);
+}
+
+size_t ft_dbw_index_bytes(const ft_dbw *w)
+{
+    return (size_t)w->hdr.entry_count * sizeof(ft_tdb_entry);
+}
+
+/* Side of the grid of a coarser level's samples around the window: the
+ * window spans at most (side - 1) / 2 + 1 samples of level + 1 (fewer
+ * further up), plus one on each side for the bilinear cell. */
+static uint32_t coarse_side(const ft_dbw *w)
+{
+    return (w->side - 1u) / 2u + 3u;
+}
+
+static int has_coarser(const ft_dbw *w)
+{
+    return w->level + 1u < w->hdr.level_count;
+}
+
+size_t ft_dbw_staging_bytes(const ft_dbw *w)
+{
+    const size_t n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;
+    const size_t c = has_coarser(w) ? (size_t)coarse_side(w) * coarse_side(w) : 0u;
+    return n * sizeof(float) + n / 8u + c * sizeof(float);
+}
+
+static void mark(uint8_t *bits, size_t i)
+{
+    bits[i >> 3] = (uint8_t)(bits[i >> 3] | (1u << (i & 7u)));
+}
+
+/* floor(a / b) for b > 0 (a may be negative: west of -180 deg). */
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    const int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+/* A w x h block of one level's lattice samples from (i0, j0), row 0 = south;
+ * bits (NULL: none) marks the samples the database void-filled. */
+typedef struct lattice_grid {
+    uint32_t level;
+    int64_t i0, j0;
+    uint32_t w, h;
+    float *m;
+    uint8_t *bits;
+} lattice_grid;
+
+/* The grid's samples [lo, hi) on one axis that the lattice (n samples)
+ * holds; 0 when none. */
+static int clip_axis(int64_t g0, uint32_t len, uint64_t n, uint64_t *lo, uint64_t *hi)
+{
+    const int64_t a = g0 < 0 ? 0 : g0;
+    const int64_t b = g0 + (int64_t)len;
+    const int64_t bn = b < (int64_t)n ? b : (int64_t)n;
+    if (bn <= a) {
+        return 0;
+    }
+    *lo = (uint64_t)a;
+    *hi = (uint64_t)bn;
+    return 1;
+}
+
+/* Copies the part of tile (tx, ty) inside [ilo, ihi) x [jlo, jhi) into g. */
+static void copy_tile(const ft_tdb_tile *tile, uint64_t T, uint64_t tx, uint64_t ty, uint64_t ilo,
+                      uint64_t ihi, uint64_t jlo, uint64_t jhi, lattice_grid *g,
+                      ft_dbw_counts *c)
+{
+    const uint64_t i_a = tx * T > ilo ? tx * T : ilo;
+    const uint64_t i_b = (tx + 1u) * T < ihi ? (tx + 1u) * T : ihi;
+    const uint64_t j_a = ty * T > jlo ? ty * T : jlo;
+    const uint64_t j_b = (ty + 1u) * T < jhi ? (ty + 1u) * T : jhi;
+    for (uint64_t j = j_a; j < j_b; ++j) {
+        const size_t src_row = (size_t)((j - ty * T) * T);
+        const size_t dst_row = (size_t)((int64_t)j - g->j0) * g->w;
+        for (uint64_t i = i_a; i < i_b; ++i) {
+            const size_t s = src_row + (size_t)(i - tx * T);
+            const size_t o = dst_row + (size_t)((int64_t)i - g->i0);
+            g->m[o] = tile->heights_m[s];
+            if (g->bits != NULL && ((tile->void_bits[s >> 3] >> (s & 7u)) & 1u) != 0u) {
+                mark(g->bits, o);
+                ++c->filled_samples;
+            }
+        }
+    }
+}
+
+/* Reads g from the database tile by tile through the staging buffer;
+ * samples no tile covers (no data, outside the lattice) hold
+ * FT_TDB_NODATA_M. */
+static ft_status read_grid(const ft_tdb *db, lattice_grid *g, float *stage_m, uint8_t *stage_bits,
+                           ft_dbw_counts *c, ft_error *err)
+{
+    const size_t n = (size_t)g->w * g->h;
+    for (size_t k = 0u; k < n; ++k) {
+        g->m[k] = FT_TDB_NODATA_M; /* until a tile says otherwise */
+    }
+    uint64_t nx = 0u, ny = 0u, ilo = 0u, ihi = 0u, jlo = 0u, jhi = 0u;
+    ft_tdb_lattice_samples(db->hdr.samples_per_deg, g->level, &nx, &ny);
+    if (!clip_axis(g->i0, g->w, nx, &ilo, &ihi) || !clip_axis(g->j0, g->h, ny, &jlo, &jhi)) {
+        return FT_OK;
+    }
+    const uint64_t T = db->hdr.tile_samples;
+    const size_t tile_n = (size_t)T * T;
+    for (uint64_t ty = jlo / T; ty <= (jhi - 1u) / T; ++ty) {
+        for (uint64_t tx = ilo / T; tx <= (ihi - 1u) / T; ++tx) {
+            ft_tdb_tile tile;
+            ft_status st = ft_tdb_read_tile(db, g->level, (uint32_t)tx, (uint32_t)ty, stage_m,
+                                            tile_n, stage_bits, tile_n / 8u, &tile, err);
+            if (st != FT_OK) {
+                return st;
+            }
+            if (tile.state != FT_TDB_DATA) {
+                ++c->tiles_no_data;
+                continue;
+            }
+            ++c->tiles_read;
+            copy_tile(&tile, T, tx, ty, ilo, ihi, jlo, jhi, g, c);
+        }
+    }
+    return FT_OK;
+}
+
+/* Draws the window's samples still without data from coarser level
+ * `level` (grid cg, read here): the bilinear interpolant of the coarser
+ * samples around each, when every one with a weight has data. Marks them
+ * (coarser data is real but not the level's). Returns how many remain. */
+static ft_status fill_from_coarser(const ft_tdb *db, const ft_dbw *w, uint32_t level,
+                                   lattice_grid *win, lattice_grid *cg, float *stage_m,
+                                   uint8_t *stage_bits, ft_dbw_counts *c, uint64_t *remaining,
+                                   ft_error *err)
+{
+    const int64_t s = (int64_t)1 << (level - w->level);
+    /* Only the coarser tiles under the samples still without data are read:
+     * their box in the window, x0..x1, y0..y1. */
+    uint32_t x0 = w->side, y0 = w->side, x1 = 0u, y1 = 0u;
+    for (uint32_t y = 0u; y < w->side; ++y) {
+        for (uint32_t x = 0u; x < w->side; ++x) {
+            if (win->m[(size_t)y * w->side + x] == FT_TDB_NODATA_M) {
+                x0 = x < x0 ? x : x0;
+                x1 = x > x1 ? x : x1;
+                y0 = y < y0 ? y : y0;
+                y1 = y > y1 ? y : y1;
+            }
+        }
+    }
+    if (x0 > x1) {
+        *remaining = 0u;
+        return FT_OK;
+    }
+    cg->level = level;
+    cg->i0 = floor_div(w->i0 + x0, s);
+    cg->j0 = floor_div(w->j0 + y0, s);
+    cg->w = (uint32_t)(floor_div(w->i0 + x1, s) + 2 - cg->i0);
+    cg->h = (uint32_t)(floor_div(w->j0 + y1, s) + 2 - cg->j0);
+    cg->bits = NULL;
+    if (cg->w > coarse_side(w) || cg->h > coarse_side(w)) {
+        return ft_fail(err, FT_ERR_BUDGET,
+                       "window at level %u: a level-%u grid of %u x %u samples, planned %u", w->level,
+                       level, cg->w, cg->h, coarse_side(w));
+    }
+    ft_status st = read_grid(db, cg, stage_m, stage_bits, c, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    uint64_t left = 0u;
+    for (uint32_t y = 0u; y < w->side; ++y) {
+        for (uint32_t x = 0u; x < w->side; ++x) {
+            const size_t o = (size_t)y * w->side + x;
+            if (win->m[o] != FT_TDB_NODATA_M) {
+                continue;
+            }
+            const int64_t i = w->i0 + x, j = w->j0 + y;
+            const size_t ci = (size_t)(floor_div(i, s) - cg->i0);
+            const size_t cj = (size_t)(floor_div(j, s) - cg->j0);
+            const double fx = (double)(i - floor_div(i, s) * s) / (double)s;
+            const double fy = (double)(j - floor_div(j, s) * s) / (double)s;
+            const float *r0 = cg->m + cj * cg->w + ci, *r1 = r0 + cg->w;
+            const double wt[4] = {(1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy,
+                                  fx * fy};
+            const float v[4] = {r0[0], r0[1], r1[0], r1[1]};
+            double sum = 0.0;
+            int ok = 1;
+            for (int q = 0; q < 4; ++q) {
+                ok = ok && (wt[q] == 0.0 || v[q] != FT_TDB_NODATA_M);
+                sum += wt[q] > 0.0 ? wt[q] * (double)v[q] : 0.0;
+            }
+            if (!ok) {
+                ++left;
+                continue;
+            }
+            win->m[o] = (float)sum;
+            mark(win->bits, o);
+            ++c->coarser_samples;
+        }
+    }
+    *remaining = left;
+    return FT_OK;
+}
+
+ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, void *io,
+                      size_t io_bytes, ft_dbw_counts *counts, ft_error *err)
+{
+    const char *name = file_name(r);
+    const size_t index_bytes = ft_dbw_index_bytes(w), staging_bytes = ft_dbw_staging_bytes(w);
+    memset(counts, 0, sizeof *counts);
+    /* index_bytes is a multiple of sizeof(ft_tdb_entry), itself of 8: the
+     * staging after it is aligned for floats */
+    _Static_assert(sizeof(ft_tdb_entry) % sizeof(float) == 0u, "staging aligned after the index");
+    if (io == NULL || io_bytes < index_bytes + staging_bytes || t->heights_m == NULL ||
+        t->void_bits == NULL || t->width != w->side || t->height != w->side) {
+        return ft_fail(err, FT_ERR_ARG, "%s: window load without its buffers", name);
+    }
+    ft_tdb db;
+    ft_status st = ft_tdb_open(&db, r, (ft_tdb_entry *)io, w->hdr.entry_count, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    /* the probe placed the window and planned the buffers from its header */
+    const ft_tdb_header *h0 = &w->hdr, *h1 = &db.hdr;
+    if (h1->index_crc32 != h0->index_crc32 || h1->entry_count != h0->entry_count ||
+        h1->file_bytes != h0->file_bytes || h1->tile_samples != h0->tile_samples ||
+        h1->samples_per_deg != h0->samples_per_deg || h1->level_count != h0->level_count) {
+        return ft_fail(err, FT_ERR_FORMAT, "%s: the header changed between probe and load", name);
+    }
+    const size_t tile_n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;
+    float *stage_m = (float *)(void *)((uint8_t *)io + index_bytes);
+    uint8_t *stage_bits = (uint8_t *)(stage_m + tile_n);
+    float *coarse_m = (float *)(void *)(stage_bits + tile_n / 8u);
+
+    lattice_grid win = {w->level, w->i0, w->j0, w->side, w->side, t->heights_m, t->void_bits};
+    st = read_grid(&db, &win, stage_m, stage_bits, counts, err);
+    const size_t n = (size_t)w->side * w->side;
+    uint64_t remaining = 0u;
+    for (size_t k = 0u; k < n; ++k) {
+        remaining += t->heights_m[k] == FT_TDB_NODATA_M;
+    }
+    /* Coarser levels, nearest first, while samples lack data. Bounded by
+     * the level count (at most FT_TDB_LEVELS_MAX). */
+    for (uint32_t k = w->level + 1u; st == FT_OK && remaining > 0u && k < w->hdr.level_count;
+         ++k) {
+        lattice_grid cg = {0u, 0, 0, 0u, 0u, coarse_m, NULL};
+        st = fill_from_coarser(&db, w, k, &win, &cg, stage_m, stage_bits, counts, &remaining,
+                               err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    /* The floor: the lowest height the window has. */
+    float lo_m = INFINITY, hi_m = -INFINITY;
+    for (size_t k = 0u; k < n; ++k) {
+        const float v = t->heights_m[k];
+        if (v != FT_TDB_NODATA_M) {
+            lo_m = v < lo_m ? v : lo_m;
+            hi_m = v > hi_m ? v : hi_m;
+        }
+    }
+    if (!(lo_m <= hi_m)) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "terrain.db_centre_lat_deg / db_centre_lon_deg: the window of %u samples "
+                       "at level %u (latitude %.6f, longitude %.6f deg at its south-west "
+                       "corner) holds no data of %s at any level",
+                       w->side, w->level, t->origin_y, t->origin_x, name);
+    }
+    for (size_t k = 0u; k < n; ++k) {
+        if (t->heights_m[k] == FT_TDB_NODATA_M) {
+            t->heights_m[k] = lo_m;
+            mark(t->void_bits, k);
+            ++counts->missing_samples;
+        }
+    }
+    counts->fill_m = lo_m;
+    t->min_height_m = lo_m;
+    t->max_height_m = hi_m;
+    t->void_count =
+        (uint32_t)(counts->missing_samples + counts->filled_samples + counts->coarser_samples);
+    return ft_terrain_check_void_bits(t->void_bits, t->width, t->height, t->void_count, name,
+                                      err);
+}

@@ -1,0 +1,86 @@
+/* db_window.h - a square window of a terrain database (.ftd, terrain_db.h)
+ * as the runtime's terrain: `[terrain] dem = region.ftd` with the scene keys
+ * terrain.db_level, db_centre_lat_deg, db_centre_lon_deg, db_side_samples.
+ *
+ * The window is side x side samples of one level's lattice, its middle
+ * sample the lattice point nearest the centre (for an even side, the one
+ * south-west of the middle); the terrain's frame is that of a .hgt (degrees,
+ * origin = sample (0,0), anchor there), so every method, the metric, the
+ * reference and the pose checks work unchanged.
+ *
+ * Probe: the header only (and, when the centre is not given, that level's
+ * index entries in small chunks on the stack, for the data's extent): no
+ * memory is bound yet. Load: the index into FT_POOL_DEM_IO, then one tile at
+ * a time through a staging buffer there (ft_tdb_read_tile: crc, heights and
+ * counts checked); the whole file is never read.
+ *
+ * Missing data is never invented silently. A window sample "lacks data"
+ * when its tile is "no data", when it holds FT_TDB_NODATA_M, or when it lies
+ * outside the lattice (north of 90 deg, south of -90 deg, at or east of 180
+ * deg, west of -180 deg: the lattice does not wrap). Such a sample is drawn
+ *  1. from the nearest coarser level that has data around it: the bilinear
+ *     interpolant of that level's samples around it (real data, coarser),
+ *     when every one of them with a weight has data; else
+ *  2. at the lowest height the window has (a flat floor, so the methods
+ *     have a height everywhere).
+ * Both are marked in ft_terrain.void_bits, as are the samples the database
+ * itself void-filled: the renderer hatches every cell with a marked corner
+ * and counts its pixels (unmeasured_px). The three are counted apart
+ * (ft_dbw_counts) but drawn with the one marking.
+ * A window with no data at all is refused. */
+#ifndef FT_DB_WINDOW_H
+#define FT_DB_WINDOW_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/io.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_db.h"
+
+/* What the scene asks for. A NaN centre coordinate: the middle of the data
+ * tiles of that level (tile-aligned: their bounding box of whole tiles). */
+typedef struct ft_dbw_desc {
+    uint32_t level;
+    uint32_t side_samples;
+    double centre_lat_deg, centre_lon_deg;
+} ft_dbw_desc;
+
+/* The window the probe placed; the caller keeps it until the load. */
+typedef struct ft_dbw {
+    ft_tdb_header hdr;
+    uint32_t level;
+    uint32_t side;     /* samples per side */
+    int64_t i0, j0;    /* level lattice index of window sample (0,0) */
+    uint64_t nx, ny;   /* lattice samples of the level (i < nx, j < ny) */
+} ft_dbw;
+
+/* What the load found, for the report and the tests. */
+typedef struct ft_dbw_counts {
+    uint32_t tiles_read;       /* data tiles read (the window's level and coarser ones) */
+    uint32_t tiles_no_data;    /* tiles (any level read) listed as no data or not at all */
+    uint64_t coarser_samples;  /* drawn from a coarser level and marked */
+    uint64_t missing_samples;  /* no level has data: drawn at fill_m and marked */
+    uint64_t filled_samples;   /* void-filled by the database, marked */
+    float fill_m;              /* the floor missing samples are drawn at */
+} ft_dbw_counts;
+
+/* Reads the header, checks the level against it and places the window;
+ * fills t's header fields (no heights) and derives its frame. */
+ft_status ft_dbw_probe(const ft_reader_at *r, const ft_dbw_desc *d, ft_dbw *w, ft_terrain *t,
+                       ft_error *err);
+
+/* FT_POOL_DEM_IO bytes of the load: the index; and the staging: one tile's
+ * heights and void bits, and (when the database has a coarser level) a grid
+ * of ((side - 1) / 2 + 3)^2 heights of a coarser level around the window. */
+size_t ft_dbw_index_bytes(const ft_dbw *w);
+size_t ft_dbw_staging_bytes(const ft_dbw *w);
+
+/* Opens the database (index into io, checked), reads the window's tiles one
+ * by one into t->heights_m (bound, side*side) and marks t->void_bits (bound,
+ * zeroed); sets void_count and the height range. io holds
+ * ft_dbw_index_bytes + ft_dbw_staging_bytes. Does not build pyramids. */
+ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, void *io,
+                      size_t io_bytes, ft_dbw_counts *counts, ft_error *err);
+
+#endif

@@ -42,18 +42,6 @@ static ft_app g_app;
 /* one database per mode: CTest may run the modes at once */
 static char k_db[256], k_db_bad[256];
 
-static void load_hgt(const char *path, int16_t *out)
-{
-    FILE *f = fopen(path, "rb");
-    REQUIRE(f != NULL);
-    static uint8_t raw[HGT_SIDE * HGT_SIDE * 2];
-    REQUIRE(fread(raw, 1, sizeof raw, f) == sizeof raw);
-    fclose(f);
-    for (size_t i = 0; i < (size_t)HGT_SIDE * HGT_SIDE; ++i) {
-        out[i] = (int16_t)(uint16_t)(((uint16_t)raw[2 * i] << 8) | raw[2 * i + 1]);
-    }
-}
-
 /* The .hgt sample at level-0 lattice point (i, j) (N = 1200): 1 when either
  * file covers it (the shared edge row is the same in both), 0 outside. */
 static int hgt_at(int64_t i, int64_t j, int *v)
@@ -404,8 +392,8 @@ int main(int argc, char **argv)
         !ft_test_have_data(FT_SHARED_DATA_DIR "/N42E001.hgt")) {
         return FT_TEST_SKIP;
     }
-    load_hgt(FT_SHARED_DATA_DIR "/N41E001.hgt", g_hgt[0]);
-    load_hgt(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
+    ft_test_read_srtm3(FT_SHARED_DATA_DIR "/N41E001.hgt", g_hgt[0]);
+    ft_test_read_srtm3(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
     const char *mode = argc >= 2 ? argv[1] : "";
     (void)snprintf(k_db, sizeof k_db, "%s/dbw_%s.ftd", FT_TEST_OUT_DIR, mode);
     (void)snprintf(k_db_bad, sizeof k_db_bad, "%s/dbw_%s_badtile.ftd", FT_TEST_OUT_DIR, mode);

@@ -61,18 +61,6 @@ static int run_import(const char *out, const char *opt, const char *in1, const c
     return ft_cmd_import_db(argc, argv);
 }
 
-static void load_hgt(const char *path, int16_t *out)
-{
-    FILE *f = fopen(path, "rb");
-    REQUIRE(f != NULL);
-    static uint8_t raw[HGT_SIDE * HGT_SIDE * 2];
-    REQUIRE(fread(raw, 1, sizeof raw, f) == sizeof raw);
-    fclose(f);
-    for (size_t i = 0; i < (size_t)HGT_SIDE * HGT_SIDE; ++i) {
-        out[i] = (int16_t)(uint16_t)(((uint16_t)raw[2 * i] << 8) | raw[2 * i + 1]);
-    }
-}
-
 /* The .hgt sample at level-0 lattice point (i, j), N = 1200: 1 inside, 0 outside. */
 static int hgt_at(const int16_t *hgt, int lon0, int lat0, uint64_t i, uint64_t j, int *v)
 {
@@ -276,8 +264,8 @@ static int run_import_msg(const char *out, const char *in1, const char *in2, cha
 
 static void mosaic(void)
 {
-    load_hgt(FT_SHARED_DATA_DIR "/N41E001.hgt", g_hgt[0]);
-    load_hgt(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
+    ft_test_read_srtm3(FT_SHARED_DATA_DIR "/N41E001.hgt", g_hgt[0]);
+    ft_test_read_srtm3(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
     /* a list of files */
     const char *out = FT_TEST_OUT_DIR "/mosaic.ftd";
     CHECK(run_import(out, NULL, FT_SHARED_DATA_DIR "/N42E001.hgt",
@@ -406,7 +394,7 @@ static void mixed(void)
     /* no CRS in the netCDF: refused unless told */
     CHECK(run_import(out, NULL, FT_SHARED_DATA_DIR "/N42E001.hgt", etopo) == 1);
     CHECK(run_import(out, "--assume-wgs84", FT_SHARED_DATA_DIR "/N42E001.hgt", etopo) == 0);
-    load_hgt(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
+    ft_test_read_srtm3(FT_SHARED_DATA_DIR "/N42E001.hgt", g_hgt[1]);
     ft_file f;
     ft_tdb db;
     open_db(out, &f, &db);
@@ -698,7 +686,6 @@ static void corrupt(void)
     free(g_good);
     free(g_bad);
 }
-
 
 /* ---- a database made here (no shared data needed) ------------------------------------ */
 /* tests/ftd_synth.h: a small database made with the encoders */

@@ -4,6 +4,7 @@
 #define FT_TEST_UTIL_H
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -46,6 +47,22 @@ static inline int ft_test_result(const char *name)
     }
     printf("%s: all checks passed\n", name);
     return 0;
+}
+
+/* An SRTM3 tile (1201 x 1201 big-endian int16, row 0 = north) read as it
+ * is, for tests that compare against the file itself. */
+#define FT_TEST_SRTM3_SIDE 1201u
+static inline void ft_test_read_srtm3(const char *path,
+                                      int16_t out[FT_TEST_SRTM3_SIDE * FT_TEST_SRTM3_SIDE])
+{
+    FILE *f = fopen(path, "rb");
+    REQUIRE(f != NULL);
+    static uint8_t raw[FT_TEST_SRTM3_SIDE * FT_TEST_SRTM3_SIDE * 2u];
+    REQUIRE(fread(raw, 1, sizeof raw, f) == sizeof raw);
+    fclose(f);
+    for (size_t i = 0; i < (size_t)FT_TEST_SRTM3_SIDE * FT_TEST_SRTM3_SIDE; ++i) {
+        out[i] = (int16_t)(uint16_t)(((uint16_t)raw[2 * i] << 8) | raw[2 * i + 1]);
+    }
 }
 
 #endif

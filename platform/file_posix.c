@@ -13,13 +13,19 @@
 /* Bounded retry count for EINTR so no loop can spin forever. */
 #define FT_IO_RETRY_MAX 64
 
-static ft_status fd_read(void *ctx, void *dst, size_t bytes, size_t *got)
+/* Reads until `bytes` are in or the file ends, retrying an interrupted
+ * call. offset < 0: from the file position (read); else at offset (pread:
+ * no shared position, so positional reads never disturb the sequential
+ * reader of the same file). */
+static ft_status fd_read_fully(int fd, int64_t offset, void *dst, size_t bytes, size_t *got)
 {
-    ft_file *f = (ft_file *)ctx;
     size_t done = 0;
     int retries = 0;
     while (done < bytes) {
-        ssize_t n = read(f->fd, (char *)dst + done, bytes - done);
+        const ssize_t n = (offset < 0)
+                              ? read(fd, (char *)dst + done, bytes - done)
+                              : pread(fd, (char *)dst + done, bytes - done,
+                                      (off_t)((uint64_t)offset + done));
         if (n < 0) {
             if (errno == EINTR && ++retries < FT_IO_RETRY_MAX) {
                 continue;
@@ -32,38 +38,28 @@ static ft_status fd_read(void *ctx, void *dst, size_t bytes, size_t *got)
         }
         done += (size_t)n;
     }
-    f->pos += done;
     *got = done;
     return FT_OK;
 }
 
-/* pread: no shared position, so positional reads never disturb the
- * sequential reader of the same file. */
+static ft_status fd_read(void *ctx, void *dst, size_t bytes, size_t *got)
+{
+    ft_file *f = (ft_file *)ctx;
+    const ft_status st = fd_read_fully(f->fd, -1, dst, bytes, got);
+    if (st == FT_OK) {
+        f->pos += *got;
+    }
+    return st;
+}
+
 static ft_status fd_read_at(void *ctx, uint64_t offset, void *dst, size_t bytes, size_t *got)
 {
     const ft_file *f = (const ft_file *)ctx;
-    size_t done = 0;
-    int retries = 0;
     *got = 0;
     if (offset > (uint64_t)INT64_MAX - (uint64_t)bytes) {
         return FT_ERR_ARG;
     }
-    while (done < bytes) {
-        ssize_t n = pread(f->fd, (char *)dst + done, bytes - done, (off_t)(offset + done));
-        if (n < 0) {
-            if (errno == EINTR && ++retries < FT_IO_RETRY_MAX) {
-                continue;
-            }
-            *got = done;
-            return FT_ERR_IO;
-        }
-        if (n == 0) {
-            break; /* end of file */
-        }
-        done += (size_t)n;
-    }
-    *got = done;
-    return FT_OK;
+    return fd_read_fully(f->fd, (int64_t)offset, dst, bytes, got);
 }
 
 static ft_status fd_write(void *ctx, const void *src, size_t bytes)

@@ -1,0 +1,147 @@
+/* clip_cache.h - nested clipmap levels around the eye, filled from a height
+ * source a strip at a time (no GL here: the caller uploads).
+ *
+ * Lattice: the cache works on the source's level-0 lattice of integer
+ * sample indices (i east, j north). Level l sample (a, b) is level-0 sample
+ * (a * 2^l, b * 2^l); its world position is
+ *   x = origin_world_x_m + (a * 2^l - src.lattice_i0) * cell_x_m
+ * (y alike), so a source over the runtime's terrain (lattice_i0 = 0) or over
+ * a database window (lattice_i0 = the window's first sample) puts level-0
+ * sample (lattice_i0, lattice_j0) at the terrain's sample (0, 0).
+ *
+ * Levels: `levels` levels of side x side samples each (side a power of two),
+ * level l spacing 2^l samples of level 0. Each level has a WANTED box, the
+ * side x side samples around the eye (origin even in level-l samples, so its
+ * edges fall on level l+1 samples, and inside level l+1's wanted box with at
+ * least side / 4 - 1 level-l+1 samples to spare on each side), and a VALID
+ * box, the rectangle of level-l samples whose heights are resident. Sample
+ * (a, b) of level l lives at texel (a mod side, b mod side) of the level's
+ * side x side texture (toroidal: a box that moves by dx columns rewrites only
+ * the dx columns it enters, in the texel columns the leaving ones held).
+ *
+ * Updates: ft_clip_recentre moves the wanted boxes and shrinks each valid
+ * box to its part inside the new wanted box (those texels are untouched);
+ * ft_clip_next_update produces the next piece of work (coarsest level first,
+ * so a finer level's valid box stays inside the coarser one's): a strip next
+ * to the valid box, an even number of samples wide, at most
+ * update_samples_max samples read from the source into the cache's staging,
+ * as one texel rectangle that does not wrap. The caller uploads it (a
+ * sub-image upload) and calls ft_clip_commit, which grows the valid box by
+ * the strip: first east and west strips over the valid box's rows, then north
+ * and south strips over the whole width (an empty valid box starts as the
+ * wanted box's southern edge, zero rows high, and grows north). So a valid
+ * box is always a rectangle with even edges that only grows until the eye
+ * moves again, and a box that jumps by side or more is refilled row pair by
+ * row pair from the south. Nothing here waits or allocates after init; the
+ * caller runs updates as jobs in the frame's spare time and draws each level
+ * over its valid box.
+ *
+ * Stats say how far behind the cache is: levels whose valid box is not their
+ * wanted box, and the samples still to read. */
+#ifndef FT_CLIP_CACHE_H
+#define FT_CLIP_CACHE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/ft_status.h"
+#include "core/mem_budget.h"
+
+#define FT_CLIP_LEVELS_MAX 16u
+#define FT_CLIP_SIDE_MIN 16u
+#define FT_CLIP_SIDE_MAX 4096u
+
+/* Reads level `level` samples [i0, i0 + w) x [j0, j0 + h) (level-l indices)
+ * into heights_m (row-major, w per row, row 0 = south) and, when marks is not
+ * NULL, one byte per sample: 0 measured, 1 not measured (void-filled, from a
+ * coarser level, or no data anywhere). A source gives a height for every
+ * sample it is asked for (outside its data: the rule it documents, marked). */
+typedef ft_status (*ft_clip_read_fn)(void *ctx, uint32_t level, int64_t i0, int64_t j0,
+                                     uint32_t w, uint32_t h, float *heights_m, uint8_t *marks,
+                                     ft_error *err);
+
+typedef struct ft_clip_source {
+    ft_clip_read_fn read;
+    void *ctx;
+    uint32_t levels;            /* levels it can give: 0 .. levels - 1 */
+    int64_t lattice_i0, lattice_j0; /* level-0 sample at the terrain's sample (0, 0) */
+    /* level-0 samples that hold data, inclusive (the methods draw no
+     * further): [data_i_lo, data_i_hi] x [data_j_lo, data_j_hi] */
+    int64_t data_i_lo, data_i_hi, data_j_lo, data_j_hi;
+} ft_clip_source;
+
+typedef struct ft_clip_desc {
+    uint32_t side;               /* samples per level side: power of two, MIN..MAX */
+    uint32_t levels;             /* 1 .. min(FT_CLIP_LEVELS_MAX, source levels) */
+    uint32_t update_samples_max; /* samples one update reads (>= 2 * side) */
+} ft_clip_desc;
+
+/* A rectangle of level-l samples, half-open: [i0, i1) x [j0, j1); empty when
+ * i1 <= i0 or j1 <= j0. */
+typedef struct ft_clip_box {
+    int64_t i0, j0, i1, j1;
+} ft_clip_box;
+
+typedef struct ft_clip_level {
+    ft_clip_box want;  /* side x side around the eye */
+    ft_clip_box valid; /* resident samples (a sub-box of want while it moves) */
+    uint64_t samples_outstanding; /* samples of want not yet resident */
+} ft_clip_level;
+
+/* One piece of work, read and ready to upload: level `level`'s samples box
+ * (no wrap inside it) go to texels [tex_x, tex_x + w) x [tex_y, tex_y + h). */
+typedef struct ft_clip_update {
+    uint32_t level;
+    ft_clip_box box;
+    uint32_t tex_x, tex_y, w, h;
+    const float *heights_m; /* w * h, the cache's staging, valid until the next call */
+    const uint8_t *marks;   /* w * h */
+} ft_clip_update;
+
+typedef struct ft_clip_stats {
+    uint64_t updates;              /* committed */
+    uint64_t samples_uploaded;
+    uint64_t recentres_moved;      /* recentres that moved some wanted box */
+    uint32_t levels_behind;        /* now: levels whose valid box != wanted box */
+    uint64_t samples_outstanding;  /* now: over all levels */
+    uint32_t levels_behind_max;    /* high-water marks since init */
+    uint64_t samples_outstanding_max;
+} ft_clip_stats;
+
+typedef struct ft_clip_cache {
+    ft_clip_desc desc;
+    ft_clip_source src;
+    ft_clip_level level[FT_CLIP_LEVELS_MAX];
+    float *staging_m;   /* update_samples_max, in FT_POOL_CLIP */
+    uint8_t *marks;     /* update_samples_max, in FT_POOL_CLIP */
+    ft_clip_stats stats;
+    int pending;        /* an update was produced and not committed */
+} ft_clip_cache;
+
+/* Checks the description (the message names the key: clip.side, clip.levels,
+ * clip.update_samples_max) and plans the staging in FT_POOL_CLIP. */
+ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_arena *a,
+                       ft_error *err);
+/* Takes the staging; every level starts empty (valid boxes empty). */
+ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_source *src,
+                       ft_arena *a, ft_error *err);
+
+/* The eye in level-0 lattice samples (fractional: i, j as world x, y over the
+ * cell size plus lattice_i0, lattice_j0). Moves the wanted boxes; returns 1
+ * when one moved. No source reads. */
+int ft_clip_recentre(ft_clip_cache *c, double eye_i, double eye_j);
+
+/* Reads the next update into the staging: *have = 0 when every level is
+ * current. An error is the source's (the cache is unchanged by it). */
+ft_status ft_clip_next_update(ft_clip_cache *c, ft_clip_update *u, int *have, ft_error *err);
+
+/* The caller has uploaded u: its samples are resident. */
+void ft_clip_commit(ft_clip_cache *c, const ft_clip_update *u);
+
+/* Texel of level-l sample index a: a mod side, in [0, side). */
+uint32_t ft_clip_texel(const ft_clip_cache *c, int64_t a);
+
+/* The finest level whose valid box equals its wanted box (levels when none). */
+uint32_t ft_clip_finest_current(const ft_clip_cache *c);
+
+#endif

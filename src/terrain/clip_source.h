@@ -13,9 +13,40 @@
 #define FT_CLIP_SOURCE_H
 
 #include "terrain/clip_cache.h"
+#include "terrain/db_window.h"
 #include "terrain/terrain.h"
+#include "terrain/terrain_db.h"
 
 /* t must stay valid (and its heights unchanged) while the source is used. */
 void ft_clip_source_terrain(ft_clip_source *out, const ft_terrain *t);
+
+/* Over a terrain database (.ftd, open): cache level l is database level
+ * base_level + l, and the cache's level-0 lattice is base_level's, so
+ * lattice_i0/j0 (the window's first sample at base_level) put the cache in
+ * the runtime terrain's frame. A sample is read by the window's rule
+ * (db_window.h: the level's data, else the nearest coarser level's bilinear
+ * value, else the floor fill_m; all but the first marked), tile by tile
+ * through the staging with every tile's checks; the data box is the whole
+ * lattice of base_level (missing data is drawn, marked, never a hole). */
+typedef struct ft_clip_db_source {
+    const ft_tdb *db;
+    uint32_t base_level;
+    float fill_m;
+    void *staging; /* ft_clip_db_source_staging_bytes */
+    size_t staging_bytes;
+    uint8_t *bits; /* (update_samples_max + 7) / 8 */
+    uint32_t update_samples_max;
+    ft_dbw_counts counts; /* summed over every read */
+} ft_clip_db_source;
+
+/* FT_POOL_CLIP bytes of the source's staging for the cache's description. */
+size_t ft_clip_db_source_staging_bytes(const ft_tdb_header *h, uint32_t base_level,
+                                       const ft_clip_desc *d);
+void ft_clip_db_source_plan(const ft_tdb_header *h, uint32_t base_level, const ft_clip_desc *d,
+                            ft_arena *a);
+/* Takes the staging from FT_POOL_CLIP; src->ctx is s, which must outlive it. */
+ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_tdb *db,
+                            uint32_t base_level, int64_t lattice_i0, int64_t lattice_j0,
+                            float fill_m, const ft_clip_desc *d, ft_arena *a, ft_error *err);
 
 #endif

@@ -76,6 +76,30 @@ ft_status ft_dbw_probe(const ft_reader_at *r, const ft_dbw_desc *d, ft_dbw *w, f
 size_t ft_dbw_index_bytes(const ft_dbw *w);
 size_t ft_dbw_staging_bytes(const ft_dbw *w);
 
+/* A rect of one level's lattice samples (level-l indices, row 0 = south)
+ * and where its heights and void bits (rect-local, bit k of sample k, zeroed
+ * by the caller) go. */
+typedef struct ft_dbw_rect {
+    uint32_t level;
+    int64_t i0, j0;
+    uint32_t w, h;
+    float *heights_m; /* w * h */
+    uint8_t *void_bits; /* (w * h + 7) / 8 */
+} ft_dbw_rect;
+
+/* Staging for ft_dbw_read_rect: one tile and its void bits, and a grid of a
+ * coarser level around the rect. */
+size_t ft_dbw_rect_staging_bytes(const ft_tdb_header *h, uint32_t level, uint32_t w,
+                                 uint32_t hgt);
+
+/* Reads the rect by the window's rule: the level's data, else the nearest
+ * coarser level's bilinear value, marked; samples no level has stay
+ * FT_TDB_NODATA_M (*remaining counts them: the caller floors them). The
+ * tiles are read one at a time through the staging (with their checks). */
+ft_status ft_dbw_read_rect(const ft_tdb *db, const ft_dbw_rect *r, void *staging,
+                           size_t staging_bytes, ft_dbw_counts *c, uint64_t *remaining,
+                           ft_error *err);
+
 /* Opens the database (index into io, checked), reads the window's tiles one
  * by one into t->heights_m (bound, side*side) and marks t->void_bits (bound,
  * zeroed); sets void_count and the height range. io holds

@@ -449,6 +449,14 @@ static int run_render(const char *backend, const char *method)
     ft_test_app_init(&g_app, scene(method, backend, k_db, 0u, 1201u, "41.5", "2"), "edge window");
     printf("init of a 1201-sample window: %.1f ms\n%s", (double)g_app.init_ns * 1e-6,
            g_app.pool_table);
+    /* the database stays open for a cache to read past the window */
+    REQUIRE(g_app.terrain.db != NULL);
+    CHECK(g_app.terrain.db_level == 0u && g_app.terrain.db_i0 == g_app.dbw.i0 &&
+          g_app.terrain.db_j0 == g_app.dbw.j0 && g_app.terrain.db_fill_m == g_app.dbw_counts.fill_m);
+    {
+        const ft_tdb_entry *e = ft_tdb_find(g_app.terrain.db, 0u, 850u, 616u);
+        CHECK(e != NULL && e->state == FT_TDB_DATA);
+    }
     /* nadir over 41.5 N 2 E (the mosaic's edge), 3 km above the ground */
     double x = 0.0, y = 0.0;
     ft_terrain_geo_to_world(&g_app.terrain, 41.5, 2.0, &x, &y);

@@ -217,8 +217,8 @@ static uint64_t compare_clip_cache(const char *path, const ft_dbw *w, const ft_t
     const ft_clip_desc d = {CLIP_SIDE, CLIP_LEVELS, 4u * CLIP_SIDE};
     ft_clip_db_source dbs;
     ft_clip_source src;
-    REQUIRE(ft_clip_source_db(&src, &dbs, &db, w->level, w->i0, w->j0, fill_m, &d, &a, &err) ==
-            FT_OK);
+    REQUIRE(ft_clip_source_db(&src, &dbs, &db, w->level, w->i0, w->j0, fill_m, 4u, &d, &a,
+                              &err) == FT_OK);
     ft_clip_cache c;
     REQUIRE(ft_clip_init(&c, &d, &src, &a, &err) == FT_OK);
     ft_clip_recentre(&c, (double)w->i0 + 0.5 * (t->width - 1u),

@@ -34,7 +34,7 @@ static uint64_t g_frame_ns[FRAMES_MAX];
 
 typedef struct report_args {
     const char *db_path;
-    uint32_t side, levels, update_samples, base_level;
+    uint32_t side, levels, update_samples, base_level, tile_slots;
     double from_lat, from_lon, to_lat, to_lon;
     double speeds[SPEEDS_MAX];
     int speed_count;
@@ -45,9 +45,9 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: fixterrain-tools cache-report DB.ftd [--side N] [--levels L]\n"
-            "         [--update-samples U] [--level K] [--from LAT,LON] [--to LAT,LON]\n"
-            "         [--speeds V1,V2,..] [--hz HZ] [--spare-ms MS]\n"
-            "  defaults: side 256, levels 8, update samples 8192, level 0,\n"
+            "         [--update-samples U] [--tile-slots S] [--level K] [--from LAT,LON]\n"
+            "         [--to LAT,LON] [--speeds V1,V2,..] [--hz HZ] [--spare-ms MS]\n"
+            "  defaults: side 256, levels 8, update samples 8192, 16 tile slots, level 0,\n"
             "  from 41.2,1.2 to 43.0,3.0 (across N41E001/N42E001 onto ETOPO5), speeds\n"
             "  100,250,600 m/s, 60 Hz, 4 ms of each frame for the cache\n");
 }
@@ -81,6 +81,7 @@ static int parse_args(int argc, char **argv, report_args *a)
     a->side = 256u;
     a->levels = 8u;
     a->update_samples = 8192u;
+    a->tile_slots = 16u;
     a->from_lat = 41.2;
     a->from_lon = 1.2;
     a->to_lat = 43.0;
@@ -104,6 +105,8 @@ static int parse_args(int argc, char **argv, report_args *a)
             ok = ok && parse_u32(v, &a->levels);
         } else if (strcmp(k, "--update-samples") == 0) {
             ok = ok && parse_u32(v, &a->update_samples);
+        } else if (strcmp(k, "--tile-slots") == 0) {
+            ok = ok && parse_u32(v, &a->tile_slots);
         } else if (strcmp(k, "--level") == 0) {
             ok = ok && parse_u32(v, &a->base_level);
         } else if (strcmp(k, "--from") == 0) {
@@ -169,7 +172,7 @@ static void lattice_of(const ft_tdb *db, uint32_t base, double lat, double lon, 
 
 typedef struct run_stats {
     uint64_t frames, samples, samples_max, behind_frames, coarser_frames, outstanding_max;
-    uint64_t ns_max;
+    uint64_t ns_max, ns_sum;
     double ns_median;
 } run_stats;
 
@@ -186,8 +189,8 @@ static ft_status one_speed(const report_args *a, const ft_tdb *db, double speed_
     ft_clip_source src;
     ft_clip_cache c;
     if (st == FT_OK) {
-        st = ft_clip_source_db(&src, &dbs, db, a->base_level, 0, 0, db->hdr.min_height_m, &d,
-                               arena, err);
+        st = ft_clip_source_db(&src, &dbs, db, a->base_level, 0, 0, db->hdr.min_height_m,
+                               a->tile_slots, &d, arena, err);
     }
     if (st == FT_OK) {
         st = ft_clip_init(&c, &d, &src, arena, err);
@@ -251,6 +254,7 @@ static ft_status one_speed(const report_args *a, const ft_tdb *db, double speed_
         rs->samples += n;
         rs->samples_max = n > rs->samples_max ? n : rs->samples_max;
         rs->ns_max = ns > rs->ns_max ? ns : rs->ns_max;
+        rs->ns_sum += ns;
         rs->behind_frames += c.stats.levels_behind > 0u;
         rs->coarser_frames += ft_clip_finest_current(&c) > 0u;
         rs->outstanding_max = c.stats.samples_outstanding > rs->outstanding_max
@@ -260,11 +264,15 @@ static ft_status one_speed(const report_args *a, const ft_tdb *db, double speed_
     rs->frames = frames;
     qsort(g_frame_ns, frames, sizeof g_frame_ns[0], cmp_u64);
     rs->ns_median = frames > 0u ? (double)g_frame_ns[frames / 2u] : 0.0;
-    printf("%8.0f  %6.1f  %7u  %9.0f  %8llu  %9.3f  %8.3f  %9llu  %9llu  %10llu\n", speed_mps,
-           length_m / 1000.0, frames, (double)rs->samples / (double)(frames ? frames : 1u),
-           (unsigned long long)rs->samples_max, rs->ns_median * 1e-6, (double)rs->ns_max * 1e-6,
+    const double nf = (double)(frames ? frames : 1u);
+    printf("%8.0f  %6.1f  %7u  %9.0f  %8llu  %9.4f  %8.3f  %8.3f  %9llu  %9llu  %10llu  "
+           "%llu/%llu\n",
+           speed_mps, length_m / 1000.0, frames, (double)rs->samples / nf,
+           (unsigned long long)rs->samples_max, (double)rs->ns_sum / nf * 1e-6,
+           rs->ns_median * 1e-6, (double)rs->ns_max * 1e-6,
            (unsigned long long)rs->behind_frames, (unsigned long long)rs->coarser_frames,
-           (unsigned long long)rs->outstanding_max);
+           (unsigned long long)rs->outstanding_max, (unsigned long long)dbs.tiles.reads,
+           (unsigned long long)(dbs.tiles.reads + dbs.tiles.hits));
     return FT_OK;
 }
 
@@ -299,10 +307,9 @@ int ft_cmd_cache_report(int argc, char **argv)
         ft_plat_file_close(&f);
         return st == FT_ERR_CONFIG ? 2 : 1;
     }
-    /* the source's staging and bits, the cache's heights and marks */
+    /* the source's tiles, grid and bits, the cache's heights and marks */
     const size_t mem_bytes =
-        ft_arena_round(ft_clip_db_source_staging_bytes(&db.hdr, a.base_level, &d)) +
-        ft_arena_round((a.update_samples + 7u) / 8u) +
+        ft_clip_db_source_bytes(&db.hdr, a.tile_slots, &d) +
         ft_arena_round((size_t)a.update_samples * sizeof(float)) +
         ft_arena_round(a.update_samples);
     void *mem = aligned_alloc(FT_ARENA_ALIGN, ft_arena_round(mem_bytes));
@@ -317,10 +324,10 @@ int ft_cmd_cache_report(int argc, char **argv)
            "Hz frames for the cache\n",
            a.db_path, (double)db.hdr.file_bytes / 1048576.0, db.hdr.level_count,
            db.hdr.tile_samples, a.levels, a.side, a.base_level, gpu_mb, 4.0, a.spare_ms, a.hz);
-    printf("   speed  length   frames  samples/f  max/f     read p50  read max  behind_f   "
-           "coarser_f  outstanding\n"
-           "   (m/s)    (km)                                  (ms)      (ms)     (frames)  "
-           "(frames)   (max samples)\n");
+    printf("   speed  length   frames  samples/f  max/f    read mean  read p50  read max  "
+           "behind_f   coarser_f  outstanding  tile reads/uses\n"
+           "   (m/s)    (km)                                  (ms)       (ms)      (ms)    "
+           "(frames)   (frames)   (max samples)\n");
     int rc = 0;
     for (int i = 0; i < a.speed_count && rc == 0; ++i) {
         ft_arena arena;

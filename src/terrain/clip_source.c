@@ -52,20 +52,25 @@ void ft_clip_source_terrain(ft_clip_source *out, const ft_terrain *t)
 
 /* The largest coarser-level grid a rect of at most u samples and side
  * samples a row needs is under (w / 2 + 3) (h / 2 + 3) <= u / 4 + 3 side + 9
- * samples; ft_dbw_rect_staging_bytes for the widest rect bounds the rest. */
-size_t ft_clip_db_source_staging_bytes(const ft_tdb_header *h, uint32_t base_level,
-                                       const ft_clip_desc *d)
+ * samples. */
+static size_t coarse_bytes_of(const ft_clip_desc *d)
 {
-    const size_t t = (size_t)h->tile_samples * h->tile_samples;
-    (void)base_level;
-    const size_t coarse = (size_t)d->update_samples_max / 4u + 3u * (size_t)d->side + 9u;
-    return t * sizeof(float) + t / 8u + coarse * sizeof(float);
+    return ((size_t)d->update_samples_max / 4u + 3u * (size_t)d->side + 9u) * sizeof(float);
 }
 
-void ft_clip_db_source_plan(const ft_tdb_header *h, uint32_t base_level, const ft_clip_desc *d,
+size_t ft_clip_db_source_bytes(const ft_tdb_header *h, uint32_t tile_slots,
+                               const ft_clip_desc *d)
+{
+    return ft_arena_round(ft_tdb_tile_cache_bytes(h, tile_slots)) +
+           ft_arena_round(coarse_bytes_of(d)) +
+           ft_arena_round(((size_t)d->update_samples_max + 7u) / 8u);
+}
+
+void ft_clip_db_source_plan(const ft_tdb_header *h, uint32_t tile_slots, const ft_clip_desc *d,
                             ft_arena *a)
 {
-    ft_arena_plan(a, FT_POOL_CLIP, ft_clip_db_source_staging_bytes(h, base_level, d));
+    ft_arena_plan(a, FT_POOL_CLIP, ft_tdb_tile_cache_bytes(h, tile_slots));
+    ft_arena_plan(a, FT_POOL_CLIP, coarse_bytes_of(d));
     ft_arena_plan(a, FT_POOL_CLIP, ((size_t)d->update_samples_max + 7u) / 8u);
 }
 
@@ -81,8 +86,8 @@ static ft_status read_db(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint
     memset(s->bits, 0, (n + 7u) / 8u);
     const ft_dbw_rect r = {s->base_level + level, i0, j0, w, h, heights_m, s->bits};
     uint64_t remaining = 0u;
-    const ft_status st =
-        ft_dbw_read_rect(s->db, &r, s->staging, s->staging_bytes, &s->counts, &remaining, err);
+    const ft_status st = ft_dbw_read_rect(s->db, &r, &s->tiles, s->coarse_m, s->coarse_bytes,
+                                          &s->counts, &remaining, err);
     if (st != FT_OK) {
         return st;
     }
@@ -102,20 +107,29 @@ static ft_status read_db(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint
 
 ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_tdb *db,
                             uint32_t base_level, int64_t lattice_i0, int64_t lattice_j0,
-                            float fill_m, const ft_clip_desc *d, ft_arena *a, ft_error *err)
+                            float fill_m, uint32_t tile_slots, const ft_clip_desc *d,
+                            ft_arena *a, ft_error *err)
 {
     memset(s, 0, sizeof(*s));
     if (base_level >= db->hdr.level_count) {
         return ft_fail(err, FT_ERR_CONFIG, "database source: level %u, the database has 0..%u",
                        base_level, db->hdr.level_count - 1u);
     }
+    if (tile_slots < 1u || tile_slots > FT_TDB_TILE_CACHE_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "clip.tile_slots = %u: must be 1..%u", tile_slots,
+                       FT_TDB_TILE_CACHE_MAX);
+    }
     s->db = db;
     s->base_level = base_level;
     s->fill_m = fill_m;
     s->update_samples_max = d->update_samples_max;
-    s->staging_bytes = ft_clip_db_source_staging_bytes(&db->hdr, base_level, d);
-    void *bits = NULL;
-    ft_status st = ft_arena_take(a, FT_POOL_CLIP, s->staging_bytes, &s->staging, err);
+    s->coarse_bytes = coarse_bytes_of(d);
+    void *tiles = NULL, *coarse = NULL, *bits = NULL;
+    ft_status st = ft_arena_take(a, FT_POOL_CLIP, ft_tdb_tile_cache_bytes(&db->hdr, tile_slots),
+                                 &tiles, err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_CLIP, s->coarse_bytes, &coarse, err);
+    }
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_CLIP, ((size_t)d->update_samples_max + 7u) / 8u, &bits,
                            err);
@@ -123,6 +137,8 @@ ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_
     if (st != FT_OK) {
         return st;
     }
+    ft_tdb_tile_cache_init(&s->tiles, &db->hdr, tile_slots, tiles);
+    s->coarse_m = coarse;
     s->bits = bits;
     uint64_t nx = 0u, ny = 0u;
     ft_tdb_lattice_samples(db->hdr.samples_per_deg, base_level, &nx, &ny);

@@ -32,21 +32,25 @@ typedef struct ft_clip_db_source {
     const ft_tdb *db;
     uint32_t base_level;
     float fill_m;
-    void *staging; /* ft_clip_db_source_staging_bytes */
-    size_t staging_bytes;
+    ft_tdb_tile_cache tiles; /* tile_slots decoded tiles */
+    float *coarse_m;         /* the coarser-level grid of one update */
+    size_t coarse_bytes;
     uint8_t *bits; /* (update_samples_max + 7) / 8 */
     uint32_t update_samples_max;
     ft_dbw_counts counts; /* summed over every read */
 } ft_clip_db_source;
 
-/* FT_POOL_CLIP bytes of the source's staging for the cache's description. */
-size_t ft_clip_db_source_staging_bytes(const ft_tdb_header *h, uint32_t base_level,
-                                       const ft_clip_desc *d);
-void ft_clip_db_source_plan(const ft_tdb_header *h, uint32_t base_level, const ft_clip_desc *d,
+/* FT_POOL_CLIP bytes of the source for the cache's description: tile_slots
+ * decoded tiles (1..FT_TDB_TILE_CACHE_MAX), one update's coarser grid and
+ * marks. */
+size_t ft_clip_db_source_bytes(const ft_tdb_header *h, uint32_t tile_slots,
+                               const ft_clip_desc *d);
+void ft_clip_db_source_plan(const ft_tdb_header *h, uint32_t tile_slots, const ft_clip_desc *d,
                             ft_arena *a);
-/* Takes the staging from FT_POOL_CLIP; src->ctx is s, which must outlive it. */
+/* Takes its memory from FT_POOL_CLIP; src->ctx is s, which must outlive it. */
 ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_tdb *db,
                             uint32_t base_level, int64_t lattice_i0, int64_t lattice_j0,
-                            float fill_m, const ft_clip_desc *d, ft_arena *a, ft_error *err);
+                            float fill_m, uint32_t tile_slots, const ft_clip_desc *d,
+                            ft_arena *a, ft_error *err);
 
 #endif

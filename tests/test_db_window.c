@@ -24,6 +24,8 @@
 #include "../tools/import_db.h"
 #include "app/app.h"
 #include "gpu/shade.h"
+#include "terrain/clip_cache.h"
+#include "terrain/clip_source.h"
 #include "terrain/db_window.h"
 #include "terrain/dem_hgt.h"
 #include "test_app_util.h"
@@ -189,6 +191,81 @@ static void corrupt_copy(void)
  * installed: a level-0 window half east of N42E001 draws that half from
  * level 7 (bilinear between its samples), marks it, and leaves no sample
  * at the floor; on level 7's own lattice points it is level 7's sample. */
+/* The clipmap cache over the database (clip_source.h), filled around the
+ * window's middle: every sample of its levels 0..2 that falls on a window
+ * sample has the window's height and marking, bit for bit (the window's
+ * rule and the source's are one function). Returns the samples compared. */
+#define CLIP_SIDE 256u
+#define CLIP_LEVELS 3u
+static float g_clip_tex[CLIP_LEVELS][CLIP_SIDE * CLIP_SIDE];
+static uint8_t g_clip_mark[CLIP_LEVELS][CLIP_SIDE * CLIP_SIDE];
+static uint8_t g_clip_arena[4u << 20];
+
+static uint64_t compare_clip_cache(const char *path, const ft_dbw *w, const ft_terrain *t,
+                                   float fill_m, uint64_t *missing)
+{
+    ft_file f;
+    ft_tdb db;
+    static ft_tdb_entry entries[4096];
+    ft_error err;
+    REQUIRE(ft_plat_file_open_read(&f, path, &err) == FT_OK);
+    REQUIRE(ft_tdb_open(&db, &f.reader_at, entries, 4096u, &err) == FT_OK);
+    ft_arena a;
+    memset(&a, 0, sizeof a);
+    a.pools[FT_POOL_CLIP].budget_bytes = sizeof g_clip_arena;
+    REQUIRE(ft_arena_bind(&a, g_clip_arena, sizeof g_clip_arena, &err) == FT_OK);
+    const ft_clip_desc d = {CLIP_SIDE, CLIP_LEVELS, 4u * CLIP_SIDE};
+    ft_clip_db_source dbs;
+    ft_clip_source src;
+    REQUIRE(ft_clip_source_db(&src, &dbs, &db, w->level, w->i0, w->j0, fill_m, 4u, &d, &a,
+                              &err) == FT_OK);
+    ft_clip_cache c;
+    REQUIRE(ft_clip_init(&c, &d, &src, &a, &err) == FT_OK);
+    ft_clip_recentre(&c, (double)w->i0 + 0.5 * (t->width - 1u),
+                     (double)w->j0 + 0.5 * (t->height - 1u));
+    for (int k = 0; k < 100000; ++k) {
+        ft_clip_update u;
+        int have = 0;
+        REQUIRE(ft_clip_next_update(&c, &u, &have, &err) == FT_OK);
+        if (!have) {
+            break;
+        }
+        for (uint32_t r = 0; r < u.h; ++r) {
+            const size_t o = (size_t)(u.tex_y + r) * CLIP_SIDE + u.tex_x;
+            memcpy(&g_clip_tex[u.level][o], &u.heights_m[r * u.w], u.w * sizeof(float));
+            memcpy(&g_clip_mark[u.level][o], &u.marks[r * u.w], u.w);
+        }
+        ft_clip_commit(&c, &u);
+    }
+    CHECK(c.stats.levels_behind == 0u);
+    uint64_t compared = 0u, wrong = 0u;
+    for (uint32_t l = 0; l < CLIP_LEVELS; ++l) {
+        const ft_clip_box *v = &c.level[l].valid;
+        for (int64_t b = v->j0; b < v->j1; ++b) {
+            for (int64_t q = v->i0; q < v->i1; ++q) {
+                const int64_t x = q * ((int64_t)1 << l) - w->i0;
+                const int64_t y = b * ((int64_t)1 << l) - w->j0;
+                if (x < 0 || y < 0 || x >= (int64_t)t->width || y >= (int64_t)t->height) {
+                    continue;
+                }
+                const size_t k = (size_t)y * t->width + (size_t)x;
+                const size_t o = (size_t)ft_clip_texel(&c, b) * CLIP_SIDE + ft_clip_texel(&c, q);
+                ++compared;
+                wrong += g_clip_tex[l][o] != t->heights_m[k] ||
+                         (g_clip_mark[l][o] != 0u) != (ft_terrain_sample_filled(t, k) != 0);
+            }
+        }
+    }
+    ft_plat_file_close(&f);
+    CHECK(compared > 0u && wrong == 0u);
+    if (wrong != 0u) {
+        fprintf(stderr, "clip cache: %llu of %llu samples differ from the window\n",
+                (unsigned long long)wrong, (unsigned long long)compared);
+    }
+    *missing = dbs.counts.missing_samples;
+    return compared;
+}
+
 static void mixed_levels(void)
 {
     const char *etopo = "/usr/share/ferret-vis/data/etopo5.cdf";
@@ -246,6 +323,11 @@ static void mixed_levels(void)
     ft_plat_file_close(&f);
     CHECK(on_lattice > 0u && wrong == 0u);
     printf("(d) %u samples on level 7's lattice equal its samples\n", on_lattice);
+    uint64_t missing = 0u;
+    const uint64_t n = compare_clip_cache(db_path, &w, &t, c.fill_m, &missing);
+    CHECK(missing == 0u);
+    printf("(e) clipmap cache over N42E001 + ETOPO5, levels 0..2: %llu samples equal the "
+           "window's\n", (unsigned long long)n);
 }
 
 static int run_samples(void)
@@ -284,6 +366,14 @@ static int run_samples(void)
     CHECK(t.void_count == uncovered + voids);
     CHECK(c.tiles_no_data > 0u); /* east of the listed tiles */
     CHECK(c.fill_m == t.min_height_m);
+    {
+        uint64_t missing = 0u;
+        const uint64_t n = compare_clip_cache(k_db, &w, &t, c.fill_m, &missing);
+        CHECK(missing > 0u); /* east of 2 deg E: the floor, marked */
+        printf("(e) clipmap cache over the window's database, levels 0..2: %llu samples equal "
+               "the window's (%llu at the floor)\n", (unsigned long long)n,
+               (unsigned long long)missing);
+    }
     printf("(b) 1201 samples at 42 N 2 E: %u tiles read, %u without data; %llu samples missing "
            "(drawn at %.1f m) + %llu source voids = %u marked\n",
            c.tiles_read, c.tiles_no_data, (unsigned long long)c.missing_samples, (double)c.fill_m,
@@ -359,6 +449,14 @@ static int run_render(const char *backend, const char *method)
     ft_test_app_init(&g_app, scene(method, backend, k_db, 0u, 1201u, "41.5", "2"), "edge window");
     printf("init of a 1201-sample window: %.1f ms\n%s", (double)g_app.init_ns * 1e-6,
            g_app.pool_table);
+    /* the database stays open for a cache to read past the window */
+    REQUIRE(g_app.terrain.db != NULL);
+    CHECK(g_app.terrain.db_level == 0u && g_app.terrain.db_i0 == g_app.dbw.i0 &&
+          g_app.terrain.db_j0 == g_app.dbw.j0 && g_app.terrain.db_fill_m == g_app.dbw_counts.fill_m);
+    {
+        const ft_tdb_entry *e = ft_tdb_find(g_app.terrain.db, 0u, 850u, 616u);
+        CHECK(e != NULL && e->state == FT_TDB_DATA);
+    }
     /* nadir over 41.5 N 2 E (the mosaic's edge), 3 km above the ground */
     double x = 0.0, y = 0.0;
     ft_terrain_geo_to_world(&g_app.terrain, 41.5, 2.0, &x, &y);

@@ -7,7 +7,7 @@ string(JSON tris GET "${j}" frame triangles)
 string(JSON npools LENGTH "${j}" pools)
 string(JSON pool0 GET "${j}" pools 0 pool)
 string(JSON method GET "${j}" method)
-if(NOT w EQUAL 1201 OR NOT voids EQUAL 7652 OR tris LESS 1000 OR NOT npools EQUAL 10
+if(NOT w EQUAL 1201 OR NOT voids EQUAL 7652 OR tris LESS 1000 OR NOT npools EQUAL 11
    OR NOT pool0 STREQUAL "heights_bytes")
   message(FATAL_ERROR "unexpected stats: width ${w} voids ${voids} triangles ${tris} pools ${npools}")
 endif()

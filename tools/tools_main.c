@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cache_report.h"
 #if FT_WITH_GDAL_TOOLS
 #include "import_gdal.h"
 #endif
@@ -24,6 +25,8 @@ static void print_help(void)
            "  bench     error against run time: every method and setting over flight paths%s\n"
            "  import    convert a DEM (GeoTIFF, .hgt, DTED, ...) to a .ftt terrain file, or\n"
            "            many DEMs to a tiled .ftd database (--database)%s\n"
+           "  cache-report  what the clipmap cache reads from a .ftd database on a flight\n"
+           "            at several speeds, in a fixed share of each frame\n"
            "  help      this text\n\n"
            "The display runtime is the separate binary 'fixterrain'; it forwards its\n"
            "'bench' and 'import' commands here.\n",
@@ -64,6 +67,9 @@ int main(int argc, char **argv)
                         "(FIXTERRAIN_WITH_GDAL_TOOLS=OFF)\n");
         return FT_EXIT_ERROR;
 #endif
+    }
+    if (strcmp(cmd, "cache-report") == 0) {
+        return ft_cmd_cache_report(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
         print_help();

@@ -130,6 +130,32 @@ static void plan(ft_app *app)
 #endif
 }
 
+/* After a .ftd window's load: the database open for the run (its own file
+ * handle, the index read again into the load's buffer and checked), so a
+ * method's cache can read past the window. */
+static ft_status keep_database_open(ft_app *app, void *index, ft_error *err)
+{
+    ft_terrain *t = &app->terrain;
+    ft_status st = ft_plat_file_open_read(&app->db_file, app->scene.dem_path, err);
+    if (st == FT_OK) {
+        st = ft_tdb_open(&app->db, &app->db_file.reader_at, index, app->dbw.hdr.entry_count,
+                         err);
+    }
+    if (st == FT_OK && app->db.hdr.index_crc32 != app->dbw.hdr.index_crc32) {
+        st = ft_fail(err, FT_ERR_FORMAT, "%s: the database changed during the load",
+                     app->scene.dem_path);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    t->db = &app->db;
+    t->db_level = app->dbw.level;
+    t->db_i0 = app->dbw.i0;
+    t->db_j0 = app->dbw.j0;
+    t->db_fill_m = app->dbw_counts.fill_m;
+    return FT_OK;
+}
+
 static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
 {
     ft_terrain *t = &app->terrain;
@@ -180,6 +206,9 @@ static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
         st = ft_arena_take(a, FT_POOL_DEM_IO, io_bytes, &io, err);
         if (st == FT_OK) {
             st = ft_dbw_load(&file->reader_at, &app->dbw, t, io, io_bytes, &app->dbw_counts, err);
+        }
+        if (st == FT_OK) {
+            st = keep_database_open(app, io, err);
         }
         if (st == FT_OK) {
             ft_pyramid_build(t);
@@ -235,6 +264,7 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
     memset(app, 0, sizeof *app);
     memset(&file, 0, sizeof file);
     file.fd = -1;
+    app->db_file.fd = -1;
     app->scene = *scene;
 
     st = ft_scene_validate(&app->scene, err);
@@ -311,6 +341,7 @@ fail_renderer:
     app->renderer_ready = 0;
     ft_plat_gpu_close(&app->gpu);
 fail_memory:
+    ft_plat_file_close(&app->db_file);
     ft_plat_mem_release(app->arena_memory, app->arena_bytes);
     app->arena_memory = NULL;
 fail_file:
@@ -398,6 +429,10 @@ void ft_app_shutdown(ft_app *app)
         app->renderer_ready = 0;
     }
     ft_plat_gpu_close(&app->gpu);
+    if (app->terrain.db != NULL) {
+        ft_plat_file_close(&app->db_file);
+        app->terrain.db = NULL;
+    }
     if (app->arena_memory != NULL) {
         ft_plat_mem_release(app->arena_memory, app->arena_bytes);
         app->arena_memory = NULL;

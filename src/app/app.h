@@ -39,6 +39,10 @@ typedef struct ft_app {
     ft_tfile_header tfile_header; /* between probe and load of a .ftt */
     ft_dbw dbw;                   /* between probe and load of a .ftd window */
     ft_dbw_counts dbw_counts;     /* what the .ftd window load found */
+    /* a .ftd stays open after the window's load (terrain.db points here):
+     * its index in FT_POOL_DEM_IO, read again through db_file */
+    ft_file db_file;
+    ft_tdb db;
     ft_terrain terrain;
     ft_gpu_context gpu;
     ft_renderer renderer;

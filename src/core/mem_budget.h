@@ -28,7 +28,8 @@
     X(FT_POOL_METRIC, "metric_bytes", "error metric scratch (per-pixel errors)")   \
     X(FT_POOL_GPU_STAGING, "gpu_staging_bytes", "upload staging (packed heights, vertex tables)") \
     X(FT_POOL_METHOD, "method_bytes", "LOD method state (templates, tile lists)")  \
-    X(FT_POOL_PNG, "png_bytes", "PNG encoder scratch (libpng + zlib)")
+    X(FT_POOL_PNG, "png_bytes", "PNG encoder scratch (libpng + zlib)")            \
+    X(FT_POOL_CLIP, "clip_bytes", "clipmap cache staging (heights, marks)")
 
 typedef enum ft_pool_id {
 #define FT_POOL_ENUM(id, key, what) id,

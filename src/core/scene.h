@@ -322,7 +322,8 @@ typedef struct ft_scene {
     FT_SCENE_BUDGET_KEY(X, FT_POOL_METRIC, metric_bytes, "0")                                    \
     FT_SCENE_BUDGET_KEY(X, FT_POOL_GPU_STAGING, gpu_staging_bytes, "6M")                         \
     FT_SCENE_BUDGET_KEY(X, FT_POOL_METHOD, method_bytes, "4M")                                   \
-    FT_SCENE_BUDGET_KEY(X, FT_POOL_PNG, png_bytes, "512K")
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_PNG, png_bytes, "512K")                               \
+    FT_SCENE_BUDGET_KEY(X, FT_POOL_CLIP, clip_bytes, "0")
 
 /* Keys whose value is a list, names a device or may be left empty, each
  * parsed by its own function in scene.c: X(section, key, parser, default, meaning); key `*`

@@ -26,15 +26,16 @@
  * to the valid box, an even number of samples wide, at most
  * update_samples_max samples read from the source into the cache's staging,
  * as one texel rectangle that does not wrap. The caller uploads it (a
- * sub-image upload) and calls ft_clip_commit, which grows the valid box by
- * the strip: first east and west strips over the valid box's rows, then north
- * and south strips over the whole width (an empty valid box starts as the
- * wanted box's southern edge, zero rows high, and grows north). So a valid
- * box is always a rectangle with even edges that only grows until the eye
- * moves again, and a box that jumps by side or more is refilled row pair by
- * row pair from the south. Nothing here waits or allocates after init; the
- * caller runs updates as jobs in the frame's spare time and draws each level
- * over its valid box.
+ * sub-image upload) and calls ft_clip_commit. A strip is filled in chunks
+ * (rows of its columns, split where the texels wrap) and joins the valid box
+ * when its last chunk is committed: first the east and west strips over the
+ * valid box's rows, then the north and south strips over the whole width (an
+ * empty valid box starts as the wanted box's southern edge, zero rows high,
+ * and the whole box is one north strip). So a valid box is always a
+ * rectangle with even edges that only grows until the eye moves again; a
+ * level that jumps by side or more is drawn again only when refilled whole.
+ * Nothing here waits or allocates after init; the caller runs updates as
+ * jobs in the frame's spare time and draws each level over its valid box.
  *
  * Stats say how far behind the cache is: levels whose valid box is not their
  * wanted box, and the samples still to read. */
@@ -115,7 +116,12 @@ typedef struct ft_clip_cache {
     float *staging_m;   /* update_samples_max, in FT_POOL_CLIP */
     uint8_t *marks;     /* update_samples_max, in FT_POOL_CLIP */
     ft_clip_stats stats;
+    /* per level: the strip being filled (empty: none) and the next chunk's
+     * first sample */
+    ft_clip_box strip[FT_CLIP_LEVELS_MAX];
+    int64_t cursor_i[FT_CLIP_LEVELS_MAX], cursor_j[FT_CLIP_LEVELS_MAX];
     int pending;        /* an update was produced and not committed */
+    ft_clip_update last; /* the update produced last */
 } ft_clip_cache;
 
 /* Checks the description (the message names the key: clip.side, clip.levels,

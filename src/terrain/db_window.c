@@ -108,24 +108,89 @@ size_t ft_dbw_index_bytes(const ft_dbw *w)
     return (size_t)w->hdr.entry_count * sizeof(ft_tdb_entry);
 }
 
-/* Side of the grid of a coarser level's samples around the window: the
- * window spans at most (side - 1) / 2 + 1 samples of level + 1 (fewer
- * further up), plus one on each side for the bilinear cell. */
-static uint32_t coarse_side(const ft_dbw *w)
+/* Samples of a coarser level's grid around a rect of len samples on one
+ * axis: at most (len - 1) / 2 + 1 of the next level (fewer further up),
+ * plus one on each side for the bilinear cell. */
+static uint32_t coarse_len(uint32_t len)
 {
-    return (w->side - 1u) / 2u + 3u;
+    return (len - 1u) / 2u + 3u;
 }
 
-static int has_coarser(const ft_dbw *w)
+size_t ft_dbw_rect_coarse_bytes(const ft_tdb_header *h, uint32_t level, uint32_t w,
+                                uint32_t hgt)
 {
-    return w->level + 1u < w->hdr.level_count;
+    return (level + 1u < h->level_count) ? (size_t)coarse_len(w) * coarse_len(hgt) * sizeof(float)
+                                         : 0u;
+}
+
+static size_t slot_bytes(const ft_tdb_header *h)
+{
+    const size_t n = (size_t)h->tile_samples * h->tile_samples;
+    return n * sizeof(float) + n / 8u; /* a multiple of 4: T >= 16 */
+}
+
+size_t ft_tdb_tile_cache_bytes(const ft_tdb_header *h, uint32_t slots)
+{
+    return slot_bytes(h) * slots;
+}
+
+void ft_tdb_tile_cache_init(ft_tdb_tile_cache *tc, const ft_tdb_header *h, uint32_t slots,
+                            void *mem)
+{
+    memset(tc, 0, sizeof *tc);
+    tc->slots = slots < FT_TDB_TILE_CACHE_MAX ? slots : FT_TDB_TILE_CACHE_MAX;
+    tc->tile_n = (size_t)h->tile_samples * h->tile_samples;
+    for (uint32_t k = 0u; k < tc->slots; ++k) {
+        uint8_t *base = (uint8_t *)mem + slot_bytes(h) * k;
+        tc->slot[k].heights_m = (float *)(void *)base;
+        tc->slot[k].void_bits = base + tc->tile_n * sizeof(float);
+    }
+}
+
+/* Tile (level, tx, ty) from the cache or, on a miss, read into the least
+ * recently used slot (with every check of ft_tdb_read_tile). NULL in *out
+ * when the database has no data there (nothing read). */
+static ft_status cached_tile(const ft_tdb *db, ft_tdb_tile_cache *tc, uint32_t level,
+                             uint32_t tx, uint32_t ty, const ft_tdb_tile **out, ft_error *err)
+{
+    *out = NULL;
+    const ft_tdb_entry *e = ft_tdb_find(db, level, tx, ty);
+    if (e == NULL || e->state != FT_TDB_DATA) {
+        return FT_OK;
+    }
+    ft_tdb_tile_slot *victim = &tc->slot[0];
+    for (uint32_t k = 0u; k < tc->slots; ++k) {
+        ft_tdb_tile_slot *sl = &tc->slot[k];
+        if (sl->filled && sl->level == level && sl->tx == tx && sl->ty == ty) {
+            sl->stamp = ++tc->clock;
+            ++tc->hits;
+            *out = &sl->tile;
+            return FT_OK;
+        }
+        if (!sl->filled || (victim->filled && sl->stamp < victim->stamp)) {
+            victim = sl;
+        }
+    }
+    victim->filled = 0;
+    const ft_status st = ft_tdb_read_tile(db, level, tx, ty, victim->heights_m, tc->tile_n,
+                                          victim->void_bits, tc->tile_n / 8u, &victim->tile, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    ++tc->reads;
+    victim->filled = 1;
+    victim->level = level;
+    victim->tx = tx;
+    victim->ty = ty;
+    victim->stamp = ++tc->clock;
+    *out = &victim->tile;
+    return FT_OK;
 }
 
 size_t ft_dbw_staging_bytes(const ft_dbw *w)
 {
-    const size_t n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;
-    const size_t c = has_coarser(w) ? (size_t)coarse_side(w) * coarse_side(w) : 0u;
-    return n * sizeof(float) + n / 8u + c * sizeof(float);
+    return ft_tdb_tile_cache_bytes(&w->hdr, 1u) +
+           ft_dbw_rect_coarse_bytes(&w->hdr, w->level, w->side, w->side);
 }
 
 static void mark(uint8_t *bits, size_t i)
@@ -192,7 +257,7 @@ static void copy_tile(const ft_tdb_tile *tile, uint64_t T, uint64_t tx, uint64_t
 /* Reads g from the database tile by tile through the staging buffer;
  * samples no tile covers (no data, outside the lattice) hold
  * FT_TDB_NODATA_M. */
-static ft_status read_grid(const ft_tdb *db, lattice_grid *g, float *stage_m, uint8_t *stage_bits,
+static ft_status read_grid(const ft_tdb *db, lattice_grid *g, ft_tdb_tile_cache *tc,
                            ft_dbw_counts *c, ft_error *err)
 {
     const size_t n = (size_t)g->w * g->h;
@@ -205,42 +270,40 @@ static ft_status read_grid(const ft_tdb *db, lattice_grid *g, float *stage_m, ui
         return FT_OK;
     }
     const uint64_t T = db->hdr.tile_samples;
-    const size_t tile_n = (size_t)T * T;
     for (uint64_t ty = jlo / T; ty <= (jhi - 1u) / T; ++ty) {
         for (uint64_t tx = ilo / T; tx <= (ihi - 1u) / T; ++tx) {
-            ft_tdb_tile tile;
-            ft_status st = ft_tdb_read_tile(db, g->level, (uint32_t)tx, (uint32_t)ty, stage_m,
-                                            tile_n, stage_bits, tile_n / 8u, &tile, err);
+            const ft_tdb_tile *tile = NULL;
+            const ft_status st = cached_tile(db, tc, g->level, (uint32_t)tx, (uint32_t)ty, &tile,
+                                             err);
             if (st != FT_OK) {
                 return st;
             }
-            if (tile.state != FT_TDB_DATA) {
+            if (tile == NULL) {
                 ++c->tiles_no_data;
                 continue;
             }
             ++c->tiles_read;
-            copy_tile(&tile, T, tx, ty, ilo, ihi, jlo, jhi, g, c);
+            copy_tile(tile, T, tx, ty, ilo, ihi, jlo, jhi, g, c);
         }
     }
     return FT_OK;
 }
 
-/* Draws the window's samples still without data from coarser level
- * `level` (grid cg, read here): the bilinear interpolant of the coarser
- * samples around each, when every one with a weight has data. Marks them
- * (coarser data is real but not the level's). Returns how many remain. */
-static ft_status fill_from_coarser(const ft_tdb *db, const ft_dbw *w, uint32_t level,
-                                   lattice_grid *win, lattice_grid *cg, float *stage_m,
-                                   uint8_t *stage_bits, ft_dbw_counts *c, uint64_t *remaining,
-                                   ft_error *err)
+/* Draws the rect's samples still without data from coarser level `level`
+ * (grid cg, read here): the bilinear interpolant of the coarser samples
+ * around each, when every one with a weight has data. Marks them (coarser
+ * data is real but not the level's). Returns how many remain. */
+static ft_status fill_from_coarser(const ft_tdb *db, uint32_t level, lattice_grid *win,
+                                   lattice_grid *cg, ft_tdb_tile_cache *tc, ft_dbw_counts *c,
+                                   uint64_t *remaining, ft_error *err)
 {
-    const int64_t s = (int64_t)1 << (level - w->level);
+    const int64_t s = (int64_t)1 << (level - win->level);
     /* Only the coarser tiles under the samples still without data are read:
-     * their box in the window, x0..x1, y0..y1. */
-    uint32_t x0 = w->side, y0 = w->side, x1 = 0u, y1 = 0u;
-    for (uint32_t y = 0u; y < w->side; ++y) {
-        for (uint32_t x = 0u; x < w->side; ++x) {
-            if (win->m[(size_t)y * w->side + x] == FT_TDB_NODATA_M) {
+     * their box in the rect, x0..x1, y0..y1. */
+    uint32_t x0 = win->w, y0 = win->h, x1 = 0u, y1 = 0u;
+    for (uint32_t y = 0u; y < win->h; ++y) {
+        for (uint32_t x = 0u; x < win->w; ++x) {
+            if (win->m[(size_t)y * win->w + x] == FT_TDB_NODATA_M) {
                 x0 = x < x0 ? x : x0;
                 x1 = x > x1 ? x : x1;
                 y0 = y < y0 ? y : y0;
@@ -253,28 +316,30 @@ static ft_status fill_from_coarser(const ft_tdb *db, const ft_dbw *w, uint32_t l
         return FT_OK;
     }
     cg->level = level;
-    cg->i0 = floor_div(w->i0 + x0, s);
-    cg->j0 = floor_div(w->j0 + y0, s);
-    cg->w = (uint32_t)(floor_div(w->i0 + x1, s) + 2 - cg->i0);
-    cg->h = (uint32_t)(floor_div(w->j0 + y1, s) + 2 - cg->j0);
+    cg->i0 = floor_div(win->i0 + x0, s);
+    cg->j0 = floor_div(win->j0 + y0, s);
+    cg->w = (uint32_t)(floor_div(win->i0 + x1, s) + 2 - cg->i0);
+    cg->h = (uint32_t)(floor_div(win->j0 + y1, s) + 2 - cg->j0);
     cg->bits = NULL;
-    if (cg->w > coarse_side(w) || cg->h > coarse_side(w)) {
+    if (cg->w > coarse_len(win->w) || cg->h > coarse_len(win->h)) {
         return ft_fail(err, FT_ERR_BUDGET,
-                       "window at level %u: a level-%u grid of %u x %u samples, planned %u", w->level,
-                       level, cg->w, cg->h, coarse_side(w));
+                       "%u x %u samples at level %u: a level-%u grid of %u x %u samples, "
+                       "planned %u x %u",
+                       win->w, win->h, win->level, level, cg->w, cg->h, coarse_len(win->w),
+                       coarse_len(win->h));
     }
-    ft_status st = read_grid(db, cg, stage_m, stage_bits, c, err);
+    ft_status st = read_grid(db, cg, tc, c, err);
     if (st != FT_OK) {
         return st;
     }
     uint64_t left = 0u;
-    for (uint32_t y = 0u; y < w->side; ++y) {
-        for (uint32_t x = 0u; x < w->side; ++x) {
-            const size_t o = (size_t)y * w->side + x;
+    for (uint32_t y = 0u; y < win->h; ++y) {
+        for (uint32_t x = 0u; x < win->w; ++x) {
+            const size_t o = (size_t)y * win->w + x;
             if (win->m[o] != FT_TDB_NODATA_M) {
                 continue;
             }
-            const int64_t i = w->i0 + x, j = w->j0 + y;
+            const int64_t i = win->i0 + x, j = win->j0 + y;
             const size_t ci = (size_t)(floor_div(i, s) - cg->i0);
             const size_t cj = (size_t)(floor_div(j, s) - cg->j0);
             const double fx = (double)(i - floor_div(i, s) * s) / (double)s;
@@ -302,6 +367,34 @@ static ft_status fill_from_coarser(const ft_tdb *db, const ft_dbw *w, uint32_t l
     return FT_OK;
 }
 
+ft_status ft_dbw_read_rect(const ft_tdb *db, const ft_dbw_rect *r, ft_tdb_tile_cache *tc,
+                           float *coarse_m, size_t coarse_bytes, ft_dbw_counts *c,
+                           uint64_t *remaining, ft_error *err)
+{
+    const ft_tdb_header *h = &db->hdr;
+    if (r->w == 0u || r->h == 0u || r->level >= h->level_count || tc->slots == 0u ||
+        tc->tile_n != (size_t)h->tile_samples * h->tile_samples ||
+        coarse_bytes < ft_dbw_rect_coarse_bytes(h, r->level, r->w, r->h)) {
+        return ft_fail(err, FT_ERR_ARG, "database rect %u x %u at level %u without its staging",
+                       r->w, r->h, r->level);
+    }
+    lattice_grid g = {r->level, r->i0, r->j0, r->w, r->h, r->heights_m, r->void_bits};
+    ft_status st = read_grid(db, &g, tc, c, err);
+    const size_t n = (size_t)r->w * r->h;
+    uint64_t left = 0u;
+    for (size_t k = 0u; k < n; ++k) {
+        left += r->heights_m[k] == FT_TDB_NODATA_M;
+    }
+    /* Coarser levels, nearest first, while samples lack data. Bounded by
+     * the level count (at most FT_TDB_LEVELS_MAX). */
+    for (uint32_t k = r->level + 1u; st == FT_OK && left > 0u && k < h->level_count; ++k) {
+        lattice_grid cg = {0u, 0, 0, 0u, 0u, coarse_m, NULL};
+        st = fill_from_coarser(db, k, &g, &cg, tc, c, &left, err);
+    }
+    *remaining = left;
+    return st;
+}
+
 ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, void *io,
                       size_t io_bytes, ft_dbw_counts *counts, ft_error *err)
 {
@@ -327,29 +420,19 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
         h1->samples_per_deg != h0->samples_per_deg || h1->level_count != h0->level_count) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: the header changed between probe and load", name);
     }
-    const size_t tile_n = (size_t)w->hdr.tile_samples * w->hdr.tile_samples;
-    float *stage_m = (float *)(void *)((uint8_t *)io + index_bytes);
-    uint8_t *stage_bits = (uint8_t *)(stage_m + tile_n);
-    float *coarse_m = (float *)(void *)(stage_bits + tile_n / 8u);
-
-    lattice_grid win = {w->level, w->i0, w->j0, w->side, w->side, t->heights_m, t->void_bits};
-    st = read_grid(&db, &win, stage_m, stage_bits, counts, err);
-    const size_t n = (size_t)w->side * w->side;
+    const ft_dbw_rect rect = {w->level, w->i0, w->j0, w->side, w->side, t->heights_m,
+                              t->void_bits};
     uint64_t remaining = 0u;
-    for (size_t k = 0u; k < n; ++k) {
-        remaining += t->heights_m[k] == FT_TDB_NODATA_M;
-    }
-    /* Coarser levels, nearest first, while samples lack data. Bounded by
-     * the level count (at most FT_TDB_LEVELS_MAX). */
-    for (uint32_t k = w->level + 1u; st == FT_OK && remaining > 0u && k < w->hdr.level_count;
-         ++k) {
-        lattice_grid cg = {0u, 0, 0, 0u, 0u, coarse_m, NULL};
-        st = fill_from_coarser(&db, w, k, &win, &cg, stage_m, stage_bits, counts, &remaining,
-                               err);
-    }
+    ft_tdb_tile_cache tc;
+    uint8_t *staging = (uint8_t *)io + index_bytes;
+    const size_t tile_bytes = ft_tdb_tile_cache_bytes(&w->hdr, 1u);
+    ft_tdb_tile_cache_init(&tc, &w->hdr, 1u, staging);
+    st = ft_dbw_read_rect(&db, &rect, &tc, (float *)(void *)(staging + tile_bytes),
+                          staging_bytes - tile_bytes, counts, &remaining, err);
     if (st != FT_OK) {
         return st;
     }
+    const size_t n = (size_t)w->side * w->side;
     /* The floor: the lowest height the window has. */
     float lo_m = INFINITY, hi_m = -INFINITY;
     for (size_t k = 0u; k < n; ++k) {

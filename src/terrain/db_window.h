@@ -76,6 +76,57 @@ ft_status ft_dbw_probe(const ft_reader_at *r, const ft_dbw_desc *d, ft_dbw *w, f
 size_t ft_dbw_index_bytes(const ft_dbw *w);
 size_t ft_dbw_staging_bytes(const ft_dbw *w);
 
+/* A rect of one level's lattice samples (level-l indices, row 0 = south)
+ * and where its heights and void bits (rect-local, bit k of sample k, zeroed
+ * by the caller) go. */
+typedef struct ft_dbw_rect {
+    uint32_t level;
+    int64_t i0, j0;
+    uint32_t w, h;
+    float *heights_m; /* w * h */
+    uint8_t *void_bits; /* (w * h + 7) / 8 */
+} ft_dbw_rect;
+
+/* Decoded tiles kept between reads, least recently used replaced: one
+ * slot is enough for a window read once; a cache that reads strips next to
+ * each other keeps more. Slots are T*T heights and their void bits, in
+ * caller memory (ft_tdb_tile_cache_bytes). */
+#define FT_TDB_TILE_CACHE_MAX 64u
+typedef struct ft_tdb_tile_slot {
+    uint32_t level, tx, ty;
+    int filled;
+    uint64_t stamp;
+    float *heights_m;
+    uint8_t *void_bits;
+    ft_tdb_tile tile;
+} ft_tdb_tile_slot;
+
+typedef struct ft_tdb_tile_cache {
+    ft_tdb_tile_slot slot[FT_TDB_TILE_CACHE_MAX];
+    uint32_t slots;
+    size_t tile_n;
+    uint64_t clock, hits, reads;
+} ft_tdb_tile_cache;
+
+size_t ft_tdb_tile_cache_bytes(const ft_tdb_header *h, uint32_t slots);
+/* slots is capped at FT_TDB_TILE_CACHE_MAX; mem holds the bytes above. */
+void ft_tdb_tile_cache_init(ft_tdb_tile_cache *tc, const ft_tdb_header *h, uint32_t slots,
+                            void *mem);
+
+/* Bytes of the grid of a coarser level ft_dbw_read_rect needs for a rect
+ * of w x hgt samples at `level` (0 at the last level). */
+size_t ft_dbw_rect_coarse_bytes(const ft_tdb_header *h, uint32_t level, uint32_t w,
+                                uint32_t hgt);
+
+/* Reads the rect by the window's rule: the level's data, else the nearest
+ * coarser level's bilinear value, marked; samples no level has stay
+ * FT_TDB_NODATA_M (*remaining counts them: the caller floors them). Tiles
+ * come through the tile cache (each read with its checks), "no data" tiles
+ * from the index alone. */
+ft_status ft_dbw_read_rect(const ft_tdb *db, const ft_dbw_rect *r, ft_tdb_tile_cache *tc,
+                           float *coarse_m, size_t coarse_bytes, ft_dbw_counts *c,
+                           uint64_t *remaining, ft_error *err);
+
 /* Opens the database (index into io, checked), reads the window's tiles one
  * by one into t->heights_m (bound, side*side) and marks t->void_bits (bound,
  * zeroed); sets void_count and the height range. io holds

@@ -100,6 +100,13 @@ typedef struct ft_terrain {
      * last sample are 0 and exactly void_count bits are set. NULL when the
      * terrain has no filled sample (in FT_POOL_HEIGHTS otherwise). */
     uint8_t *void_bits;
+    /* When the terrain is a window of a terrain database (.ftd), the open
+     * database and where the window sits in it, so a cache can read past
+     * the window (clip_source.h); db is NULL otherwise. */
+    const struct ft_tdb *db;
+    uint32_t db_level;       /* the window's level */
+    int64_t db_i0, db_j0;    /* the window's sample (0,0) in that level's lattice */
+    float db_fill_m;         /* the window's floor for samples no level has */
 } ft_terrain;
 
 /* Ranges every terrain must keep, whatever its source (.ftt, .hgt, synth,

@@ -1,0 +1,285 @@
+/* clip_cache.c - the clipmap levels' boxes and their strip updates
+ * (clip_cache.h). Per level the state is two boxes and one strip in
+ * progress; every step is O(levels) with no allocation and no loop that
+ * depends on how far the eye moved. */
+#include <math.h>
+#include <string.h>
+
+#include "terrain/clip_cache.h"
+
+static int box_empty(const ft_clip_box *b)
+{
+    return b->i1 <= b->i0 || b->j1 <= b->j0;
+}
+
+static int box_equal(const ft_clip_box *a, const ft_clip_box *b)
+{
+    return a->i0 == b->i0 && a->j0 == b->j0 && a->i1 == b->i1 && a->j1 == b->j1;
+}
+
+static uint64_t box_area(const ft_clip_box *b)
+{
+    return box_empty(b) ? 0u : (uint64_t)(b->i1 - b->i0) * (uint64_t)(b->j1 - b->j0);
+}
+
+static int64_t max_i64(int64_t a, int64_t b) { return a > b ? a : b; }
+static int64_t min_i64(int64_t a, int64_t b) { return a < b ? a : b; }
+
+/* a mod m in [0, m) for m a power of two (two's complement: exact for
+ * negative a too). */
+static uint32_t wrap_index(int64_t a, uint32_t m)
+{
+    return (uint32_t)((uint64_t)a & (uint64_t)(m - 1u));
+}
+
+static int is_pow2(uint32_t v) { return v != 0u && (v & (v - 1u)) == 0u; }
+
+ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_arena *a,
+                       ft_error *err)
+{
+    if (!is_pow2(d->side) || d->side < FT_CLIP_SIDE_MIN || d->side > FT_CLIP_SIDE_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "clip.side = %u: must be a power of two in %u..%u", d->side,
+                       FT_CLIP_SIDE_MIN, FT_CLIP_SIDE_MAX);
+    }
+    const uint32_t levels_max =
+        (src->levels < FT_CLIP_LEVELS_MAX) ? src->levels : FT_CLIP_LEVELS_MAX;
+    if (d->levels < 1u || d->levels > levels_max) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "clip.levels = %u: must be 1..%u (the cache holds at most %u, the "
+                       "height source gives %u)",
+                       d->levels, levels_max, FT_CLIP_LEVELS_MAX, src->levels);
+    }
+    const uint64_t max_samples = (uint64_t)d->side * d->side;
+    if (d->update_samples_max < 2u * d->side || d->update_samples_max > max_samples) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "clip.update_samples_max = %u: must be %u..%llu (two rows of clip.side "
+                       "= %u up to a whole level)",
+                       d->update_samples_max, 2u * d->side, (unsigned long long)max_samples,
+                       d->side);
+    }
+    if (src->read == NULL) {
+        return ft_fail(err, FT_ERR_ARG, "clip cache: the height source has no reader");
+    }
+    if (a != NULL) {
+        ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max * sizeof(float));
+        ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max);
+    }
+    return FT_OK;
+}
+
+ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_source *src,
+                       ft_arena *a, ft_error *err)
+{
+    memset(c, 0, sizeof(*c));
+    ft_status st = ft_clip_plan(d, src, NULL, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    void *heights = NULL, *marks = NULL;
+    st = ft_arena_take(a, FT_POOL_CLIP, (size_t)d->update_samples_max * sizeof(float), &heights,
+                       err);
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_CLIP, (size_t)d->update_samples_max, &marks, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
+    c->desc = *d;
+    c->src = *src;
+    c->staging_m = heights;
+    c->marks = marks;
+    return FT_OK;
+}
+
+uint32_t ft_clip_texel(const ft_clip_cache *c, int64_t a)
+{
+    return wrap_index(a, c->desc.side);
+}
+
+/* The wanted box of a level for the eye at e (level-l samples): side
+ * samples, its first one even, the eye within two samples of its middle. */
+static int64_t want_origin(double e, uint32_t side)
+{
+    return 2 * (int64_t)floor((e - 0.5 * (double)side) * 0.5);
+}
+
+static void update_behind(ft_clip_cache *c)
+{
+    uint32_t behind = 0u;
+    uint64_t outstanding = 0u;
+    for (uint32_t l = 0u; l < c->desc.levels; ++l) {
+        ft_clip_level *lv = &c->level[l];
+        lv->samples_outstanding = box_area(&lv->want) - box_area(&lv->valid);
+        outstanding += lv->samples_outstanding;
+        behind += box_equal(&lv->valid, &lv->want) ? 0u : 1u;
+    }
+    c->stats.levels_behind = behind;
+    c->stats.samples_outstanding = outstanding;
+    if (behind > c->stats.levels_behind_max) {
+        c->stats.levels_behind_max = behind;
+    }
+    if (outstanding > c->stats.samples_outstanding_max) {
+        c->stats.samples_outstanding_max = outstanding;
+    }
+}
+
+int ft_clip_recentre(ft_clip_cache *c, double eye_i, double eye_j)
+{
+    int moved = 0;
+    const int64_t side = (int64_t)c->desc.side;
+    for (uint32_t l = 0u; l < c->desc.levels; ++l) {
+        ft_clip_level *lv = &c->level[l];
+        const double scale = ldexp(1.0, -(int)l);
+        ft_clip_box want;
+        want.i0 = want_origin(eye_i * scale, c->desc.side);
+        want.j0 = want_origin(eye_j * scale, c->desc.side);
+        want.i1 = want.i0 + side;
+        want.j1 = want.j0 + side;
+        if (box_equal(&want, &lv->want) && !box_empty(&lv->want)) {
+            continue;
+        }
+        moved = 1;
+        lv->want = want;
+        /* The texels of the valid part inside the new box are untouched by
+         * the strips to come (they fill only samples outside it). */
+        ft_clip_box v = lv->valid;
+        v.i0 = max_i64(v.i0, want.i0);
+        v.j0 = max_i64(v.j0, want.j0);
+        v.i1 = min_i64(v.i1, want.i1);
+        v.j1 = min_i64(v.j1, want.j1);
+        if (box_empty(&v)) {
+            v.i0 = want.i0;
+            v.i1 = want.i1;
+            v.j0 = v.j1 = want.j0;
+        }
+        lv->valid = v;
+        memset(&c->strip[l], 0, sizeof(c->strip[l]));
+    }
+    if (moved) {
+        c->stats.recentres_moved++;
+        c->pending = 0;
+        update_behind(c);
+    }
+    return moved;
+}
+
+/* The next strip of a level that is behind: the samples that join the
+ * valid box next, in the order of clip_cache.h. */
+static ft_clip_box next_strip(const ft_clip_level *lv)
+{
+    const ft_clip_box *v = &lv->valid, *w = &lv->want;
+    ft_clip_box s = *v;
+    if (v->i0 > w->i0) {
+        s.i0 = w->i0;
+        s.i1 = v->i0;
+    } else if (v->i1 < w->i1) {
+        s.i0 = v->i1;
+        s.i1 = w->i1;
+    } else if (v->j0 > w->j0) {
+        s.j0 = w->j0;
+        s.j1 = v->j0;
+    } else {
+        s.j0 = v->j1;
+        s.j1 = w->j1;
+    }
+    return s;
+}
+
+/* The chunk of the level's strip at its cursor: up to the strip's end, the
+ * next texel wrap (a multiple of side) and update_samples_max samples. */
+static ft_clip_box chunk_at(const ft_clip_cache *c, uint32_t l)
+{
+    const ft_clip_box *s = &c->strip[l];
+    const int64_t side = (int64_t)c->desc.side;
+    ft_clip_box k;
+    k.i0 = c->cursor_i[l];
+    k.j0 = c->cursor_j[l];
+    /* the next multiples of side above the cursor (exact for negatives) */
+    const int64_t next_i = k.i0 - (int64_t)wrap_index(k.i0, c->desc.side) + side;
+    const int64_t next_j = k.j0 - (int64_t)wrap_index(k.j0, c->desc.side) + side;
+    k.i1 = min_i64(s->i1, next_i);
+    /* every chunk of a row band has the band's rows, from the strip's width
+     * (<= side, so at least two rows) */
+    const int64_t rows = (int64_t)c->desc.update_samples_max / (s->i1 - s->i0);
+    k.j1 = min_i64(min_i64(s->j1, next_j), k.j0 + rows);
+    return k;
+}
+
+ft_status ft_clip_next_update(ft_clip_cache *c, ft_clip_update *u, int *have, ft_error *err)
+{
+    *have = 0;
+    c->pending = 0;
+    for (uint32_t n = 0u; n < c->desc.levels; ++n) {
+        const uint32_t l = c->desc.levels - 1u - n; /* coarsest first */
+        ft_clip_level *lv = &c->level[l];
+        if (box_empty(&lv->want) || box_equal(&lv->valid, &lv->want)) {
+            continue;
+        }
+        if (box_empty(&c->strip[l])) {
+            c->strip[l] = next_strip(lv);
+            c->cursor_i[l] = c->strip[l].i0;
+            c->cursor_j[l] = c->strip[l].j0;
+        }
+        const ft_clip_box k = chunk_at(c, l);
+        const uint32_t w = (uint32_t)(k.i1 - k.i0), h = (uint32_t)(k.j1 - k.j0);
+        const ft_status st =
+            c->src.read(c->src.ctx, l, k.i0, k.j0, w, h, c->staging_m, c->marks, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        u->level = l;
+        u->box = k;
+        u->tex_x = ft_clip_texel(c, k.i0);
+        u->tex_y = ft_clip_texel(c, k.j0);
+        u->w = w;
+        u->h = h;
+        u->heights_m = c->staging_m;
+        u->marks = c->marks;
+        c->last = *u;
+        c->pending = 1;
+        *have = 1;
+        return FT_OK;
+    }
+    return FT_OK;
+}
+
+void ft_clip_commit(ft_clip_cache *c, const ft_clip_update *u)
+{
+    /* Only the update produced last, and only while its level has not moved
+     * since: a stale one went to texels outside the valid box (harmless). */
+    if (!c->pending || u->level != c->last.level || !box_equal(&u->box, &c->last.box)) {
+        return;
+    }
+    c->pending = 0;
+    const uint32_t l = u->level;
+    ft_clip_box *s = &c->strip[l];
+    c->stats.updates++;
+    c->stats.samples_uploaded += (uint64_t)u->w * u->h;
+    /* advance the cursor: along the row band, then to the next band */
+    if (u->box.i1 < s->i1) {
+        c->cursor_i[l] = u->box.i1;
+    } else {
+        c->cursor_i[l] = s->i0;
+        c->cursor_j[l] = u->box.j1;
+    }
+    if (c->cursor_j[l] >= s->j1) {
+        ft_clip_box *v = &c->level[l].valid;
+        v->i0 = min_i64(v->i0, s->i0);
+        v->i1 = max_i64(v->i1, s->i1);
+        v->j0 = min_i64(v->j0, s->j0);
+        v->j1 = max_i64(v->j1, s->j1);
+        memset(s, 0, sizeof(*s));
+        update_behind(c);
+    }
+}
+
+uint32_t ft_clip_finest_current(const ft_clip_cache *c)
+{
+    for (uint32_t l = 0u; l < c->desc.levels; ++l) {
+        if (!box_empty(&c->level[l].want) && box_equal(&c->level[l].valid, &c->level[l].want)) {
+            return l;
+        }
+    }
+    return c->desc.levels;
+}

@@ -1,0 +1,337 @@
+/* test_clip_cache.c - the clipmap cache's boxes and strip updates
+ * (src/terrain/clip_cache.h) against a CPU mirror of the level textures,
+ * and its source over the terrain in memory (clip_source.h).
+ *
+ * The mirror receives exactly what a GPU upload would (each update's texel
+ * rectangle); after every step, every sample of every level's valid box must
+ * read back its own height from the mirror at its toroidal texel. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "terrain/clip_cache.h"
+#include "terrain/clip_source.h"
+#include "test_util.h"
+
+#define SIDE 32u
+#define LEVELS 5u
+
+/* A height for every level-0 lattice point, exact in float. */
+static float lattice_height(int64_t i, int64_t j)
+{
+    const uint64_t h = (uint64_t)(i * 73856093) ^ (uint64_t)(j * 19349663);
+    return (float)(h % 20000u) * 0.25f - 1000.0f;
+}
+
+static uint64_t g_reads, g_read_samples;
+
+static ft_status read_synth(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint32_t w,
+                            uint32_t h, float *heights_m, uint8_t *marks, ft_error *err)
+{
+    (void)ctx;
+    (void)err;
+    g_reads++;
+    g_read_samples += (uint64_t)w * h;
+    for (uint32_t r = 0u; r < h; ++r) {
+        for (uint32_t q = 0u; q < w; ++q) {
+            const int64_t s = (int64_t)1 << level;
+            heights_m[r * w + q] = lattice_height((i0 + q) * s, (j0 + r) * s);
+            marks[r * w + q] = 0u;
+        }
+    }
+    return FT_OK;
+}
+
+static float g_tex[LEVELS][SIDE * SIDE];
+static int g_bad_update;
+
+static void upload(const ft_clip_cache *c, const ft_clip_update *u)
+{
+    if (u->tex_x + u->w > SIDE || u->tex_y + u->h > SIDE ||
+        (uint64_t)u->w * u->h > c->desc.update_samples_max || u->w == 0u || u->h == 0u ||
+        u->tex_x != ft_clip_texel(c, u->box.i0) || u->tex_y != ft_clip_texel(c, u->box.j0) ||
+        (int64_t)u->w != u->box.i1 - u->box.i0 || (int64_t)u->h != u->box.j1 - u->box.j0) {
+        g_bad_update++;
+        return;
+    }
+    for (uint32_t r = 0u; r < u->h; ++r) {
+        memcpy(&g_tex[u->level][(u->tex_y + r) * SIDE + u->tex_x], &u->heights_m[r * u->w],
+               u->w * sizeof(float));
+    }
+}
+
+/* Every sample of every valid box reads its own height; boxes well formed. */
+static int check_mirror(const ft_clip_cache *c)
+{
+    int bad = 0;
+    for (uint32_t l = 0u; l < c->desc.levels; ++l) {
+        const ft_clip_box *v = &c->level[l].valid, *w = &c->level[l].want;
+        if ((v->i0 & 1) || (v->j0 & 1) || (v->i1 & 1) || (v->j1 & 1) || (w->i0 & 1) ||
+            (w->j0 & 1) || w->i1 - w->i0 != SIDE || w->j1 - w->j0 != SIDE) {
+            bad++;
+        }
+        if (v->i1 <= v->i0 || v->j1 <= v->j0) {
+            continue;
+        }
+        if (v->i0 < w->i0 || v->j0 < w->j0 || v->i1 > w->i1 || v->j1 > w->j1) {
+            bad++;
+        }
+        for (int64_t b = v->j0; b < v->j1; ++b) {
+            for (int64_t a = v->i0; a < v->i1; ++a) {
+                const int64_t s = (int64_t)1 << l;
+                const float got =
+                    g_tex[l][ft_clip_texel(c, b) * SIDE + ft_clip_texel(c, a)];
+                if (got != lattice_height(a * s, b * s)) {
+                    bad++;
+                }
+            }
+        }
+    }
+    return bad;
+}
+
+/* Runs at most max_updates updates (all with max_updates = -1). */
+static uint32_t drain(ft_clip_cache *c, int max_updates, int *levels_coarse_first)
+{
+    uint32_t n = 0u, last_level = LEVELS;
+    for (int k = 0; k < 100000 && (max_updates < 0 || k < max_updates); ++k) {
+        ft_clip_update u;
+        int have = 0;
+        ft_error err;
+        REQUIRE(ft_clip_next_update(c, &u, &have, &err) == FT_OK);
+        if (!have) {
+            break;
+        }
+        if (levels_coarse_first != NULL && u.level > last_level) {
+            *levels_coarse_first = 0;
+        }
+        last_level = u.level;
+        upload(c, &u);
+        ft_clip_commit(c, &u);
+        ++n;
+    }
+    return n;
+}
+
+static uint8_t g_arena_mem[1u << 20];
+
+static void make_cache(ft_clip_cache *c, ft_arena *a, uint32_t update_max)
+{
+    memset(a, 0, sizeof(*a));
+    a->pools[FT_POOL_CLIP].budget_bytes = 1u << 19;
+    ft_error err;
+    REQUIRE(ft_arena_bind(a, g_arena_mem, sizeof(g_arena_mem), &err) == FT_OK);
+    ft_clip_source src = {read_synth, NULL, 16u, 0, 0, -100000, 100000, -100000, 100000};
+    ft_clip_desc d = {SIDE, LEVELS, update_max};
+    REQUIRE(ft_clip_init(c, &d, &src, a, &err) == FT_OK);
+    for (uint32_t l = 0u; l < LEVELS; ++l) {
+        for (uint32_t k = 0u; k < SIDE * SIDE; ++k) {
+            g_tex[l][k] = NAN;
+        }
+    }
+}
+
+static void test_fill_and_nesting(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache(&c, &a, 2u * SIDE);
+    CHECK(ft_clip_finest_current(&c) == LEVELS);
+    CHECK(ft_clip_recentre(&c, 1000.3, -77.8) == 1);
+    CHECK(ft_clip_recentre(&c, 1000.3, -77.8) == 0);
+    CHECK(c.stats.levels_behind == LEVELS);
+    CHECK(c.stats.samples_outstanding == (uint64_t)LEVELS * SIDE * SIDE);
+    int coarse_first = 1;
+    g_read_samples = 0;
+    drain(&c, -1, &coarse_first);
+    CHECK(coarse_first);
+    CHECK(g_bad_update == 0);
+    CHECK(g_read_samples == (uint64_t)LEVELS * SIDE * SIDE); /* nothing read twice */
+    CHECK(check_mirror(&c) == 0);
+    CHECK(c.stats.levels_behind == 0u && c.stats.samples_outstanding == 0u);
+    CHECK(ft_clip_finest_current(&c) == 0u);
+    /* the eye near the middle of each level; each level inside the next
+     * with side / 4 - 1 coarser samples to spare */
+    for (uint32_t l = 0u; l < LEVELS; ++l) {
+        const ft_clip_box *w = &c.level[l].want;
+        const double e_i = 1000.3 / (double)(1u << l), e_j = -77.8 / (double)(1u << l);
+        CHECK(e_i >= (double)w->i0 + SIDE / 2 - 2 && e_i <= (double)w->i0 + SIDE / 2 + 2);
+        CHECK(e_j >= (double)w->j0 + SIDE / 2 - 2 && e_j <= (double)w->j0 + SIDE / 2 + 2);
+        if (l + 1u < LEVELS) {
+            const ft_clip_box *p = &c.level[l + 1u].want;
+            const int64_t m = SIDE / 4 - 1;
+            CHECK(w->i0 / 2 - p->i0 >= m && p->i1 - w->i1 / 2 >= m);
+            CHECK(w->j0 / 2 - p->j0 >= m && p->j1 - w->j1 / 2 >= m);
+        }
+    }
+}
+
+/* A small move reads exactly the samples that enter each box. */
+static void test_strips_read_only_new_samples(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache(&c, &a, 3u * SIDE);
+    ft_clip_recentre(&c, 0.5, 0.5);
+    drain(&c, -1, NULL);
+    ft_clip_box before[LEVELS];
+    for (uint32_t l = 0u; l < LEVELS; ++l) {
+        before[l] = c.level[l].want;
+    }
+    /* 7 samples east, 3 south at level 0 */
+    CHECK(ft_clip_recentre(&c, 7.5, -2.5) == 1);
+    uint64_t expect = 0u;
+    for (uint32_t l = 0u; l < LEVELS; ++l) {
+        const ft_clip_box *w = &c.level[l].want;
+        const int64_t ox = SIDE - llabs(w->i0 - before[l].i0);
+        const int64_t oy = SIDE - llabs(w->j0 - before[l].j0);
+        const uint64_t kept = (ox > 0 && oy > 0) ? (uint64_t)(ox * oy) : 0u;
+        expect += (uint64_t)SIDE * SIDE - kept;
+        CHECK(c.level[l].samples_outstanding == (uint64_t)SIDE * SIDE - kept);
+    }
+    CHECK(expect > 0u);
+    CHECK(check_mirror(&c) == 0); /* the shrunk valid boxes still read right */
+    g_read_samples = 0;
+    drain(&c, -1, NULL);
+    CHECK(g_read_samples == expect);
+    CHECK(check_mirror(&c) == 0);
+    CHECK(c.stats.levels_behind == 0u);
+}
+
+/* A flight with few updates a frame: the valid boxes lag but never read
+ * wrong, and catch up when the eye stops; a jump refills. */
+static void test_lagging_flight(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache(&c, &a, 2u * SIDE);
+    ft_clip_recentre(&c, -40.0, 13.0);
+    drain(&c, -1, NULL);
+    int bad = 0;
+    uint32_t lagged = 0u;
+    for (int f = 0; f < 400; ++f) {
+        const double t = f * 0.05;
+        ft_clip_recentre(&c, -40.0 + 9.0 * t * cos(t * 0.3), 13.0 - 7.0 * t);
+        drain(&c, 1, NULL);
+        bad += check_mirror(&c);
+        lagged += c.stats.levels_behind > 0u ? 1u : 0u;
+        /* a valid box that lags is still a box with samples in it */
+        for (uint32_t l = 0u; l < LEVELS; ++l) {
+            const ft_clip_box *v = &c.level[l].valid;
+            bad += (v->i1 < v->i0 || v->j1 < v->j0) ? 1 : 0;
+        }
+    }
+    CHECK(bad == 0);
+    CHECK(g_bad_update == 0);
+    CHECK(lagged > 0u); /* one update a frame must fall behind this flight */
+    CHECK(c.stats.levels_behind_max > 0u);
+    drain(&c, -1, NULL);
+    CHECK(c.stats.levels_behind == 0u);
+    CHECK(check_mirror(&c) == 0);
+    /* a jump far away: every level refilled whole, nothing stale */
+    ft_clip_recentre(&c, 5.0e5, -3.0e5);
+    for (uint32_t l = 0u; l < LEVELS; ++l) {
+        CHECK(c.level[l].samples_outstanding == (uint64_t)SIDE * SIDE);
+    }
+    g_read_samples = 0;
+    drain(&c, -1, NULL);
+    CHECK(g_read_samples == (uint64_t)LEVELS * SIDE * SIDE);
+    CHECK(check_mirror(&c) == 0);
+}
+
+/* An update made stale by a move is not committed. */
+static void test_stale_commit(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache(&c, &a, 2u * SIDE);
+    ft_clip_recentre(&c, 0.0, 0.0);
+    drain(&c, -1, NULL);
+    ft_clip_recentre(&c, 40.0, 0.0);
+    ft_clip_update u;
+    int have = 0;
+    ft_error err;
+    REQUIRE(ft_clip_next_update(&c, &u, &have, &err) == FT_OK && have);
+    const uint64_t updates = c.stats.updates;
+    ft_clip_recentre(&c, 200.0, 0.0);
+    upload(&c, &u); /* lands in texels outside every valid box */
+    ft_clip_commit(&c, &u);
+    CHECK(c.stats.updates == updates);
+    CHECK(check_mirror(&c) == 0);
+    drain(&c, -1, NULL);
+    CHECK(check_mirror(&c) == 0);
+}
+
+static void test_plan_errors(void)
+{
+    ft_clip_source src = {read_synth, NULL, 8u, 0, 0, 0, 10, 0, 10};
+    ft_error err;
+    ft_clip_desc d = {48u, 4u, 96u};
+    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG && strstr(err.text, "clip.side"));
+    d.side = 64u;
+    d.levels = 9u;
+    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG &&
+          strstr(err.text, "clip.levels") && strstr(err.text, "gives 8"));
+    d.levels = 0u;
+    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG);
+    d.levels = 8u;
+    d.update_samples_max = 127u;
+    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG &&
+          strstr(err.text, "clip.update_samples_max"));
+    d.update_samples_max = 128u;
+    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_OK);
+    /* the staging comes from the clip pool: too small a budget is refused */
+    ft_arena a;
+    memset(&a, 0, sizeof(a));
+    a.pools[FT_POOL_CLIP].budget_bytes = 128u;
+    REQUIRE(ft_arena_bind(&a, g_arena_mem, sizeof(g_arena_mem), &err) == FT_OK);
+    ft_clip_cache c;
+    CHECK(ft_clip_init(&c, &d, &src, &a, &err) == FT_ERR_BUDGET &&
+          strstr(err.text, "clip_bytes"));
+}
+
+static void test_terrain_source(void)
+{
+    enum { W = 9, H = 7 };
+    static float heights[W * H];
+    static uint8_t voids[(W * H + 7) / 8];
+    for (int k = 0; k < W * H; ++k) {
+        heights[k] = (float)(k * 3 + 1);
+    }
+    voids[(2 * W + 4) >> 3] |= (uint8_t)(1u << ((2 * W + 4) & 7));
+    ft_terrain t;
+    memset(&t, 0, sizeof(t));
+    t.width = W;
+    t.height = H;
+    t.heights_m = heights;
+    t.void_bits = voids;
+    ft_clip_source src;
+    ft_clip_source_terrain(&src, &t);
+    CHECK(src.data_i_hi == W - 1 && src.data_j_hi == H - 1 && src.lattice_i0 == 0);
+    float out[16];
+    uint8_t marks[16];
+    ft_error err;
+    /* level 1, samples (1..3) x (1..2): terrain (2,2) (4,2) (6,2) / (2,4) .. */
+    CHECK(src.read(src.ctx, 1u, 1, 1, 3u, 2u, out, marks, &err) == FT_OK);
+    CHECK(out[0] == heights[2 * W + 2] && out[1] == heights[2 * W + 4] &&
+          out[2] == heights[2 * W + 6] && out[3] == heights[4 * W + 2]);
+    CHECK(marks[0] == 0u && marks[1] == 1u && marks[2] == 0u); /* (4,2) is void */
+    /* off the terrain: the nearest edge sample, marked */
+    CHECK(src.read(src.ctx, 2u, -1, 1, 4u, 1u, out, marks, &err) == FT_OK);
+    CHECK(out[0] == heights[4 * W + 0] && marks[0] == 1u);
+    CHECK(out[1] == heights[4 * W + 0] && marks[1] == 0u);
+    CHECK(out[3] == heights[4 * W + 8] && marks[3] == 0u);
+    CHECK(src.read(src.ctx, 2u, 3, 2, 1u, 1u, out, marks, &err) == FT_OK);
+    CHECK(out[0] == heights[6 * W + 8] && marks[0] == 1u); /* (12, 8) -> (8, 6) */
+}
+
+int main(void)
+{
+    test_fill_and_nesting();
+    test_strips_read_only_new_samples();
+    test_lagging_flight();
+    test_stale_commit();
+    test_plan_errors();
+    test_terrain_source();
+    return ft_test_result("test_clip_cache");
+}

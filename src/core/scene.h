@@ -53,7 +53,8 @@ const char *ft_gpio_input_name(ft_gpio_input i); /* "freeze" */
     X(FT_METHOD_BRUTE, "brute", "whole grid as one regular mesh")                             \
     X(FT_METHOD_BINTREE, "bintree", "crack-free bintree of triangular tiles, error-bounded")  \
     X(FT_METHOD_PGM, "pgm", "persistent grid mapping: a view-plane grid laid on the terrain")  \
-    X(FT_METHOD_PGRID, "pgrid", "error-bounded projective grid, ray casting over gamma")
+    X(FT_METHOD_PGRID, "pgrid", "error-bounded projective grid, ray casting over gamma")    \
+    X(FT_METHOD_CLIPMAP, "clipmap", "geometry clipmaps: nested rings of cached levels around the eye")
 
 typedef enum ft_method_kind {
 #define FT_METHOD_ENUM(id, name, what) id,
@@ -131,6 +132,11 @@ typedef struct ft_scene {
     int pgrid_ray_casting;       /* pgrid.ray_casting */
     double pgrid_gamma_px;       /* pgrid.gamma_px */
     uint32_t pgrid_raycast_max_px; /* pgrid.raycast_max_px */
+    uint32_t clipmap_side;         /* clipmap.side */
+    uint32_t clipmap_levels;       /* clipmap.levels */
+    uint32_t clipmap_update_samples_max; /* clipmap.update_samples_max */
+    uint32_t clipmap_updates_per_frame;  /* clipmap.updates_per_frame */
+    double clipmap_transition_samples;   /* clipmap.transition_samples */
     int present_relative;   /* presentation.colouring: 0 absolute, 1 relative */
     ft_palette present_palette; /* presentation.palette: day | night */
     ft_bands present_bands; /* presentation.band_edges_ft, band_rgba */
@@ -254,6 +260,16 @@ typedef struct ft_scene {
       "screen-space error bound")                                                                \
     X(pgrid, raycast_max_px, U32, pgrid_raycast_max_px, 0, 67108864, NULL, "262144", "px",       \
       "most pixels ray cast per frame; above it gamma is raised for that frame and reported")    \
+    X(clipmap, side, U32, clipmap_side, 16, 4096, NULL, "256", "samples",                         \
+      "samples per clipmap level side (a power of two)")                                         \
+    X(clipmap, levels, U32, clipmap_levels, 1, 16, NULL, "5", "levels",                          \
+      "nested clipmap levels, level l spaced 2^l samples")                                       \
+    X(clipmap, update_samples_max, U32, clipmap_update_samples_max, 32, 16777216, NULL, "16384", \
+      "samples", "most samples one cache update reads and uploads (at least 2 x side)")          \
+    X(clipmap, updates_per_frame, U32, clipmap_updates_per_frame, 1, 4096, NULL, "8", "updates", \
+      "most cache updates run per frame while the eye moves")                                    \
+    X(clipmap, transition_samples, F64, clipmap_transition_samples, 1, 1024, NULL, "16",         \
+      "samples", "width of the band where a level morphs into the next coarser one")             \
     X(presentation, colouring, ENUM, present_relative, 0, 0, "absolute|relative|", "absolute",   \
       "", "a height ramp, or bands of height relative to the aircraft painted over it")          \
     X(presentation, palette, ENUM, present_palette, 0, 0, "day|night|", "day", "",               \

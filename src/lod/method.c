@@ -25,11 +25,17 @@
 #else
 #define FT_OPS_PGRID NULL
 #endif
+#if FT_WITH_METHOD_CLIPMAP
+#define FT_OPS_CLIPMAP (&ft_clipmap_ops)
+#else
+#define FT_OPS_CLIPMAP NULL
+#endif
 static const ft_method_ops *const k_ops[FT_METHOD_COUNT] = {
     [FT_METHOD_BRUTE] = FT_OPS_BRUTE,
     [FT_METHOD_BINTREE] = FT_OPS_BINTREE,
     [FT_METHOD_PGM] = FT_OPS_PGM,
     [FT_METHOD_PGRID] = FT_OPS_PGRID,
+    [FT_METHOD_CLIPMAP] = FT_OPS_CLIPMAP,
 };
 
 const ft_method_ops *ft_method_ops_of(ft_method_kind kind)

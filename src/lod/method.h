@@ -13,6 +13,7 @@
 #include "gpu/gpu_texture.h"
 #include "gpu/program.h"
 #include "lod/bintree.h"
+#include "lod/clipmap.h"
 #include "lod/pgm.h"
 #include "lod/pgrid.h"
 #include "terrain/terrain.h"
@@ -132,6 +133,41 @@ typedef struct ft_pgrid_method {
     uint64_t gpu_bytes;
 } ft_pgrid_method;
 
+/* Geometry clipmaps (src/lod/clipmap.h, shaders/clipmap.vert.glsl): the
+ * clip cache (its source over the terrain), one height texture per level,
+ * the block + stitch-strip template. */
+typedef struct ft_clipmap_method {
+    ft_clip_cache cache;
+    ft_clip_source src;
+    ft_cm_layout layout;           /* the last draw's */
+    const ft_gl *gl;               /* select uploads the cache's updates */
+    GLuint tex[FT_CLIP_LEVELS_MAX];
+    GLenum tex_format, tex_type;
+    GLuint vbo, ibo;
+    uint32_t block_indices, strip_indices;
+    uint32_t side, levels, updates_per_frame;
+    double transition_samples;
+    ft_scalar_format fmt;
+    uint8_t *packed;               /* update_samples_max * 4 (FT_POOL_METHOD) */
+    int fill_whole;                /* the first select fills every level */
+    uint32_t updates_last;         /* updates run by the last select */
+    uint64_t read_errors;          /* source reads that failed (retried) */
+    ft_view_key sel_view;
+    uint64_t gpu_bytes;
+} ft_clipmap_method;
+
+/* clipmap's uniforms (shaders/clipmap.vert.glsl) */
+#define FT_CM_UNIFORMS(X)                       \
+    X(FT_CM_U_TEX0, "u_cm_tex0", 1u)            \
+    X(FT_CM_U_TEX1, "u_cm_tex1", 1u)            \
+    X(FT_CM_U_PLACE, "u_cm_place", 1u)          \
+    X(FT_CM_U_AXES, "u_cm_axes", 1u)            \
+    X(FT_CM_U_CLAMP, "u_cm_clamp", 1u)          \
+    X(FT_CM_U_DATA, "u_cm_data", 1u)            \
+    X(FT_CM_U_MBOX, "u_cm_mbox", 1u)            \
+    X(FT_CM_U_LEVEL, "u_cm_level", 1u)          \
+    X(FT_CM_U_LATTICE, "u_cm_lattice", 1u)
+
 typedef struct ft_method {
     ft_method_kind kind;
     union {
@@ -139,6 +175,7 @@ typedef struct ft_method {
         ft_bintree_method bintree;
         ft_pgm_method pgm;
         ft_pgrid_method pgrid;
+        ft_clipmap_method clipmap;
     } u;
 } ft_method;
 
@@ -211,6 +248,7 @@ extern const ft_method_ops ft_brute_ops;
 extern const ft_method_ops ft_bintree_ops;
 extern const ft_method_ops ft_pgm_ops;
 extern const ft_method_ops ft_pgrid_ops;
+extern const ft_method_ops ft_clipmap_ops;
 
 /* pgrid draws with the pgm grid: pgm's entry points, typed. */
 #if FT_WITH_METHOD_PGM || FT_WITH_METHOD_PGRID

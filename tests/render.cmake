@@ -75,6 +75,15 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
                            ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
     endif()
   endif()
+  if(FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_CLIPMAP)
+    # the cache's updates upload while the eye moves: still no heap
+    add_test(NAME no_heap_clipmap_egl COMMAND test_no_heap
+             ${CMAKE_BINARY_DIR}/test-out/no_heap_clipmap.png egl-gles3 clipmap replay)
+    add_test(NAME no_heap_clipmap_gles2 COMMAND test_no_heap
+             ${CMAKE_BINARY_DIR}/test-out/no_heap_clipmap_es2.png egl-gles2 clipmap)
+    set_tests_properties(no_heap_clipmap_gles2 PROPERTIES
+                         ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+  endif()
   if(FIXTERRAIN_WITH_OSMESA)
     add_test(NAME no_heap_osmesa COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap_osmesa.png osmesa)
   endif()

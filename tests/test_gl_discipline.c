@@ -46,7 +46,9 @@ static const char k_scene[] =
     "[gpu]\ntexture_bytes = 16M\n[metric]\nenabled = 0\n"
     "[bintree]\ntemplate_k = 3\ntiles_max = 4096\ntau_px = 1.0\nmorph = 1\n"
     "[pgm]\ngrid_cols = 100\ngrid_rows = 300\n"
-    "[pgrid]\ngrid_cols = 100\ngrid_rows = 300\n";
+    "[pgrid]\ngrid_cols = 100\ngrid_rows = 300\n"
+    "[clipmap]\nside = 64\nlevels = 4\nupdate_samples_max = 2048\nupdates_per_frame = 4\n"
+    "[budget]\nclip_bytes = 16K\n";
 
 /* Entry points a frame must not call, with the rule each breaks. */
 typedef struct rule {

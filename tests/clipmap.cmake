@@ -1,3 +1,18 @@
 # Geometry clipmaps (method 'clipmap'): the layout, stitch rule and vertex
 # mirror on the CPU (tests/test_clipmap.c).
 ft_add_test(test_clipmap SOURCES test_clipmap.c)
+# The method on real contexts over a real DEM (tests/test_clipmap_gl.c):
+# coverage beside brute, no crack while the eye flies and levels lag, no GL
+# error; GLES 3, and a true GLES 2.0 context with float and packed texels.
+if(TARGET ft_app AND FIXTERRAIN_WITH_METHOD_CLIPMAP AND FIXTERRAIN_WITH_METHOD_BRUTE
+   AND FIXTERRAIN_WITH_EGL)
+  add_executable(test_clipmap_gl test_clipmap_gl.c)
+  target_compile_options(test_clipmap_gl PRIVATE ${FT_WARNINGS})
+  target_include_directories(test_clipmap_gl PRIVATE ${CMAKE_SOURCE_DIR}/tests)
+  target_link_libraries(test_clipmap_gl PRIVATE ft_app m)
+  set(_dem ${FT_SHARED_DATA_DIR}/N42E001.hgt)
+  add_test(NAME clipmap_gl_es3 COMMAND test_clipmap_gl es3 ${_dem})
+  add_test(NAME clipmap_gl_es2 COMMAND test_clipmap_gl es2 ${_dem})
+  set_tests_properties(clipmap_gl_es3 clipmap_gl_es2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  set_tests_properties(clipmap_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+endif()

@@ -86,7 +86,8 @@ typedef struct bench_method {
 /* Defaults: tau and gamma in {0.5, 1, 2, 4}, the bintree's template sizes,
  * pgm's grid sizes (cols x rows), and pgrid on the paper's wide and tall
  * grids (1024x512, 400x1900: where its ray-cast share is judged) beside
- * 200x800 (other pgrid keys: the scene's). */
+ * 200x800 (other pgrid keys: the scene's), and clipmap's level side (its
+ * level count and transition: the scene's). */
 static const struct {
     const char *method, *key, *values;
 } k_default_axes[] = {
@@ -95,6 +96,7 @@ static const struct {
     {"pgm", "grid", "150x600,200x800,430x430,300x900,600x600,400x1600"},
     {"pgrid", "grid", "200x800,1024x512,400x1900"},
     {"pgrid", "gamma_px", "0.5,1,2,4"},
+    {"clipmap", "side", "128,256,512"},
 };
 
 /* Short names for plot labels ("" = the value alone). */
@@ -1161,6 +1163,7 @@ static void print_help(void)
         "                     bintree.template_k=2,3,4 bintree.tau_px=0.5,1,2,4\n"
         "                     pgm.grid=150x600,200x800,430x430,300x900,600x600,400x1600\n"
         "                     pgrid.grid=200x800,1024x512,400x1900 pgrid.gamma_px=0.5,1,2,4\n"
+        "                     clipmap.side=128,256,512\n"
         "                     (grid = COLSxROWS: METHOD.grid_cols, .grid_rows). Any key of\n"
         "                     the method's scene section can be swept. Repeatable. At\n"
         "                     most 6 axes per method (defaults included), each key once;\n"

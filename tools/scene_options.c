@@ -5,7 +5,7 @@
  * (ft_scene_parse: every key, range and cross-field check), so the build
  * and the runtime can never disagree on a scene. Prints what the build
  * needs, one KEY=VALUE per line:
- *   method=brute|bintree|pgm|pgrid   backend=egl-gles3|egl-gles2|osmesa
+ *   method=brute|bintree|pgm|pgrid|clipmap   backend=egl-gles3|egl-gles2|osmesa
  *   display=none|x11|kms   inputs_replay=0|1   inputs_can=0|1   inputs_gpio=0|1
  *   png=0|1   metric=0|1   relative=0|1 (presentation.colouring)
  *   horizon=0|1   haze=0|1   ground_grid=0|1 (presentation.horizon, haze_km, grid_m)

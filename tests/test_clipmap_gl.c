@@ -13,6 +13,12 @@
  *    the tile with few updates a frame, so levels move, lag (valid smaller
  *    than wanted) and catch up (checked from the cache's stats). A view
  *    above the horizon must show magenta (the counter works).
+ * 3. Transform feedback (es3): after real frames along the flight, every
+ *    template vertex of every draw of every level is captured as the shader
+ *    places it (v_pos_rel_eye_m); each fine vertex on a transition side of
+ *    its drawn box and each coarse stitch vertex (matched by the CPU
+ *    mirror's lattice position) have the same captured position, to the
+ *    bit, and every coarse stitch vertex has its fine partner.
  * es3 runs with float texels; es2 (run under MESA_GLES_VERSION_OVERRIDE=2.0,
  * a true ES 2.0 context) with float and with packed texels.
  *
@@ -172,6 +178,201 @@ static void fly(const char *backend, const char *dem, const char *format)
     ft_app_shutdown(&g_app);
 }
 
+/* ---- 3. transform feedback ------------------------------------------------------- */
+
+typedef struct cap_vert {
+    float g[2];     /* the mirror's level-0 position */
+    float pos[3];   /* captured */
+    uint32_t level;
+    int inner;      /* a stitch strip's inner vertex */
+    int boundary;   /* on a transition side of its level's drawn box */
+} cap_vert;
+
+#define CAP_MAX (1u << 20)
+static cap_vert g_cap[CAP_MAX];
+static size_t g_ncap;
+
+typedef struct cap_ctx {
+    const ft_clipmap_method *m;
+    const ft_terrain_program *p;
+    GLuint tfb;
+    float *tmp;
+    uint32_t overflow;
+} cap_ctx;
+
+static int on_transition_side(const ft_cm_level *lv, uint32_t l, const float g[2])
+{
+    const float s = ldexpf(1.0f, (int)l);
+    const float x0 = (float)lv->box.x0 * s, x1 = (float)lv->box.x1 * s;
+    const float y0 = (float)lv->box.y0 * s, y1 = (float)lv->box.y1 * s;
+    const int inx = g[0] >= x0 && g[0] <= x1, iny = g[1] >= y0 && g[1] <= y1;
+    return (lv->transition[FT_CM_W] && g[0] == x0 && iny) ||
+           (lv->transition[FT_CM_E] && g[0] == x1 && iny) ||
+           (lv->transition[FT_CM_S] && g[1] == y0 && inx) ||
+           (lv->transition[FT_CM_N] && g[1] == y1 && inx);
+}
+
+static float no_texel(void *ctx, uint32_t level, int64_t a, int64_t b)
+{
+    (void)ctx; (void)level; (void)a; (void)b;
+    return 0.0f;
+}
+
+/* strictly inside the data (a clamped vertex on its edge may lack a partner) */
+static int lay_inside_data(const ft_cm_layout *lay, const float g[2])
+{
+    return g[0] > (float)lay->data_lo[0] && g[0] < (float)lay->data_hi[0] &&
+           g[1] > (float)lay->data_lo[1] && g[1] < (float)lay->data_hi[1];
+}
+
+static void capture_draw(void *ctx, const ft_cm_draw *d)
+{
+    cap_ctx *c = ctx;
+    const ft_gl *gl = g_app.renderer.gl;
+    const GLint *u = c->p->method_u;
+    const ft_cm_kind kind = (d->kind == FT_CM_STRIP) ? FT_CM_STRIP : FT_CM_BLOCK;
+    const uint32_t n = ft_cm_template_vertex_count(kind);
+    const GLint first = (kind == FT_CM_STRIP) ? (GLint)FT_CM_BLOCK_VERTICES : 0;
+    if (g_ncap + n > CAP_MAX) {
+        c->overflow++;
+        return;
+    }
+    gl->Uniform4f(u[FT_CM_U_PLACE], (float)d->origin[0], (float)d->origin[1], 0.0f, 0.0f);
+    gl->Uniform4f(u[FT_CM_U_AXES], (float)d->axis_u[0], (float)d->axis_u[1],
+                  (float)d->axis_v[0], (float)d->axis_v[1]);
+    gl->Uniform4f(u[FT_CM_U_CLAMP], (float)d->clamp.x0, (float)d->clamp.y0, (float)d->clamp.x1,
+                  (float)d->clamp.y1);
+    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, c->tfb);
+    gl->BeginTransformFeedback(GL_POINTS);
+    gl->DrawArrays(GL_POINTS, first, (GLsizei)n);
+    gl->EndTransformFeedback();
+    const void *mapped = gl->MapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                                            (GLsizeiptr)(n * 3u * sizeof(float)), GL_MAP_READ_BIT);
+    REQUIRE(mapped != NULL);
+    memcpy(c->tmp, mapped, n * 3u * sizeof(float));
+    REQUIRE(gl->UnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER) == GL_TRUE);
+    ft_cm_uniforms cu;
+    ft_cm_uniforms_of(&c->m->layout, d, &cu);
+    const ft_cm_level *lv = &c->m->layout.level[d->level];
+    for (uint32_t k = 0; k < n; ++k) {
+        float t[2];
+        ft_cm_vertex_out o;
+        ft_cm_template_vertex(kind, k, t);
+        ft_cm_vertex(&cu, d->level, t, no_texel, NULL, &o);
+        cap_vert *v = &g_cap[g_ncap++];
+        v->g[0] = o.g[0];
+        v->g[1] = o.g[1];
+        memcpy(v->pos, c->tmp + 3u * k, sizeof v->pos);
+        v->level = d->level;
+        v->inner = (kind == FT_CM_STRIP && t[1] == 0.0f);
+        v->boundary = on_transition_side(lv, d->level, o.g);
+    }
+}
+
+static int cmp_cap(const void *pa, const void *pb)
+{
+    const cap_vert *a = pa, *b = pb;
+    if (a->g[0] != b->g[0]) return a->g[0] < b->g[0] ? -1 : 1;
+    if (a->g[1] != b->g[1]) return a->g[1] < b->g[1] ? -1 : 1;
+    if (a->level != b->level) return a->level < b->level ? -1 : 1;
+    return 0;
+}
+
+/* Captures every draw of the method's last frame (its layout and the
+ * program's shared uniforms are in place) and checks the boundaries. */
+static void capture_and_check(uint32_t *pairs, uint32_t *bad)
+{
+    const ft_gl *gl = g_app.renderer.gl;
+    const ft_clipmap_method *m = &g_app.renderer.method.u.clipmap;
+    const ft_terrain_program *p = &g_app.renderer.prog_color;
+    static float tmp[FT_CM_BLOCK_VERTICES * 3u];
+    cap_ctx c = {m, p, 0u, tmp, 0u};
+    gl->UseProgram(p->program);
+    gl->GenBuffers(1, &c.tfb);
+    gl->BindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, c.tfb);
+    gl->BufferData(GL_TRANSFORM_FEEDBACK_BUFFER, (GLsizeiptr)sizeof tmp, NULL, GL_STREAM_READ);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    gl->Enable(GL_RASTERIZER_DISCARD);
+    g_ncap = 0;
+    const ft_cm_layout *lay = &m->layout;
+    for (uint32_t l = 0; l < m->levels; ++l) {
+        if (!lay->level[l].drawn) continue;
+        ft_cm_draw any = {l, FT_CM_BLOCK, {0, 0}, {1, 0}, {0, 1}, {0, 0, 0, 0}, 0u};
+        ft_cm_uniforms cu;
+        ft_cm_uniforms_of(lay, &any, &cu);
+        gl->ActiveTexture(GL_TEXTURE1);
+        gl->BindTexture(GL_TEXTURE_2D, m->tex[l]);
+        gl->ActiveTexture(GL_TEXTURE2);
+        gl->BindTexture(GL_TEXTURE_2D, m->tex[(l + 1u < m->levels) ? l + 1u : l]);
+        gl->ActiveTexture(GL_TEXTURE0);
+        const GLint *u = p->method_u;
+        gl->Uniform4f(u[FT_CM_U_DATA], cu.data[0], cu.data[1], cu.data[2], cu.data[3]);
+        gl->Uniform4f(u[FT_CM_U_MBOX], cu.mbox[0], cu.mbox[1], cu.mbox[2], cu.mbox[3]);
+        gl->Uniform4f(u[FT_CM_U_LEVEL], cu.level[0], cu.level[1], cu.level[2], (float)m->side);
+        (void)ft_cm_level_draws(lay, l, capture_draw, &c);
+    }
+    gl->Disable(GL_RASTERIZER_DISCARD);
+    gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    gl->DeleteBuffers(1, &c.tfb);
+    ft_error err;
+    REQUIRE(ft_gl_check(gl, "transform feedback capture", &err) == FT_OK);
+    CHECK(c.overflow == 0u);
+    qsort(g_cap, g_ncap, sizeof g_cap[0], cmp_cap);
+    /* runs of one lattice position: fine boundary vs coarse stitch vertices */
+    for (size_t i = 0; i < g_ncap;) {
+        size_t j = i;
+        while (j < g_ncap && g_cap[j].g[0] == g_cap[i].g[0] && g_cap[j].g[1] == g_cap[i].g[1]) ++j;
+        for (size_t a = i; a < j; ++a) {
+            if (!g_cap[a].inner) continue;
+            int partner = 0;
+            for (size_t b = i; b < j; ++b) {
+                if (g_cap[b].level + 1u != g_cap[a].level || !g_cap[b].boundary) continue;
+                partner = 1;
+                ++*pairs;
+                if (memcmp(g_cap[a].pos, g_cap[b].pos, sizeof g_cap[a].pos) != 0) {
+                    if (*bad < 5u) {
+                        fprintf(stderr, "stitch (%g, %g): level %u z %.9g, level %u z %.9g\n",
+                                (double)g_cap[a].g[0], (double)g_cap[a].g[1], g_cap[b].level,
+                                (double)g_cap[b].pos[2], g_cap[a].level, (double)g_cap[a].pos[2]);
+                    }
+                    ++*bad;
+                }
+            }
+            /* a stitch vertex clamped onto the data's edge may have none */
+            if (!partner && lay_inside_data(&m->layout, g_cap[a].g)) {
+                if (*bad < 5u) {
+                    fprintf(stderr, "stitch vertex (%g, %g) of level %u has no partner\n",
+                            (double)g_cap[a].g[0], (double)g_cap[a].g[1], g_cap[a].level);
+                }
+                ++*bad;
+            }
+        }
+        i = j;
+    }
+}
+
+static void tf_check(const char *dem)
+{
+    ft_error err;
+    static const char *const varyings[1] = {"v_pos_rel_eye_m"};
+    app_init("clipmap", "egl-gles3", dem, "float", 128u, 5u, 2u);
+    REQUIRE(ft_renderer_enable_capture_of(&g_app.renderer, varyings, 1u, &err) == FT_OK);
+    uint32_t pairs = 0, bad = 0;
+    for (uint32_t f = 0; f < 12u; ++f) {
+        const double t = (double)f / 11.0;
+        const ft_pose p = ft_test_pose(42.25 + 0.4 * t, 1.25 + 0.4 * t, 4000.0, 40.0, -50.0, 0.0);
+        render(&p);
+        if (f % 3u == 2u) capture_and_check(&pairs, &bad);
+    }
+    printf("transform feedback: %u boundary vertex pairs compared, %u differ or lack a partner\n",
+           pairs, bad);
+    CHECK(pairs > 1000u);
+    CHECK(bad == 0u);
+    ft_app_shutdown(&g_app);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -184,7 +385,9 @@ int main(int argc, char **argv)
     brute_masks(backend, argv[2]);
     coverage(backend, argv[2], "float");
     fly(backend, argv[2], "float");
-    if (!es3) {
+    if (es3) {
+        tf_check(argv[2]);
+    } else {
         coverage(backend, argv[2], "packed");
         fly(backend, argv[2], "packed");
     }

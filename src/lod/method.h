@@ -167,6 +167,7 @@ typedef struct ft_clipmap_method {
     X(FT_CM_U_MBOX, "u_cm_mbox", 1u)            \
     X(FT_CM_U_LEVEL, "u_cm_level", 1u)          \
     X(FT_CM_U_LATTICE, "u_cm_lattice", 1u)
+enum ft_cm_uniform { FT_CM_UNIFORMS(FT_UNIFORM_ENUM) FT_CM_U_COUNT };
 
 typedef struct ft_method {
     ft_method_kind kind;

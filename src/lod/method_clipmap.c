@@ -25,7 +25,6 @@
 #include "lod/method.h"
 #include "terrain/clip_source.h"
 
-enum ft_cm_uniform { FT_CM_UNIFORMS(FT_UNIFORM_ENUM) FT_CM_U_COUNT };
 static const ft_uniform_name k_cm_uniforms[] = {FT_CM_UNIFORMS(FT_UNIFORM_ROW)};
 _Static_assert(FT_CM_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "clipmap's uniforms fit the table");
 _Static_assert(FT_CM_BLOCK_VERTICES + FT_CM_STRIP_VERTICES <= 65536u, "16-bit indices");

@@ -11,7 +11,8 @@
  * 2. Image crack test: clear colour magenta; on views the terrain covers
  *    completely not one magenta pixel, while the eye flies 60 frames across
  *    the tile with few updates a frame, so levels move, lag (valid smaller
- *    than wanted) and catch up (checked from the cache's stats). A view
+ *    than wanted) and catch up while the eye then hovers (checked from the
+ *    cache's stats). A view
  *    above the horizon must show magenta (the counter works).
  * 3. Transform feedback (es3): after real frames along the flight, every
  *    template vertex of every draw of every level is captured as the shader
@@ -170,6 +171,17 @@ static void fly(const char *backend, const char *dem, const char *format)
     CHECK(cracked_frames == 0u);
     CHECK(cs->recentres_moved >= 10u);
     CHECK(cs->levels_behind_max >= 1u); /* the lagging case was drawn */
+
+    /* hovering at the last pose, the lagging levels catch up */
+    const ft_pose last = ft_test_pose(42.75, 1.70, 2700.0, 75.0, -50.0, 0.0);
+    uint32_t hover = 0;
+    for (; hover < 400u && (hover < 2u || cs->samples_outstanding > 0u); ++hover) {
+        render(&last);
+        CHECK(ft_test_clear_pixels(&g_app) == 0u);
+    }
+    printf("%s %s hover: current after %u frames (levels behind %u)\n", backend, format, hover,
+           cs->levels_behind);
+    CHECK(cs->samples_outstanding == 0u && cs->levels_behind == 0u);
 
     /* the counter works: a view above the horizon shows the clear colour */
     const ft_pose sky = ft_test_pose(42.5, 1.5, 3000.0, 0.0, 10.0, 0.0);

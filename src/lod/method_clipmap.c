@@ -380,13 +380,13 @@ static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, cons
     return cm_init(&m->u.clipmap, gl, s, t, a, err);
 }
 
+/* Every frame, the view changed or not: a level that lags catches up while
+ * the eye hovers. (draw selects only for a view select did not see.) */
 static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     ft_clipmap_method *c = &m->u.clipmap;
-    if (!ft_view_key_matches(&c->sel_view, cam)) {
-        cm_select(c, t, cam);
-        ft_view_key_take(&c->sel_view, cam);
-    }
+    cm_select(c, t, cam);
+    ft_view_key_take(&c->sel_view, cam);
 }
 
 static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,

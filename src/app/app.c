@@ -99,6 +99,12 @@ static int may_have_voids(const ft_app *app)
            (app->dem_kind == FT_DEM_FTT && app->terrain.void_count > 0u);
 }
 
+/* A .ftd window's load buffer: the index, then the staging. */
+static size_t dbw_io_bytes(const ft_dbw *w)
+{
+    return ft_dbw_index_bytes(w) + ft_dbw_staging_bytes(w);
+}
+
 static void plan(ft_app *app)
 {
     const ft_scene *s = &app->scene;
@@ -114,8 +120,7 @@ static void plan(ft_app *app)
         ft_arena_plan(a, FT_POOL_DEM_IO, ft_hgt_scratch_bytes(t->width, t->height));
     }
     if (app->dem_kind == FT_DEM_FTD) { /* the index, then one tile's staging */
-        ft_arena_plan(a, FT_POOL_DEM_IO,
-                      ft_dbw_index_bytes(&app->dbw) + ft_dbw_staging_bytes(&app->dbw));
+        ft_arena_plan(a, FT_POOL_DEM_IO, dbw_io_bytes(&app->dbw));
     }
     ft_renderer_plan(s, t, a);
 #if FT_WITH_REFERENCE
@@ -201,7 +206,7 @@ static ft_status load_terrain(ft_app *app, ft_file *file, ft_error *err)
     case FT_DEM_FTT:
         return ft_tfile_load_payload(&file->reader, t, &app->tfile_header, err);
     case FT_DEM_FTD: {
-        const size_t io_bytes = ft_dbw_index_bytes(&app->dbw) + ft_dbw_staging_bytes(&app->dbw);
+        const size_t io_bytes = dbw_io_bytes(&app->dbw);
         void *io = NULL;
         st = ft_arena_take(a, FT_POOL_DEM_IO, io_bytes, &io, err);
         if (st == FT_OK) {

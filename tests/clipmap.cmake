@@ -16,3 +16,12 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_METHOD_CLIPMAP AND FIXTERRAIN_WITH_METHOD_B
   set_tests_properties(clipmap_gl_es3 clipmap_gl_es2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
   set_tests_properties(clipmap_gl_es2 PROPERTIES ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
 endif()
+# A 249 km flight over a database (N41E001 + N42E001 + ETOPO5, built in the
+# test) with the cache at 60 Hz of log time and every 1200th tick drawn and
+# measured (tests/test_clip_flight.c): no hole, cache work inside the frame's
+# spare time, level 0 current on 99% of the ticks, <= 64 MB of cache.
+if(TARGET ft_app AND TARGET ft_tools AND FIXTERRAIN_WITH_METHOD_CLIPMAP
+   AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_REFERENCE)
+  ft_add_test(test_clip_flight SOURCES test_clip_flight.c ARGS 250 1200 LIBS ft_tools ft_app m)
+  set_tests_properties(test_clip_flight PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+endif()

@@ -113,7 +113,7 @@ static uint32_t drain(ft_clip_cache *c, int max_updates, int *levels_coarse_firs
     return n;
 }
 
-static uint8_t g_arena_mem[1u << 20];
+static _Alignas(64) uint8_t g_arena_mem[1u << 20]; /* FT_ARENA_ALIGN */
 
 static void make_cache(ft_clip_cache *c, ft_arena *a, uint32_t update_max)
 {
@@ -267,17 +267,17 @@ static void test_plan_errors(void)
     ft_clip_source src = {read_synth, NULL, 8u, 0, 0, 0, 10, 0, 10};
     ft_error err;
     ft_clip_desc d = {48u, 4u, 96u};
-    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG && strstr(err.text, "clip.side"));
+    CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG && strstr(err.text, "clipmap.side"));
     d.side = 64u;
     d.levels = 9u;
     CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG &&
-          strstr(err.text, "clip.levels") && strstr(err.text, "gives 8"));
+          strstr(err.text, "clipmap.levels") && strstr(err.text, "gives 8"));
     d.levels = 0u;
     CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG);
     d.levels = 8u;
     d.update_samples_max = 127u;
     CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG &&
-          strstr(err.text, "clip.update_samples_max"));
+          strstr(err.text, "clipmap.update_samples_max"));
     d.update_samples_max = 128u;
     CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_OK);
     /* the staging comes from the clip pool: too small a budget is refused */

@@ -199,7 +199,7 @@ static void corrupt_copy(void)
 #define CLIP_LEVELS 3u
 static float g_clip_tex[CLIP_LEVELS][CLIP_SIDE * CLIP_SIDE];
 static uint8_t g_clip_mark[CLIP_LEVELS][CLIP_SIDE * CLIP_SIDE];
-static uint8_t g_clip_arena[4u << 20];
+static _Alignas(64) uint8_t g_clip_arena[4u << 20]; /* FT_ARENA_ALIGN */
 
 static uint64_t compare_clip_cache(const char *path, const ft_dbw *w, const ft_terrain *t,
                                    float fill_m, uint64_t *missing)

@@ -137,6 +137,7 @@ typedef struct ft_scene {
     uint32_t clipmap_update_samples_max; /* clipmap.update_samples_max */
     uint32_t clipmap_updates_per_frame;  /* clipmap.updates_per_frame */
     double clipmap_transition_samples;   /* clipmap.transition_samples */
+    uint32_t clipmap_tile_slots;         /* clipmap.tile_slots */
     int present_relative;   /* presentation.colouring: 0 absolute, 1 relative */
     ft_palette present_palette; /* presentation.palette: day | night */
     ft_bands present_bands; /* presentation.band_edges_ft, band_rgba */
@@ -270,6 +271,8 @@ typedef struct ft_scene {
       "most cache updates run per frame while the eye moves")                                    \
     X(clipmap, transition_samples, F64, clipmap_transition_samples, 1, 1024, NULL, "16",         \
       "samples", "width of the band where a level morphs into the next coarser one")             \
+    X(clipmap, tile_slots, U32, clipmap_tile_slots, 1, 64, NULL, "16", "tiles",                  \
+      "over a .ftd: decoded database tiles kept for the cache's reads (budget.clip_bytes)")      \
     X(presentation, colouring, ENUM, present_relative, 0, 0, "absolute|relative|", "absolute",   \
       "", "a height ramp, or bands of height relative to the aircraft painted over it")          \
     X(presentation, palette, ENUM, present_palette, 0, 0, "day|night|", "day", "",               \

@@ -16,6 +16,7 @@
 #include "lod/clipmap.h"
 #include "lod/pgm.h"
 #include "lod/pgrid.h"
+#include "terrain/clip_source.h"
 #include "terrain/terrain.h"
 
 typedef struct ft_method_draw_stats {
@@ -139,6 +140,7 @@ typedef struct ft_pgrid_method {
 typedef struct ft_clipmap_method {
     ft_clip_cache cache;
     ft_clip_source src;
+    ft_clip_db_source db_src;      /* the source's state over a .ftd (terrain.db) */
     ft_cm_layout layout;           /* the last draw's */
     const ft_gl *gl;               /* select uploads the cache's updates */
     GLuint tex[FT_CLIP_LEVELS_MAX];

@@ -53,6 +53,10 @@ static void cm_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_error err;
     const ft_clip_desc d = desc_of(s);
     ft_clip_source_terrain(&src, t);
+    if (t->db != NULL) { /* the database's levels past the window's */
+        src.levels = t->db->hdr.level_count - t->db_level;
+        ft_clip_db_source_plan(&t->db->hdr, s->clipmap_tile_slots, &d, a);
+    }
     (void)ft_clip_plan(&d, &src, a, &err); /* init reports a bad description */
     ft_arena_plan(a, FT_POOL_METHOD, template_bytes());
     ft_arena_plan(a, FT_POOL_METHOD, packed_bytes(s));
@@ -227,9 +231,18 @@ static ft_status cm_init(ft_clipmap_method *m, const ft_gl *gl, const ft_scene *
     if (st != FT_OK) {
         return st;
     }
-    ft_clip_source_terrain(&m->src, t);
     const ft_clip_desc d = desc_of(s);
-    st = ft_clip_init(&m->cache, &d, &m->src, a, err);
+    /* over a .ftd window, the cache reads the database itself: the terrain
+     * goes on past the window, from the finest level that has data */
+    if (t->db != NULL) {
+        st = ft_clip_source_db(&m->src, &m->db_src, t->db, t->db_level, t->db_i0, t->db_j0,
+                               t->db_fill_m, s->clipmap_tile_slots, &d, a, err);
+    } else {
+        ft_clip_source_terrain(&m->src, t);
+    }
+    if (st == FT_OK) {
+        st = ft_clip_init(&m->cache, &d, &m->src, a, err);
+    }
     if (st != FT_OK) {
         return st;
     }
@@ -252,8 +265,8 @@ static ft_status cm_init(ft_clipmap_method *m, const ft_gl *gl, const ft_scene *
     }
     /* the first frame is complete: every level filled around the terrain's
      * middle now, and again around the first eye by the first select */
-    (void)ft_clip_recentre(&m->cache, 0.5 * (double)(m->src.data_i_lo + m->src.data_i_hi),
-                           0.5 * (double)(m->src.data_j_lo + m->src.data_j_hi));
+    (void)ft_clip_recentre(&m->cache, (double)m->src.lattice_i0 + 0.5 * (t->width - 1u),
+                           (double)m->src.lattice_j0 + 0.5 * (t->height - 1u));
     (void)run_updates(m, gl, UINT32_MAX, err, &st);
     if (st != FT_OK) {
         return st;

@@ -39,21 +39,21 @@ ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_aren
 {
     if (!is_pow2(d->side) || d->side < FT_CLIP_SIDE_MIN || d->side > FT_CLIP_SIDE_MAX) {
         return ft_fail(err, FT_ERR_CONFIG,
-                       "clip.side = %u: must be a power of two in %u..%u", d->side,
+                       "clipmap.side = %u: must be a power of two in %u..%u", d->side,
                        FT_CLIP_SIDE_MIN, FT_CLIP_SIDE_MAX);
     }
     const uint32_t levels_max =
         (src->levels < FT_CLIP_LEVELS_MAX) ? src->levels : FT_CLIP_LEVELS_MAX;
     if (d->levels < 1u || d->levels > levels_max) {
         return ft_fail(err, FT_ERR_CONFIG,
-                       "clip.levels = %u: must be 1..%u (the cache holds at most %u, the "
+                       "clipmap.levels = %u: must be 1..%u (the cache holds at most %u, the "
                        "height source gives %u)",
                        d->levels, levels_max, FT_CLIP_LEVELS_MAX, src->levels);
     }
     const uint64_t max_samples = (uint64_t)d->side * d->side;
     if (d->update_samples_max < 2u * d->side || d->update_samples_max > max_samples) {
         return ft_fail(err, FT_ERR_CONFIG,
-                       "clip.update_samples_max = %u: must be %u..%llu (two rows of clip.side "
+                       "clipmap.update_samples_max = %u: must be %u..%llu (two rows of clipmap.side "
                        "= %u up to a whole level)",
                        d->update_samples_max, 2u * d->side, (unsigned long long)max_samples,
                        d->side);

@@ -124,8 +124,8 @@ typedef struct ft_clip_cache {
     ft_clip_update last; /* the update produced last */
 } ft_clip_cache;
 
-/* Checks the description (the message names the key: clip.side, clip.levels,
- * clip.update_samples_max) and plans the staging in FT_POOL_CLIP. */
+/* Checks the description (the message names the scene key: clipmap.side,
+ * clipmap.levels, clipmap.update_samples_max) and plans the staging in FT_POOL_CLIP. */
 ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_arena *a,
                        ft_error *err);
 /* Takes the staging; every level starts empty (valid boxes empty). */

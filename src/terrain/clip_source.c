@@ -116,7 +116,7 @@ ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_
                        base_level, db->hdr.level_count - 1u);
     }
     if (tile_slots < 1u || tile_slots > FT_TDB_TILE_CACHE_MAX) {
-        return ft_fail(err, FT_ERR_CONFIG, "clip.tile_slots = %u: must be 1..%u", tile_slots,
+        return ft_fail(err, FT_ERR_CONFIG, "clipmap.tile_slots = %u: must be 1..%u", tile_slots,
                        FT_TDB_TILE_CACHE_MAX);
     }
     s->db = db;

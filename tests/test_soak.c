@@ -5,7 +5,13 @@
  * at tau 2 px): the soak is about time, not about detail, and llvmpipe's
  * vertex stage is single-threaded (4096 tiles cost up to 40 ms a frame).
  *
- * usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES]]
+ * With DB.ftd, the scene is the clipmap method over a window of that
+ * database (a 1201-sample window, the cache reading the database past it),
+ * so the same checks cover a cache that moves with the eye for the whole
+ * replay: tests/soak.cmake runs it for 10 minutes over N42E001 on an orbit
+ * of 20 km radius at 250 m/s.
+ *
+ * usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES [DB.ftd]]]
  *   RAW.log  a fixterrain-flightgen log (tests/soak.cmake makes it: orbit,
  *            1860 s, with flightgen's own single faults: --gps-jump,
  *            --nan-at, --bad-dlc-at, --duplicate-at, --drop-every)
@@ -62,6 +68,17 @@ static const char k_scene_fmt[] =
     "synth_seed = 3\nsynth_octaves = 8\nsynth_anchor_lat_deg = 46.5\nsynth_anchor_lon_deg = 8.0\n"
     "[gpu]\ntexture_bytes = 16M\n[metric]\nenabled = 0\n"
     "[bintree]\ntemplate_k = 3\ntiles_max = 256\ntau_px = 2.0\nmorph = 1\n"
+    "[frame]\nperiod_ms = %g\nbudget_ms = %g\ndegrade = 0\n";
+
+static const char k_scene_db_fmt[] =
+    "[scene]\nname = soak-clipmap\nmethod = clipmap\nbackend = egl-gles3\n"
+    "[view]\nwidth_px = 64\nheight_px = 48\nfovy_deg = 60\n"
+    "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 1201\n"
+    "db_centre_lat_deg = 42.5\ndb_centre_lon_deg = 1.5\n"
+    "[gpu]\ntexture_bytes = 16M\n[metric]\nenabled = 0\n"
+    "[clipmap]\nside = 64\nlevels = 5\nupdate_samples_max = 1024\nupdates_per_frame = 4\n"
+    "tile_slots = 8\n"
+    "[budget]\nclip_bytes = 4M\n"
     "[frame]\nperiod_ms = %g\nbudget_ms = %g\ndegrade = 0\n";
 
 /* ---- the faulted log -------------------------------------------------------- */
@@ -222,7 +239,7 @@ static soak_state g_soak;
 int main(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES]]\n");
+        fprintf(stderr, "usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES [DB.ftd]]]\n");
         return 2;
     }
     const double period_ms = argc >= 4 ? atof(argv[3]) : 50.0;
@@ -242,8 +259,13 @@ int main(int argc, char **argv)
     CHECK(fc.garbage >= per_min && fc.dlc7 >= per_min && fc.nan >= per_min &&
           fc.duplicated >= per_min && fc.gps >= per_min && fc.dropped_lines > 0u);
 
+    const char *db = argc >= 6 ? argv[5] : NULL;
     char scene[2048];
-    (void)snprintf(scene, sizeof scene, k_scene_fmt, period_ms, period_ms);
+    if (db != NULL) {
+        (void)snprintf(scene, sizeof scene, k_scene_db_fmt, db, period_ms, period_ms);
+    } else {
+        (void)snprintf(scene, sizeof scene, k_scene_fmt, period_ms, period_ms);
+    }
     const long rss_before_init = rss_kib();
     ft_test_app_init(&g_app, scene, "soak");
     g_app.renderer.gl_error_checks = 1; /* glGetError after every frame: soak only */
@@ -338,6 +360,13 @@ int main(int argc, char **argv)
     printf("wall per frame: %.3f ms in minutes 0-%u, %.3f ms in minutes %u-%u\n", ms_first,
            WINDOW_MIN, ms_last, full - WINDOW_MIN, full);
 
+    if (db != NULL) {
+        const ft_clip_stats *cs = &g_app.renderer.method.u.clipmap.cache.stats;
+        printf("clipmap cache: %llu updates, %llu samples uploaded, at most %u levels behind\n",
+               (unsigned long long)cs->updates, (unsigned long long)cs->samples_uploaded,
+               cs->levels_behind_max);
+        CHECK(cs->updates > 100u); /* the cache moved with the eye all along */
+    }
     ft_app_shutdown(&g_app);
     return ft_test_result("test_soak");
 }

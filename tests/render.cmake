@@ -83,6 +83,19 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
              ${CMAKE_BINARY_DIR}/test-out/no_heap_clipmap_es2.png egl-gles2 clipmap)
     set_tests_properties(no_heap_clipmap_gles2 PROPERTIES
                          ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+    # over a .ftd window, the cache reading the database past it (pread,
+    # tile checks, the coarser-level fallback) while frames and a replay run
+    if(TARGET ft_tools)
+      set(_nh_db ${CMAKE_BINARY_DIR}/test-out/no_heap_mosaic.ftd)
+      add_test(NAME no_heap_ftd_database
+               COMMAND fixterrain-tools import --database ${_nh_db}
+                       ${FT_SHARED_DATA_DIR}/N41E001.hgt ${FT_SHARED_DATA_DIR}/N42E001.hgt)
+      set_tests_properties(no_heap_ftd_database PROPERTIES FIXTURES_SETUP no_heap_ftd)
+      add_test(NAME no_heap_clipmap_ftd COMMAND test_no_heap
+               ${CMAKE_BINARY_DIR}/test-out/no_heap_clipmap_ftd.png egl-gles3 clipmap replay
+               ${_nh_db})
+      set_tests_properties(no_heap_clipmap_ftd PROPERTIES FIXTURES_REQUIRED no_heap_ftd)
+    endif()
   endif()
   if(FIXTERRAIN_WITH_OSMESA)
     add_test(NAME no_heap_osmesa COMMAND test_no_heap ${CMAKE_BINARY_DIR}/test-out/no_heap_osmesa.png osmesa)

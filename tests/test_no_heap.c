@@ -92,6 +92,15 @@ static const char k_scene[] =
     "frame_pos_bytes = 1M\nreference_bytes = 2M\nmetric_bytes = 1M\n"
     "gpu_staging_bytes = 512K\nmethod_bytes = 1M\npng_bytes = 512K\n";
 
+/* The terrain as a window of a database (DB.ftd, argument 5): the window
+ * around 42.5 N 1.5 E and the clipmap cache reading the database past it;
+ * the flight and the log move there. */
+static const char k_db_terrain[] =
+    "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 257\n"
+    "db_centre_lat_deg = 42.5\ndb_centre_lon_deg = 1.5\n"
+    "[clipmap]\ntile_slots = 4\n[budget]\nclip_bytes = 2M\n";
+static double g_lat0 = 46.5, g_lon0 = 8.0;
+
 static ft_app g_app;
 static ft_pose_feed g_feed;
 static ft_replay_io g_replay_io; /* the replay's files and line reader */
@@ -106,7 +115,8 @@ static void write_log(const char *path)
     REQUIRE(f != NULL);
     static const uint16_t ids[] = {311, 312, 321, 303, 304, 305, 320, 1036, 1037, 1039, 1040, 314};
     const float vals[] = {-10.0f, 5.0f, 0.0f,  0.0f,  0.0f,   20.0f,
-                          3500.0f, 46.55f, 8.2f, 100.0f, 45.0f, 2.0f};
+                          3500.0f, (float)(g_lat0 + 0.05), (float)(g_lon0 + 0.2), 100.0f,
+                          45.0f, 2.0f};
     uint8_t code[12] = {0};
     for (int i = 0; i < 320; ++i) {
         if (i >= 160 && i < 208) continue; /* stall */
@@ -152,6 +162,16 @@ int main(int argc, char **argv)
     /* 2. Init may allocate (it does not, but it is allowed to). */
     ft_scene_defaults(&s);
     REQUIRE(ft_scene_parse(&s, k_scene, "k_scene", &err) == FT_OK);
+    if (argc >= 6) {
+        char text[1024];
+        (void)snprintf(text, sizeof text, k_db_terrain, argv[5]);
+        REQUIRE(ft_scene_parse(&s, text, "k_db_terrain", &err) == FT_OK);
+        g_lat0 = 42.5;
+        g_lon0 = 1.5;
+        s.pose.lat_deg = g_lat0;
+        s.pose.lon_deg = g_lon0;
+        s.pose.alt_m = 4500.0;
+    }
     if (argc >= 3) {
         REQUIRE(ft_backend_from_name(argv[2], &s.backend));
     }
@@ -174,9 +194,9 @@ int main(int argc, char **argv)
     ft_pose pose = s.pose;
     int frames_ok = 0;
     for (int f = 0; f < 120; ++f) {
-        pose.lat_deg = 46.5 + 0.02 + 0.0002 * f;
-        pose.lon_deg = 8.0 + 0.02 + 0.0001 * f;
-        pose.alt_m = 2500.0 + 10.0 * f;
+        pose.lat_deg = g_lat0 + 0.02 + 0.0002 * f;
+        pose.lon_deg = g_lon0 + 0.02 + 0.0001 * f;
+        pose.alt_m = (g_lat0 < 45.0 ? 4500.0 : 2500.0) + 10.0 * f;
         pose.heading_deg = 3.0 * f;
         pose.pitch_deg = -10.0 - 0.1 * f;
         pose.roll_deg = (f % 20) - 10.0;

@@ -25,10 +25,15 @@ ft_status ft_frame_step(ft_frame_loop *fl, ft_app *app, const ft_pose *pose,
                         const char *annunciation, ft_frame *out, ft_error *err)
 {
     out->lod_scale = fl->degrade.scale;
+    const uint64_t t_start_ns = ft_plat_monotonic_ns();
     ft_status st = ft_app_render_annunciated(app, pose, annunciation, &out->cam, &out->stats, err);
     if (st != FT_OK) {
         return st;
     }
+    /* the method's deferred work (the clipmap cache's reads and uploads) in
+     * what is left of this frame's period */
+    const uint64_t period_ns = (uint64_t)(app->scene.frame_period_ms * 1e6);
+    ft_method_spare(&app->renderer.method, ft_plat_monotonic_ns, t_start_ns + period_ns);
     const ft_frame_stats *fs = &out->stats;
     ft_frame_timing *t = &fl->timing;
     out->render_ms = fs->select_ms + fs->gpu_ms;

@@ -267,8 +267,8 @@ typedef struct ft_scene {
       "nested clipmap levels, level l spaced 2^l samples")                                       \
     X(clipmap, update_samples_max, U32, clipmap_update_samples_max, 32, 16777216, NULL, "16384", \
       "samples", "most samples one cache update reads and uploads (at least 2 x side)")          \
-    X(clipmap, updates_per_frame, U32, clipmap_updates_per_frame, 1, 4096, NULL, "8", "updates", \
-      "most cache updates run per frame while the eye moves")                                    \
+    X(clipmap, updates_per_frame, U32, clipmap_updates_per_frame, 0, 4096, NULL, "8", "updates", \
+      "cache updates the selection runs each frame; more run in the frame's spare time")         \
     X(clipmap, transition_samples, F64, clipmap_transition_samples, 1, 1024, NULL, "16",         \
       "samples", "width of the band where a level morphs into the next coarser one")             \
     X(clipmap, tile_slots, U32, clipmap_tile_slots, 1, 64, NULL, "16", "tiles",                  \

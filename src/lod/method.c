@@ -103,6 +103,14 @@ int ft_method_set_lod_scale(ft_method *m, double scale)
     return 1;
 }
 
+void ft_method_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    if (o != NULL && o->spare != NULL) {
+        o->spare(m, now, deadline_ns);
+    }
+}
+
 void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     const ft_method_ops *o = ft_method_ops_of(m->kind);

@@ -153,6 +153,11 @@ typedef struct ft_clipmap_method {
     uint8_t *packed;               /* update_samples_max * 4 (FT_POOL_METHOD) */
     int fill_whole;                /* the first select fills every level */
     uint32_t updates_last;         /* updates run by the last select */
+    /* spare time: each update's cost is declared as the slowest seen so far
+     * (init's whole fill measures it first) */
+    uint64_t update_ns_max;
+    uint64_t spare_updates;        /* updates run in spare time */
+    uint64_t spare_deferred;       /* spare calls that left work for later */
     uint64_t read_errors;          /* source reads that failed (retried) */
     ft_view_key sel_view;
     uint64_t gpu_bytes;
@@ -206,6 +211,9 @@ typedef struct ft_method_ops {
     void (*draw)(ft_method *m, const ft_gl *gl, const ft_terrain_program *p,
                  const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
     void (*set_lod_scale)(ft_method *m, double scale);
+    /* Deferred work (clipmap: the cache's reads and uploads) run after the
+     * frame while now() + its declared cost <= deadline_ns; NULL: none. */
+    void (*spare)(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
     uint64_t (*gpu_bytes)(const ft_method *m);
     void (*worst)(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
     void (*shutdown)(ft_method *m, const ft_gl *gl);
@@ -242,6 +250,10 @@ void ft_method_select(ft_method *m, const ft_terrain *t, const ft_camera *cam);
  * gamma_px * scale (its achieved bound is reported). Returns 0 when the method has no LOD
  * knob (brute, pgm: the scale is then ignored). */
 int ft_method_set_lod_scale(ft_method *m, double scale);
+/* Runs the method's deferred work in the frame's spare time: only while
+ * now() plus the work's declared cost stays before deadline_ns (the frame
+ * loop calls it after the frame, with the next frame's start). */
+void ft_method_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
 void ft_method_worst_case(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);

@@ -196,21 +196,35 @@ static void upload(ft_clipmap_method *m, const ft_gl *gl, const ft_clip_update *
     gl->ActiveTexture(GL_TEXTURE0);
 }
 
+/* One update (read, upload, commit): 1 when one ran. Timed with now (when
+ * not NULL), its time raises the declared cost of an update when it is the
+ * slowest yet. */
+static int run_one(ft_clipmap_method *m, const ft_gl *gl, uint64_t (*now)(void), ft_error *err,
+                   ft_status *st)
+{
+    const uint64_t t0 = now != NULL ? now() : 0u;
+    ft_clip_update u;
+    int have = 0;
+    *st = ft_clip_next_update(&m->cache, &u, &have, err);
+    if (*st != FT_OK || !have) {
+        return 0;
+    }
+    upload(m, gl, &u);
+    ft_clip_commit(&m->cache, &u);
+    if (now != NULL) {
+        const uint64_t dt = now() - t0;
+        m->update_ns_max = dt > m->update_ns_max ? dt : m->update_ns_max;
+    }
+    return 1;
+}
+
 /* Runs at most max_updates updates; returns how many ran. */
 static uint32_t run_updates(ft_clipmap_method *m, const ft_gl *gl, uint32_t max_updates,
                             ft_error *err, ft_status *st)
 {
     uint32_t n = 0;
     *st = FT_OK;
-    while (n < max_updates) {
-        ft_clip_update u;
-        int have = 0;
-        *st = ft_clip_next_update(&m->cache, &u, &have, err);
-        if (*st != FT_OK || !have) {
-            break;
-        }
-        upload(m, gl, &u);
-        ft_clip_commit(&m->cache, &u);
+    while (n < max_updates && run_one(m, gl, NULL, err, st)) {
         ++n;
     }
     return n;
@@ -289,6 +303,30 @@ static void cm_select(ft_clipmap_method *m, const ft_terrain *t, const ft_camera
     if (st != FT_OK) {
         m->read_errors += 1u; /* the cache is unchanged: retried next frame */
     }
+}
+
+/* The frame's spare time: updates while now() + the slowest update seen so
+ * far fits before the deadline (the first call, with nothing measured yet,
+ * runs one update and so learns the cost). Bounded by the updates a level
+ * set can need (every level whole, in the smallest pieces). */
+static void cm_spare(ft_clipmap_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    const uint64_t most = (uint64_t)m->levels * m->side * m->side /
+                              (2u * m->side) + (uint64_t)m->levels * 4u;
+    ft_error err;
+    ft_status st = FT_OK;
+    uint64_t n = 0u;
+    while (n < most && now() + m->update_ns_max <= deadline_ns) {
+        if (!run_one(m, m->gl, now, &err, &st)) {
+            break;
+        }
+        ++n;
+    }
+    if (st != FT_OK) {
+        m->read_errors += 1u; /* the cache is unchanged: retried later */
+    }
+    m->spare_updates += n;
+    m->spare_deferred += m->cache.stats.levels_behind > 0u;
 }
 
 static void layout_now(ft_clipmap_method *m)
@@ -434,6 +472,11 @@ static void ops_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     cm_plan(s, t, a);
 }
 
+static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    cm_spare(&m->u.clipmap, now, deadline_ns);
+}
+
 const ft_method_ops ft_clipmap_ops = {
     .vertex_shader = "clipmap.vert.glsl",
     .uniforms = {k_cm_uniforms, sizeof k_cm_uniforms / sizeof k_cm_uniforms[0]},
@@ -441,6 +484,7 @@ const ft_method_ops ft_clipmap_ops = {
     .init = ops_init,
     .select = ops_select,
     .draw = ops_draw,
+    .spare = ops_spare,
     .gpu_bytes = ops_gpu_bytes,
     .worst = ops_worst,
     .shutdown = ops_shutdown,

@@ -110,7 +110,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         "  \"init_ms\": %.3f,\n  \"frames\": %u,\n"
         "  \"frame\": {\"triangles\": %llu, \"draw_calls\": %u, \"tiles\": %u,"
         " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu, \"unmeasured_px\": %llu,"
-        " \"internal_fault\": %d,"
+        " \"internal_fault\": %d, \"cache_levels_behind\": %u,"
+        " \"cache_samples_outstanding\": %llu, \"cache_coarser\": %d,"
         " \"tau_achieved_px\": %s, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
@@ -123,7 +124,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         (double)app->init_ns * 1e-6, frames, (unsigned long long)last->triangles,
         last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
         (unsigned long long)last->terrain_px, (unsigned long long)last->unmeasured_px,
-        last->internal_fault, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
+        last->internal_fault, last->cache_levels_behind,
+        (unsigned long long)last->cache_samples_outstanding, last->cache_coarser, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
@@ -471,7 +473,8 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         "  \"frames_predicted\": %u,\n  \"log_first_s\": %.6f,\n  \"log_last_s\": %.6f,\n"
         "  \"draw_ms_max\": %.3f,\n  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
         "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
-        "  \"tau_max_px\": %.4f,\n  \"frames_off_terrain\": %u\n}\n",
+        "  \"tau_max_px\": %.4f,\n  \"frames_off_terrain\": %u,\n"
+        "  \"frames_cache_behind\": %u,\n  \"frames_cache_coarser\": %u\n}\n",
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
         (unsigned long long)r->timestamps_backwards,
@@ -483,7 +486,8 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         r->frames_predicted, r->log_first_s, r->log_last_s, r->frame.timing.render_ms_max,
         r->frame.degrade.budget_ms, r->frame.degrade.over_budget, r->frame.degrade.enabled,
         r->frame.degrade.raises, r->frame.degrade.lowers, r->frame.timing.degrade_scale_max,
-        r->frame.timing.tau_max_px, r->frames_off_terrain);
+        r->frame.timing.tau_max_px, r->frames_off_terrain, r->frames_cache_behind,
+        r->frames_cache_coarser);
     return write_stats_text(path, len, "replay", err);
 }
 
@@ -588,6 +592,11 @@ static int cmd_replay(int argc, char **argv)
         }
         if (r.last_view.annunciate) {
             printf("replay: the last frame is annunciated: %s\n", r.last_view.reason);
+        }
+        if (scene.method == FT_METHOD_CLIPMAP) {
+            printf("replay: clipmap cache: %u of %u frames drawn with a level behind, %u with "
+                   "the eye's surroundings from a coarser level\n",
+                   r.frames_cache_behind, r.frames, r.frames_cache_coarser);
         }
         if (r.frames_off_terrain > 0u) {
             double lat0, lat1, lon0, lon1;

@@ -229,9 +229,15 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         }
         r->frames += 1u;
         r->frames_predicted += (uint32_t)v.predicted;
+        r->frames_cache_behind += (uint32_t)(fr.stats.cache_levels_behind > 0u);
+        r->frames_cache_coarser += (uint32_t)(fr.stats.cache_coarser != 0);
         r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
         r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);
-        if ((v.stale_mask & FT_QTY_POSITION_MASK) == 0u &&
+        /* the clipmap over a .ftd draws the database past the window: no
+         * position over the database is off its terrain */
+        const int terrain_goes_on =
+            app->terrain.db != NULL && app->scene.method == FT_METHOD_CLIPMAP;
+        if ((v.stale_mask & FT_QTY_POSITION_MASK) == 0u && !terrain_goes_on &&
             !ft_pose_over_terrain(&app->terrain, &v.pose)) {
             r->frames_off_terrain += 1u;
             r->last_off_lat_deg = v.pose.lat_deg;

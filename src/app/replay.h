@@ -77,6 +77,9 @@ typedef struct ft_replay_result {
     uint32_t frames_off_terrain;    /* frames drawn from a fresh position that does not lie
                                      * over the terrain (the frame shows no terrain there) */
     double last_off_lat_deg, last_off_lon_deg; /* the last such position */
+    uint32_t frames_cache_behind;   /* clipmap: frames drawn with a cache level behind */
+    uint32_t frames_cache_coarser;  /* clipmap: frames that drew the eye's surroundings
+                                     * from a level coarser than level 0 */
     double log_first_s, log_last_s;
     ft_frame_loop frame;     /* the frames' timing (information only) and the LOD
                               * degradation (frame.budget_ms, frame.degrade) */

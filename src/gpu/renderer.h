@@ -37,6 +37,9 @@ typedef struct ft_frame_stats {
     double tau_achieved_px; /* bintree: screen-space bound the selection meets */
     double tau_target_px;   /* bintree: the selection's target (method.h) */
     int budget_hit;         /* bintree: the tile budget forced a coarser tau */
+    uint32_t cache_levels_behind;       /* clipmap: its cache's levels behind */
+    uint64_t cache_samples_outstanding; /* clipmap: samples still to upload */
+    int cache_coarser;      /* clipmap: the eye's surroundings drawn from a level > 0 */
     double select_ms; /* LOD selection on the CPU (0 when the view did not change) */
     double cpu_ms;   /* frame submission on the CPU */
     double gpu_ms;   /* submission + glFinish (measurement mode) */

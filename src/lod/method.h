@@ -33,6 +33,10 @@ typedef struct ft_method_draw_stats {
                                 tile is itself over it. 0 for other methods */
     int budget_hit;          /* bintree: tau was raised to fit the tile budget;
                                 pgrid: the ray-casting budget raised gamma */
+    /* clipmap: how far behind its cache is at this frame's draw */
+    uint32_t cache_levels_behind;       /* levels whose valid box is not the wanted one */
+    uint64_t cache_samples_outstanding; /* samples still to read and upload */
+    int cache_coarser;                  /* the eye's surroundings drawn from a level > 0 */
 } ft_method_draw_stats;
 
 typedef struct ft_brute {

@@ -410,6 +410,9 @@ static void cm_draw(ft_clipmap_method *m, const ft_gl *gl, const ft_terrain_prog
         st->triangles += ft_cm_level_draws(lay, l, draw_one, &ctx);
     }
     st->tiles = lay->drawn_count;
+    st->cache_levels_behind = m->cache.stats.levels_behind;
+    st->cache_samples_outstanding = m->cache.stats.samples_outstanding;
+    st->cache_coarser = lay->drawn_count == 0u || lay->finest > 0u;
 }
 
 static void cm_shutdown(ft_clipmap_method *m, const ft_gl *gl)

@@ -221,6 +221,18 @@ int main(int argc, char **argv)
         REQUIRE(ft_renderer_camera(&g_app.renderer, &pj, &cj, &err) == FT_OK);
         ft_method_select(&g_app.renderer.method, t, &cj);
         REQUIRE(cm->cache.stats.levels_behind > 0u && cm->update_ns_max > 0u);
+        /* a frame drawn now says how far behind the cache is */
+        ft_frame_stats fj;
+        ft_test_frame(&g_app, &pj, &cj, &fj);
+        printf("the frame after the jump: %u levels behind, %llu samples outstanding, eye's "
+               "surroundings from a coarser level: %d\n",
+               fj.cache_levels_behind, (unsigned long long)fj.cache_samples_outstanding,
+               fj.cache_coarser);
+        CHECK(fj.cache_levels_behind == cm->cache.stats.levels_behind &&
+              fj.cache_levels_behind > 0u);
+        CHECK(fj.cache_samples_outstanding == cm->cache.stats.samples_outstanding &&
+              fj.cache_samples_outstanding > 0u);
+        CHECK(fj.cache_coarser == 1);
         const uint64_t before = cm->spare_updates;
         ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns, ft_plat_monotonic_ns());
         CHECK(cm->spare_updates == before);

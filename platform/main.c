@@ -112,6 +112,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         " \"raycast_px\": %llu, \"raycast_terrain_px\": %llu, \"unmeasured_px\": %llu,"
         " \"internal_fault\": %d, \"cache_levels_behind\": %u,"
         " \"cache_samples_outstanding\": %llu, \"cache_coarser\": %d,"
+        " \"cache_forced_updates\": %u,"
         " \"tau_achieved_px\": %s, \"tau_target_px\": %.4f, \"budget_hit\": %d, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
@@ -125,7 +126,8 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         last->draw_calls, last->tiles, (unsigned long long)last->raycast_px,
         (unsigned long long)last->terrain_px, (unsigned long long)last->unmeasured_px,
         last->internal_fault, last->cache_levels_behind,
-        (unsigned long long)last->cache_samples_outstanding, last->cache_coarser, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
+        (unsigned long long)last->cache_samples_outstanding, last->cache_coarser,
+        last->cache_forced_updates, tau_text, last->tau_target_px, last->budget_hit, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,
@@ -474,7 +476,8 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         "  \"draw_ms_max\": %.3f,\n  \"budget_ms\": %.3f,\n  \"frames_over_budget\": %u,\n"
         "  \"degrade\": {\"enabled\": %d, \"raises\": %u, \"lowers\": %u, \"scale_max\": %.3f},\n"
         "  \"tau_max_px\": %.4f,\n  \"frames_off_terrain\": %u,\n"
-        "  \"frames_cache_behind\": %u,\n  \"frames_cache_coarser\": %u\n}\n",
+        "  \"frames_cache_behind\": %u,\n  \"frames_cache_coarser\": %u,\n"
+        "  \"frames_cache_forced\": %u\n}\n",
         (unsigned long long)r->lines, (unsigned long long)r->lines_bad,
         (unsigned long long)r->lines_unsupported, (unsigned long long)r->gaps,
         (unsigned long long)r->timestamps_backwards,
@@ -487,7 +490,7 @@ static ft_status write_replay_stats(const char *path, const ft_replay_result *r,
         r->frame.degrade.budget_ms, r->frame.degrade.over_budget, r->frame.degrade.enabled,
         r->frame.degrade.raises, r->frame.degrade.lowers, r->frame.timing.degrade_scale_max,
         r->frame.timing.tau_max_px, r->frames_off_terrain, r->frames_cache_behind,
-        r->frames_cache_coarser);
+        r->frames_cache_coarser, r->frames_cache_forced);
     return write_stats_text(path, len, "replay", err);
 }
 
@@ -595,8 +598,10 @@ static int cmd_replay(int argc, char **argv)
         }
         if (scene.method == FT_METHOD_CLIPMAP) {
             printf("replay: clipmap cache: %u of %u frames drawn with a level behind, %u with "
-                   "the eye's surroundings from a coarser level\n",
-                   r.frames_cache_behind, r.frames, r.frames_cache_coarser);
+                   "the eye's surroundings from a coarser level, %u completed the coarsest "
+                   "level before drawing\n",
+                   r.frames_cache_behind, r.frames, r.frames_cache_coarser,
+                   r.frames_cache_forced);
         }
         if (r.frames_off_terrain > 0u) {
             double lat0, lat1, lon0, lon1;

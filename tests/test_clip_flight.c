@@ -210,8 +210,9 @@ int main(int argc, char **argv)
            "terrain, %llu with unmeasured pixels, %llu with a hole\n",
            err_max, (unsigned long long)east_frames, (unsigned long long)unmeasured_frames,
            (unsigned long long)holes);
-    /* the spare-time rule on its own: a jump leaves every level to refill;
-     * no time left runs nothing, a little runs some and stops in time */
+    /* the spare-time rule on its own: a jump leaves the levels to refill
+     * (the coarsest is completed by the selection itself); no time left
+     * runs nothing, a little runs some and stops in time */
     {
         double x = 0.0, y = 0.0;
         ft_terrain_geo_to_world(t, 41.3, 2.9, &x, &y);
@@ -225,9 +226,11 @@ int main(int argc, char **argv)
         ft_frame_stats fj;
         ft_test_frame(&g_app, &pj, &cj, &fj);
         printf("the frame after the jump: %u levels behind, %llu samples outstanding, eye's "
-               "surroundings from a coarser level: %d\n",
+               "surroundings from a coarser level: %d; %u updates completed the coarsest "
+               "level first\n",
                fj.cache_levels_behind, (unsigned long long)fj.cache_samples_outstanding,
-               fj.cache_coarser);
+               fj.cache_coarser, fj.cache_forced_updates);
+        CHECK(ft_clip_level_current(&cm->cache, cm->levels - 1u));
         CHECK(fj.cache_levels_behind == cm->cache.stats.levels_behind &&
               fj.cache_levels_behind > 0u);
         CHECK(fj.cache_samples_outstanding == cm->cache.stats.samples_outstanding &&

@@ -14,6 +14,10 @@
  *    than wanted) and catch up while the eye then hovers (checked from the
  *    cache's stats). A view
  *    above the horizon must show magenta (the counter works).
+ *    A jump past every level's box (3 levels: the coarsest spans 512
+ *    samples; the eye moves 720) with no update budget: the frame completes
+ *    the coarsest level before it draws, so it shows terrain, not the clear
+ *    colour, while the finer levels are still behind.
  * 3. Transform feedback (es3): after real frames along the flight, every
  *    template vertex of every draw of every level is captured as the shader
  *    places it (v_pos_rel_eye_m); each fine vertex on a transition side of
@@ -187,6 +191,35 @@ static void fly(const char *backend, const char *dem, const char *format)
     const ft_pose sky = ft_test_pose(42.5, 1.5, 3000.0, 0.0, 10.0, 0.0);
     render(&sky);
     CHECK(ft_test_clear_pixels(&g_app) > 1000u);
+    ft_app_shutdown(&g_app);
+}
+
+/* A jump past every level's box: nothing resident is near the new eye. */
+static void jump(const char *backend, const char *dem, const char *format)
+{
+    app_init("clipmap", backend, dem, format, 128u, 3u, 0u);
+    const ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
+    const ft_pose a = ft_test_pose(42.10, 1.20, 4200.0, 35.0, -50.0, 0.0);
+    const ft_pose b = ft_test_pose(42.70, 1.65, 4000.0, 75.0, -50.0, 0.0);
+    render(&a);
+    render(&a);
+    CHECK(ft_test_clear_pixels(&g_app) == 0u);
+    const int64_t span = (int64_t)cm->side << (cm->levels - 1u); /* level-0 samples */
+    const int64_t before_j0 = cm->cache.level[cm->levels - 1u].want.j0 << (cm->levels - 1u);
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, &b, &cam, &fs);
+    const int64_t after_j0 = cm->cache.level[cm->levels - 1u].want.j0 << (cm->levels - 1u);
+    const uint32_t clear = ft_test_clear_pixels(&g_app);
+    printf("%s %s jump of %lld samples north (the coarsest box spans %lld): the frame ran %u "
+           "updates to complete the coarsest level, %u levels behind, %u clear pixels\n",
+           backend, format, (long long)(after_j0 - before_j0), (long long)span,
+           fs.cache_forced_updates, fs.cache_levels_behind, clear);
+    CHECK(after_j0 - before_j0 >= span);      /* past every level's box */
+    CHECK(fs.cache_forced_updates > 0u);
+    CHECK(ft_clip_level_current(&cm->cache, cm->levels - 1u));
+    CHECK(fs.cache_levels_behind >= 1u);      /* the finer levels wait for their turn */
+    CHECK(clear == 0u);
     ft_app_shutdown(&g_app);
 }
 
@@ -397,11 +430,13 @@ int main(int argc, char **argv)
     brute_masks(backend, argv[2]);
     coverage(backend, argv[2], "float");
     fly(backend, argv[2], "float");
+    jump(backend, argv[2], "float");
     if (es3) {
         tf_check(argv[2]);
     } else {
         coverage(backend, argv[2], "packed");
         fly(backend, argv[2], "packed");
+        jump(backend, argv[2], "packed");
     }
     return ft_test_result(es3 ? "test_clipmap_gl es3" : "test_clipmap_gl es2");
 }

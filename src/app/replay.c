@@ -231,6 +231,7 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         r->frames_predicted += (uint32_t)v.predicted;
         r->frames_cache_behind += (uint32_t)(fr.stats.cache_levels_behind > 0u);
         r->frames_cache_coarser += (uint32_t)(fr.stats.cache_coarser != 0);
+        r->frames_cache_forced += (uint32_t)(fr.stats.cache_forced_updates > 0u);
         r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
         r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);
         /* the clipmap over a .ftd draws the database past the window: no

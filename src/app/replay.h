@@ -80,6 +80,8 @@ typedef struct ft_replay_result {
     uint32_t frames_cache_behind;   /* clipmap: frames drawn with a cache level behind */
     uint32_t frames_cache_coarser;  /* clipmap: frames that drew the eye's surroundings
                                      * from a level coarser than level 0 */
+    uint32_t frames_cache_forced;   /* clipmap: frames that completed the coarsest level
+                                     * before drawing (its box moved, or a jump) */
     double log_first_s, log_last_s;
     ft_frame_loop frame;     /* the frames' timing (information only) and the LOD
                               * degradation (frame.budget_ms, frame.degrade) */

@@ -622,6 +622,7 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     st->cache_levels_behind = ms.cache_levels_behind;
     st->cache_samples_outstanding = ms.cache_samples_outstanding;
     st->cache_coarser = ms.cache_coarser;
+    st->cache_forced_updates = ms.cache_forced_updates;
     st->depth_bits = r->depth_bits;
     st->depth_float = r->depth_float;
     st->near_m = cam->near_m;

@@ -40,6 +40,8 @@ typedef struct ft_frame_stats {
     uint32_t cache_levels_behind;       /* clipmap: its cache's levels behind */
     uint64_t cache_samples_outstanding; /* clipmap: samples still to upload */
     int cache_coarser;      /* clipmap: the eye's surroundings drawn from a level > 0 */
+    uint32_t cache_forced_updates; /* clipmap: updates run in the frame to keep the
+                                      coarsest level whole */
     double select_ms; /* LOD selection on the CPU (0 when the view did not change) */
     double cpu_ms;   /* frame submission on the CPU */
     double gpu_ms;   /* submission + glFinish (measurement mode) */

@@ -37,6 +37,8 @@ typedef struct ft_method_draw_stats {
     uint32_t cache_levels_behind;       /* levels whose valid box is not the wanted one */
     uint64_t cache_samples_outstanding; /* samples still to read and upload */
     int cache_coarser;                  /* the eye's surroundings drawn from a level > 0 */
+    uint32_t cache_forced_updates;      /* updates this frame ran to keep the coarsest
+                                           level whole (after a jump: all of it) */
 } ft_method_draw_stats;
 
 typedef struct ft_brute {
@@ -157,6 +159,9 @@ typedef struct ft_clipmap_method {
     uint8_t *packed;               /* update_samples_max * 4 (FT_POOL_METHOD) */
     int fill_whole;                /* the first select fills every level */
     uint32_t updates_last;         /* updates run by the last select */
+    uint32_t forced_last;          /* of those, run to keep the coarsest level whole */
+    uint64_t forced_updates;       /* all such updates since init */
+    uint64_t forced_frames;        /* selects that ran some */
     /* spare time: each update's cost is declared as the slowest seen so far
      * (init's whole fill measures it first) */
     uint64_t update_ns_max;

@@ -14,8 +14,10 @@
  * Per frame, select moves the cache's wanted boxes to the eye and runs at
  * most clipmap.updates_per_frame updates (the frame loop's job queue is the
  * app's, which a method cannot reach; the update count bounds the time
- * instead); draw lays out the drawn boxes from the valid boxes and draws
- * coarsest level first. CPU memory: the cache's staging (its pool) and the
+ * instead), then whatever the coarsest level still lacks (so terrain is
+ * never drawn as sky: after a jump past every level's box the frame pays
+ * for one whole level, at most side + 2 updates); draw lays out the drawn
+ * boxes from the valid boxes and draws coarsest level first. CPU memory: the cache's staging (its pool) and the
  * packed-texel staging (FT_POOL_METHOD), nothing after init. */
 #include <math.h>
 #include <stdio.h>
@@ -218,6 +220,24 @@ static int run_one(ft_clipmap_method *m, const ft_gl *gl, uint64_t (*now)(void),
     return 1;
 }
 
+/* Updates (coarsest level first) until the coarsest level is whole. Bound:
+ * a whole level is side / rows bands of rows >= 2 rows (a band is split
+ * where the texel rows wrap, adding one, and where the columns wrap, doubling
+ * them), so at most side + 2 updates; a partial level's strips take fewer
+ * samples and at most 4 more splits. */
+static uint32_t complete_coarsest(ft_clipmap_method *m, const ft_gl *gl, ft_error *err,
+                                  ft_status *st)
+{
+    const uint32_t most = m->side + 8u;
+    uint32_t n = 0u;
+    *st = FT_OK;
+    while (n < most && !ft_clip_level_current(&m->cache, m->levels - 1u) &&
+           run_one(m, gl, NULL, err, st)) {
+        ++n;
+    }
+    return n;
+}
+
 /* Runs at most max_updates updates; returns how many ran. */
 static uint32_t run_updates(ft_clipmap_method *m, const ft_gl *gl, uint32_t max_updates,
                             ft_error *err, ft_status *st)
@@ -303,6 +323,17 @@ static void cm_select(ft_clipmap_method *m, const ft_terrain *t, const ft_camera
     if (st != FT_OK) {
         m->read_errors += 1u; /* the cache is unchanged: retried next frame */
     }
+    /* What no level holds would be drawn as sky, which hides terrain: the
+     * coarsest level is completed now, whatever the frame's budget. In
+     * flight that is a strip of 2 x side samples when its box moves; after
+     * a jump, the whole level. */
+    m->forced_last = complete_coarsest(m, m->gl, &err, &st);
+    if (st != FT_OK) {
+        m->read_errors += 1u;
+    }
+    m->updates_last += m->forced_last;
+    m->forced_updates += m->forced_last;
+    m->forced_frames += m->forced_last > 0u;
 }
 
 /* The frame's spare time: updates while now() + the slowest update seen so
@@ -413,6 +444,7 @@ static void cm_draw(ft_clipmap_method *m, const ft_gl *gl, const ft_terrain_prog
     st->cache_levels_behind = m->cache.stats.levels_behind;
     st->cache_samples_outstanding = m->cache.stats.samples_outstanding;
     st->cache_coarser = lay->drawn_count == 0u || lay->finest > 0u;
+    st->cache_forced_updates = m->forced_last;
 }
 
 static void cm_shutdown(ft_clipmap_method *m, const ft_gl *gl)

@@ -274,10 +274,16 @@ void ft_clip_commit(ft_clip_cache *c, const ft_clip_update *u)
     }
 }
 
+int ft_clip_level_current(const ft_clip_cache *c, uint32_t l)
+{
+    return l < c->desc.levels && !box_empty(&c->level[l].want) &&
+           box_equal(&c->level[l].valid, &c->level[l].want);
+}
+
 uint32_t ft_clip_finest_current(const ft_clip_cache *c)
 {
     for (uint32_t l = 0u; l < c->desc.levels; ++l) {
-        if (!box_empty(&c->level[l].want) && box_equal(&c->level[l].valid, &c->level[l].want)) {
+        if (ft_clip_level_current(c, l)) {
             return l;
         }
     }

@@ -150,4 +150,7 @@ uint32_t ft_clip_texel(const ft_clip_cache *c, int64_t a);
 /* The finest level whose valid box equals its wanted box (levels when none). */
 uint32_t ft_clip_finest_current(const ft_clip_cache *c);
 
+/* 1 when level l's valid box equals its wanted box (and it has one). */
+int ft_clip_level_current(const ft_clip_cache *c, uint32_t l);
+
 #endif

@@ -14,3 +14,11 @@ if(TARGET ft_tools AND TARGET ft_app)
     set_tests_properties(db_window_render_gles3 PROPERTIES SKIP_RETURN_CODE 77)
   endif()
 endif()
+
+# Terrain across the antimeridian (a database of ETOPO5 alone, built in the
+# test): the window, the clipmap cache and frames on both sides of 180 deg E.
+if(TARGET ft_tools AND TARGET ft_app AND FIXTERRAIN_WITH_EGL
+   AND FIXTERRAIN_WITH_METHOD_BRUTE AND FIXTERRAIN_WITH_METHOD_CLIPMAP)
+  ft_add_test(test_antimeridian SOURCES test_antimeridian.c LIBS ft_tools ft_app m)
+  set_tests_properties(test_antimeridian PROPERTIES SKIP_RETURN_CODE 77)
+endif()

@@ -151,5 +151,16 @@ ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_
     out->data_j_lo = 0;
     out->data_i_hi = (int64_t)nx - 1;
     out->data_j_hi = (int64_t)ny - 1;
+    /* every level the cache reads wraps in longitude: the terrain goes on
+     * east and west without end (bounded far past any box the cache holds) */
+    int wraps = 1;
+    for (uint32_t l = 0u; l < d->levels && l < out->levels; ++l) {
+        wraps = wraps && ft_tdb_lattice_closes(db->hdr.samples_per_deg, base_level + l);
+    }
+    if (wraps) {
+        out->data_i_lo = -FT_CLIP_DATA_UNBOUNDED;
+        out->data_i_hi = FT_CLIP_DATA_UNBOUNDED;
+    }
+    s->wraps = wraps;
     return FT_OK;
 }

@@ -27,7 +27,11 @@ void ft_clip_source_terrain(ft_clip_source *out, const ft_terrain *t);
  * (db_window.h: the level's data, else the nearest coarser level's bilinear
  * value, else the floor fill_m; all but the first marked), tile by tile
  * through the staging with every tile's checks; the data box is the whole
- * lattice of base_level (missing data is drawn, marked, never a hole). */
+ * lattice of base_level (missing data is drawn, marked, never a hole), and
+ * when every level the cache reads closes around the globe
+ * (ft_tdb_lattice_closes) it has no east or west edge: the levels wrap at
+ * the antimeridian (data_i_* = -+FT_CLIP_DATA_UNBOUNDED). */
+#define FT_CLIP_DATA_UNBOUNDED ((int64_t)1 << 40)
 typedef struct ft_clip_db_source {
     const ft_tdb *db;
     uint32_t base_level;
@@ -37,6 +41,7 @@ typedef struct ft_clip_db_source {
     size_t coarse_bytes;
     uint8_t *bits; /* (update_samples_max + 7) / 8 */
     uint32_t update_samples_max;
+    int wraps;            /* every level read wraps in longitude */
     ft_dbw_counts counts; /* summed over every read */
 } ft_clip_db_source;
 

@@ -256,7 +256,9 @@ static void copy_tile(const ft_tdb_tile *tile, uint64_t T, uint64_t tx, uint64_t
 
 /* Reads g from the database tile by tile through the staging buffer;
  * samples no tile covers (no data, outside the lattice) hold
- * FT_TDB_NODATA_M. */
+ * FT_TDB_NODATA_M. A level whose lattice closes around the globe wraps in
+ * longitude: g's columns are read a turn (nx samples) at a time, each turn's
+ * part from lattice columns 0..nx-1. */
 static ft_status read_grid(const ft_tdb *db, lattice_grid *g, ft_tdb_tile_cache *tc,
                            ft_dbw_counts *c, ft_error *err)
 {
@@ -264,26 +266,40 @@ static ft_status read_grid(const ft_tdb *db, lattice_grid *g, ft_tdb_tile_cache 
     for (size_t k = 0u; k < n; ++k) {
         g->m[k] = FT_TDB_NODATA_M; /* until a tile says otherwise */
     }
-    uint64_t nx = 0u, ny = 0u, ilo = 0u, ihi = 0u, jlo = 0u, jhi = 0u;
+    uint64_t nx = 0u, ny = 0u, jlo = 0u, jhi = 0u;
     ft_tdb_lattice_samples(db->hdr.samples_per_deg, g->level, &nx, &ny);
-    if (!clip_axis(g->i0, g->w, nx, &ilo, &ihi) || !clip_axis(g->j0, g->h, ny, &jlo, &jhi)) {
+    if (nx == 0u || !clip_axis(g->j0, g->h, ny, &jlo, &jhi)) {
         return FT_OK;
     }
+    int64_t turn_lo = 0, turn_hi = 0; /* no wrap: the lattice's own columns only */
+    if (ft_tdb_lattice_closes(db->hdr.samples_per_deg, g->level)) {
+        turn_lo = floor_div(g->i0, (int64_t)nx);
+        turn_hi = floor_div(g->i0 + (int64_t)g->w - 1, (int64_t)nx);
+    }
     const uint64_t T = db->hdr.tile_samples;
-    for (uint64_t ty = jlo / T; ty <= (jhi - 1u) / T; ++ty) {
-        for (uint64_t tx = ilo / T; tx <= (ihi - 1u) / T; ++tx) {
-            const ft_tdb_tile *tile = NULL;
-            const ft_status st = cached_tile(db, tc, g->level, (uint32_t)tx, (uint32_t)ty, &tile,
-                                             err);
-            if (st != FT_OK) {
-                return st;
+    /* bounded: at most w / nx + 2 turns */
+    for (int64_t turn = turn_lo; turn <= turn_hi; ++turn) {
+        lattice_grid gt = *g; /* g as seen from this turn's lattice columns */
+        gt.i0 = g->i0 - turn * (int64_t)nx;
+        uint64_t ilo = 0u, ihi = 0u;
+        if (!clip_axis(gt.i0, gt.w, nx, &ilo, &ihi)) {
+            continue;
+        }
+        for (uint64_t ty = jlo / T; ty <= (jhi - 1u) / T; ++ty) {
+            for (uint64_t tx = ilo / T; tx <= (ihi - 1u) / T; ++tx) {
+                const ft_tdb_tile *tile = NULL;
+                const ft_status st =
+                    cached_tile(db, tc, g->level, (uint32_t)tx, (uint32_t)ty, &tile, err);
+                if (st != FT_OK) {
+                    return st;
+                }
+                if (tile == NULL) {
+                    ++c->tiles_no_data;
+                    continue;
+                }
+                ++c->tiles_read;
+                copy_tile(tile, T, tx, ty, ilo, ihi, jlo, jhi, &gt, c);
             }
-            if (tile == NULL) {
-                ++c->tiles_no_data;
-                continue;
-            }
-            ++c->tiles_read;
-            copy_tile(tile, T, tx, ty, ilo, ihi, jlo, jhi, g, c);
         }
     }
     return FT_OK;

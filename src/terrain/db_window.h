@@ -14,10 +14,17 @@
  * a time through a staging buffer there (ft_tdb_read_tile: crc, heights and
  * counts checked); the whole file is never read.
  *
+ * Longitude wraps where the lattice closes: a level whose 360 N / 2^level is
+ * whole (ft_tdb_lattice_closes) reads column i as column i mod nx, so a
+ * window (or a clipmap level) runs on across the antimeridian; a position
+ * given at -179.9 deg lands east of such a window's 180 deg
+ * (ft_terrain_geo_to_world). A level that does not close has no column at
+ * 180 deg (it would fall between its samples) and does not wrap.
+ *
  * Missing data is never invented silently. A window sample "lacks data"
  * when its tile is "no data", when it holds FT_TDB_NODATA_M, or when it lies
- * outside the lattice (north of 90 deg, south of -90 deg, at or east of 180
- * deg, west of -180 deg: the lattice does not wrap). Such a sample is drawn
+ * outside the lattice (north of 90 deg, south of -90 deg; at or east of 180
+ * deg or west of -180 deg on a level that does not wrap). Such a sample is drawn
  *  1. from the nearest coarser level that has data around it: the bilinear
  *     interpolant of that level's samples around it (real data, coarser),
  *     when every one of them with a weight has data; else

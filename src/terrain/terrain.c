@@ -196,9 +196,24 @@ uint32_t ft_terrain_sanitize_crs(const char *in, char out[FT_CRS_TEXT_MAX])
     return runs;
 }
 
+/* The turn of lon_deg nearest the grid's middle (a grid in degrees) or its
+ * anchor: a grid that crosses the antimeridian runs on past 180 deg, where
+ * a position reads -180 and up. */
+static double lon_near_grid(const ft_terrain *t, double lon_deg)
+{
+    const double mid_deg = t->unit == FT_UNIT_DEGREE
+                               ? t->origin_x + 0.5 * t->spacing_x * (double)(t->width - 1u)
+                               : t->anchor_lon_deg;
+    if (!isfinite(lon_deg) || !isfinite(mid_deg)) {
+        return lon_deg;
+    }
+    return lon_deg + 360.0 * round((mid_deg - lon_deg) / 360.0);
+}
+
 void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg, double *x_m,
                              double *y_m)
 {
+    lon_deg = lon_near_grid(t, lon_deg);
     double lat_ref = lat_ref_deg(t);
     double mx = m_per_deg_lat() * cos(lat_ref * FT_RAD_PER_DEG);
     *x_m = t->origin_world_x_m + (lon_deg - t->anchor_lon_deg) * mx;

@@ -156,7 +156,10 @@ ft_status ft_terrain_check_crs(const char *crs, size_t cap, const char *name, ft
  * number of runs replaced (0: the text was already clean). */
 uint32_t ft_terrain_sanitize_crs(const char *in, char out[FT_CRS_TEXT_MAX]);
 
-/* Geodetic (deg) to world metres with the equirectangular rule above. */
+/* Geodetic (deg) to world metres with the equirectangular rule above; the
+ * longitude is taken in its turn nearest the grid (lon +- 360 k), so a
+ * position just east of 180 deg (-179.9) lies east of a grid that crosses
+ * the antimeridian. */
 void ft_terrain_geo_to_world(const ft_terrain *t, double lat_deg, double lon_deg, double *x_m,
                              double *y_m);
 

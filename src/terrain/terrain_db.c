@@ -53,9 +53,18 @@ void ft_tdb_lattice_samples(uint32_t samples_per_deg, uint32_t level, uint64_t *
         return;
     }
     const uint64_t step = (uint64_t)1u << level;
-    /* samples with lon < 180 (the lattice does not wrap) and lat <= 90 */
+    /* samples with lon < 180 (sample nx is lon 180, the lattice's sample 0
+     * again when the level closes: ft_tdb_lattice_closes) and lat <= 90 */
     *nx = ((uint64_t)360u * samples_per_deg + step - 1u) / step;
     *ny = (uint64_t)180u * samples_per_deg / step + 1u;
+}
+
+int ft_tdb_lattice_closes(uint32_t samples_per_deg, uint32_t level)
+{
+    if (samples_per_deg == 0u || level >= FT_TDB_LEVELS_MAX) {
+        return 0;
+    }
+    return ((uint64_t)360u * samples_per_deg) % ((uint64_t)1u << level) == 0u;
 }
 
 void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint32_t level,

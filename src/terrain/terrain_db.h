@@ -138,6 +138,13 @@ typedef struct ft_tdb_tile {
  * (lat <= 90). */
 void ft_tdb_lattice_samples(uint32_t samples_per_deg, uint32_t level, uint64_t *nx,
                             uint64_t *ny);
+/* 1 when level `level`'s lattice closes around the globe: 360 N is a whole
+ * number of its spacings, so sample nx lies on sample 0 (lon 180 = -180) and
+ * the level wraps in longitude, sample i being sample i mod nx. Else its
+ * samples past 180 deg would fall between samples across the seam: such a
+ * level does not wrap. (SRTM3 N = 1200: levels 0..7; ETOPO5 N = 12:
+ * levels 0..5.) */
+int ft_tdb_lattice_closes(uint32_t samples_per_deg, uint32_t level);
 /* Number of tiles of level `level` across the lattice (columns, rows). */
 void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint32_t level,
                           uint32_t *cols, uint32_t *rows);

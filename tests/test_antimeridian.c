@@ -15,6 +15,11 @@
  *      position over the window), the frame covers what the reference covers
  *      (mismatch within the tolerance the flight test uses) and no pixel is
  *      hatched as unmeasured.
+ *  (d) the clipmap 8-15 degrees past the window, 400 m above the sea floor,
+ *      looking down 30 and 60 degrees: the frame's depth range comes from
+ *      the cache's resident samples (the window's range put the near plane
+ *      5 km out and the frame showed only the clear colour), and no pixel
+ *      is the clear colour.
  * Before the wrap, (a) marked the 60 columns east of 180 and took them from
  * the floor, and (c)'s frames east of the seam drew the floor.
  *
@@ -132,7 +137,7 @@ static void cache(const ft_dbw *w, const ft_terrain *t)
     memset(&a, 0, sizeof a);
     a.pools[FT_POOL_CLIP].budget_bytes = sizeof g_clip_arena;
     REQUIRE(ft_arena_bind(&a, g_clip_arena, sizeof g_clip_arena, &err) == FT_OK);
-    const ft_clip_desc d = {CLIP_SIDE, CLIP_LEVELS, 4u * CLIP_SIDE};
+    const ft_clip_desc d = {CLIP_SIDE, CLIP_LEVELS, 4u * CLIP_SIDE, 0};
     ft_clip_db_source dbs;
     ft_clip_source src;
     REQUIRE(ft_clip_source_db(&src, &dbs, &db, 0u, w->i0, w->j0, 0.0f, 4u, &d, &a, &err) ==
@@ -228,6 +233,33 @@ static void frames(const char *method)
         CHECK(ref_px > 1000u);
         CHECK((double)mismatch <= allowed);
         CHECK(fs.unmeasured_px == 0u);
+    }
+    if (strcmp(method, "clipmap") == 0) {
+        /* past the window: the clipmap draws the database there */
+        ft_test_clear_magenta(&g_app);
+        static const double far_poses[3][2] = {{172.0, -30.0}, {-172.0, -30.0}, {165.0, -60.0}};
+        for (int k = 0; k < 3; ++k) {
+            ft_file f;
+            ft_tdb db;
+            open_db(&f, &db);
+            const double lon_e = far_poses[k][0] < 0.0 ? far_poses[k][0] + 360.0 : far_poses[k][0];
+            const float ground_m =
+                db_sample(&db, 0u, (int64_t)floor((lon_e + 180.0) * 12.0 + 0.5),
+                          (int64_t)floor((LAT_DEG + 90.0) * 12.0 + 0.5));
+            ft_plat_file_close(&f);
+            const ft_pose p = ft_test_pose(LAT_DEG, far_poses[k][0], (double)ground_m + 400.0,
+                                           45.0, far_poses[k][1], 0.0);
+            ft_camera cam;
+            ft_frame_stats fs;
+            ft_test_frame(&g_app, &p, &cam, &fs);
+            ft_test_frame(&g_app, &p, &cam, &fs);
+            const uint32_t clear = ft_test_clear_pixels(&g_app);
+            printf("(d) clipmap at %.1f E, 400 m above the sea floor, pitch %.0f (past the "
+                   "window): near %.2f m far %.0f m, %u clear px\n",
+                   far_poses[k][0], far_poses[k][1], cam.near_m, cam.far_m, clear);
+            CHECK(clear == 0u);
+            CHECK(cam.near_m < 200.0); /* the terrain 400 m below is in front of it */
+        }
     }
     ft_app_shutdown(&g_app);
 }

@@ -122,7 +122,7 @@ static void make_cache(ft_clip_cache *c, ft_arena *a, uint32_t update_max)
     ft_error err;
     REQUIRE(ft_arena_bind(a, g_arena_mem, sizeof(g_arena_mem), &err) == FT_OK);
     ft_clip_source src = {read_synth, NULL, 16u, 0, 0, -100000, 100000, -100000, 100000};
-    ft_clip_desc d = {SIDE, LEVELS, update_max};
+    ft_clip_desc d = {SIDE, LEVELS, update_max, 0};
     REQUIRE(ft_clip_init(c, &d, &src, a, &err) == FT_OK);
     for (uint32_t l = 0u; l < LEVELS; ++l) {
         for (uint32_t k = 0u; k < SIDE * SIDE; ++k) {
@@ -266,7 +266,7 @@ static void test_plan_errors(void)
 {
     ft_clip_source src = {read_synth, NULL, 8u, 0, 0, 0, 10, 0, 10};
     ft_error err;
-    ft_clip_desc d = {48u, 4u, 96u};
+    ft_clip_desc d = {48u, 4u, 96u, 0};
     CHECK(ft_clip_plan(&d, &src, NULL, &err) == FT_ERR_CONFIG && strstr(err.text, "clipmap.side"));
     d.side = 64u;
     d.levels = 9u;

@@ -239,7 +239,14 @@ int main(int argc, char **argv)
         const uint64_t before = cm->spare_updates;
         ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns, ft_plat_monotonic_ns());
         CHECK(cm->spare_updates == before);
-        const uint64_t budget_ns = 3u * cm->update_ns_max;
+        /* The declared cost is the slowest update seen, which a busy
+         * machine can make many times a typical one (2.7 ms against 0.1 ms
+         * measured): declared here as 1 ms, the budget 1.5 ms runs updates
+         * while their declared cost fits, some 0.5 ms of them, far from the
+         * 94,656 samples outstanding; the loop raises the declaration again
+         * if one of them is slower. */
+        cm->update_ns_max = 1000000u;
+        const uint64_t budget_ns = 1500000u;
         const uint64_t t0 = ft_plat_monotonic_ns();
         ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns, t0 + budget_ns);
         const uint64_t spent_ns = ft_plat_monotonic_ns() - t0;

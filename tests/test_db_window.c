@@ -214,7 +214,7 @@ static uint64_t compare_clip_cache(const char *path, const ft_dbw *w, const ft_t
     memset(&a, 0, sizeof a);
     a.pools[FT_POOL_CLIP].budget_bytes = sizeof g_clip_arena;
     REQUIRE(ft_arena_bind(&a, g_clip_arena, sizeof g_clip_arena, &err) == FT_OK);
-    const ft_clip_desc d = {CLIP_SIDE, CLIP_LEVELS, 4u * CLIP_SIDE};
+    const ft_clip_desc d = {CLIP_SIDE, CLIP_LEVELS, 4u * CLIP_SIDE, 0};
     ft_clip_db_source dbs;
     ft_clip_source src;
     REQUIRE(ft_clip_source_db(&src, &dbs, &db, w->level, w->i0, w->j0, fill_m, 4u, &d, &a,

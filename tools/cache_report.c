@@ -184,7 +184,7 @@ static ft_status one_speed(const report_args *a, const ft_tdb *db, double speed_
     memset(arena, 0, sizeof *arena);
     arena->pools[FT_POOL_CLIP].budget_bytes = mem_bytes;
     ft_status st = ft_arena_bind(arena, mem, mem_bytes, err);
-    const ft_clip_desc d = {a->side, a->levels, a->update_samples};
+    const ft_clip_desc d = {a->side, a->levels, a->update_samples, 0};
     ft_clip_db_source dbs;
     ft_clip_source src;
     ft_clip_cache c;
@@ -292,7 +292,7 @@ int ft_cmd_cache_report(int argc, char **argv)
     if (st == FT_OK) {
         st = ft_tdb_open(&db, &f.reader_at, g_entries, ENTRIES_MAX, &err);
     }
-    const ft_clip_desc d = {a.side, a.levels, a.update_samples};
+    const ft_clip_desc d = {a.side, a.levels, a.update_samples, 0};
     ft_clip_source probe_src = {no_read, NULL, 0u, 0, 0, 0, 0, 0, 0};
     if (st == FT_OK && a.base_level >= db.hdr.level_count) {
         st = ft_fail(&err, FT_ERR_CONFIG, "--level %u: %s has levels 0..%u", a.base_level,

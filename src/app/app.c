@@ -369,6 +369,7 @@ ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char
     }
     uint64_t ts = ft_plat_monotonic_ns();
     ft_renderer_select(&app->renderer, cam); /* CPU LOD selection, its own stage */
+    ft_renderer_fit_depth(&app->renderer, cam); /* a method that draws past the grid */
     uint64_t t0 = ft_plat_monotonic_ns();
     s = ft_renderer_draw(&app->renderer, cam, st, err);
     /* a broken invariant (core/invariant.h), this frame's or an earlier

@@ -140,8 +140,8 @@ void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3]
  * horizontal distance d from the eye is drawn k d^2 lower, and over the
  * rectangle d runs from its nearest to its farthest point, so the drawn
  * heights lie in [zmin - drop_max, zmax - drop_min]. */
-static double box_distance(const double eye_m[3], double x0, double x1, double y0, double y1,
-                           double zmin, double zmax, double curv_k_per_m)
+double ft_camera_box_distance_m(const double eye_m[3], double x0, double x1, double y0,
+                                double y1, double zmin, double zmax, double curv_k_per_m)
 {
     double dx = 0.0, dy = 0.0;
     if (eye_m[0] < x0) dx = x0 - eye_m[0];
@@ -208,6 +208,28 @@ static void pick_range(const double eye_m[3], double closest_m, double terrain_m
     *far_m = f;
 }
 
+void ft_camera_depth_range_from(const double eye_m[3], double closest_m, double zmin_m,
+                                double zmax_m, const double box_min_m[2],
+                                const double box_max_m[2], double corner_cos,
+                                double curv_k_per_m, double *near_m, double *far_m)
+{
+    pick_range(eye_m, closest_m, zmin_m, zmax_m, box_min_m, box_max_m, corner_cos,
+               curv_k_per_m, near_m, far_m);
+}
+
+ft_status ft_camera_set_depth_range(ft_camera *c, double near_m, double far_m, ft_error *err)
+{
+    if (!(near_m > 0.0) || !(far_m > near_m) || !isfinite(far_m)) {
+        return ft_fail(err, FT_ERR_ARG, "camera: bad depth range %g..%g", near_m, far_m);
+    }
+    c->near_m = near_m;
+    c->far_m = far_m;
+    c->proj[10] = (float)((far_m + near_m) / (near_m - far_m));
+    c->proj[14] = (float)(2.0 * far_m * near_m / (near_m - far_m));
+    mat4_mul(c->view_proj, c->proj, c->view_rot);
+    return FT_OK;
+}
+
 void ft_camera_pick_depth_range(const double eye_m[3], double terrain_min_z_m,
                                 double terrain_max_z_m, const double box_min_m[2],
                                 const double box_max_m[2], double corner_cos, double *near_m,
@@ -215,7 +237,7 @@ void ft_camera_pick_depth_range(const double eye_m[3], double terrain_min_z_m,
 {
     /* Nothing of the terrain can be closer than the clearance above its
      * highest point (or its horizontal distance to the box). */
-    const double closest = box_distance(eye_m, box_min_m[0], box_max_m[0], box_min_m[1],
+    const double closest = ft_camera_box_distance_m(eye_m, box_min_m[0], box_max_m[0], box_min_m[1],
                                         box_max_m[1], terrain_min_z_m, terrain_max_z_m, 0.0);
     pick_range(eye_m, closest, terrain_min_z_m, terrain_max_z_m, box_min_m, box_max_m,
                corner_cos, 0.0, near_m, far_m);
@@ -278,7 +300,7 @@ double ft_camera_terrain_clearance_m(const ft_terrain *t, const double eye_m[3],
         p->minmax_levels < FT_PYRAMID_LEVELS_MAX ? p->minmax_levels : FT_PYRAMID_LEVELS_MAX;
     if (levels == 0u) {
         /* no pyramid: the whole grid as one box (the global rule) */
-        return box_distance(eye_m, t->origin_world_x_m,
+        return ft_camera_box_distance_m(eye_m, t->origin_world_x_m,
                             t->origin_world_x_m + t->cell_x_m * (double)(t->width - 1u),
                             t->origin_world_y_m,
                             t->origin_world_y_m + t->cell_y_m * (double)(t->height - 1u),
@@ -326,7 +348,7 @@ double ft_camera_terrain_clearance_m(const ft_terrain *t, const double eye_m[3],
                 double rx0, rx1, ry0, ry1;
                 texel_rect(t, l, i, j, &rx0, &rx1, &ry0, &ry1);
                 const size_t k = (size_t)j * lv->width + i;
-                const double d = box_distance(eye_m, rx0, rx1, ry0, ry1, (double)lv->min_m[k],
+                const double d = ft_camera_box_distance_m(eye_m, rx0, rx1, ry0, ry1, (double)lv->min_m[k],
                                               (double)lv->max_m[k], curv_k_per_m);
                 if (d < best) best = d;
             }

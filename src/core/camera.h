@@ -69,6 +69,23 @@ int ft_camera_horizon_px(const ft_camera *c, double p0[2], double p1[2]);
  * pass (x + 0.5, y + 0.5) for the centre of pixel (x, y). */
 void ft_camera_pixel_ray(const ft_camera *c, double px, double py, double dir[3]);
 
+/* Distance from eye_m to the 3D box [x0, x1] x [y0, y1] x [zmin, zmax], the
+ * z range first widened by the curvature drop over the rectangle (a point at
+ * horizontal distance d is drawn curv_k_per_m d^2 lower); 0 inside. */
+double ft_camera_box_distance_m(const double eye_m[3], double x0, double x1, double y0,
+                                double y1, double zmin, double zmax, double curv_k_per_m);
+
+/* The depth range rule below from a lower bound of the distance to the
+ * drawn terrain (closest_m), its height range and its horizontal box. */
+void ft_camera_depth_range_from(const double eye_m[3], double closest_m, double zmin_m,
+                                double zmax_m, const double box_min_m[2],
+                                const double box_max_m[2], double corner_cos,
+                                double curv_k_per_m, double *near_m, double *far_m);
+
+/* Replaces c's depth range (projection and view_proj follow); the view is
+ * unchanged. For a method whose drawn terrain is not the scene's grid. */
+ft_status ft_camera_set_depth_range(ft_camera *c, double near_m, double far_m, ft_error *err);
+
 /* The global rule (the fallback when a terrain has no min/max pyramid):
  * near plane from the eye's clearance above the highest terrain (or its
  * horizontal distance to the box), times corner_cos, the cosine of the

@@ -529,6 +529,13 @@ static void draw_pass(ft_renderer *r, const ft_terrain_program *p, const ft_came
     ft_method_draw(&r->method, gl, p, t, cam, ms);
 }
 
+void ft_renderer_fit_depth(const ft_renderer *r, ft_camera *cam)
+{
+    const double ty = tan(0.5 * cam->fovy_rad);
+    const double tx = ty * (double)cam->width_px / (double)(cam->height_px > 0u ? cam->height_px : 1u);
+    (void)ft_method_fit_depth(&r->method, r->terrain, cam, 1.0 / sqrt(1.0 + tx * tx + ty * ty));
+}
+
 void ft_renderer_select(ft_renderer *r, const ft_camera *cam)
 {
     ft_method_select(&r->method, r->terrain, cam);

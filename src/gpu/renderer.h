@@ -115,6 +115,9 @@ ft_status ft_camera_for_pose(const ft_terrain *t, const ft_pose *pose, double fo
  * runs it too when it has not run for this view). Separate so the frame
  * loop can time it as its own stage. */
 void ft_renderer_select(ft_renderer *r, const ft_camera *cam);
+/* After the selection: the depth range of what the method draws when that
+ * is not the scene's grid (the clipmap over a database); else unchanged. */
+void ft_renderer_fit_depth(const ft_renderer *r, ft_camera *cam);
 
 /* Test and debugging aid, init time only: relinks the colour program so a
  * transform feedback draw captures gl_Position (4 floats) and v_morph (1

@@ -103,6 +103,13 @@ int ft_method_set_lod_scale(ft_method *m, double scale)
     return 1;
 }
 
+int ft_method_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
+                        double corner_cos)
+{
+    const ft_method_ops *o = ft_method_ops_of(m->kind);
+    return o != NULL && o->fit_depth != NULL && o->fit_depth(m, t, cam, corner_cos);
+}
+
 void ft_method_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
 {
     const ft_method_ops *o = ft_method_ops_of(m->kind);

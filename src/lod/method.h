@@ -223,6 +223,10 @@ typedef struct ft_method_ops {
     /* Deferred work (clipmap: the cache's reads and uploads) run after the
      * frame while now() + its declared cost <= deadline_ns; NULL: none. */
     void (*spare)(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
+    /* After select: sets cam's depth range from what the method will draw
+     * when that is not the scene's grid (clipmap over a database); returns 1
+     * when it did. NULL or 0: the grid's range stands. */
+    int (*fit_depth)(const ft_method *m, const ft_terrain *t, ft_camera *cam, double corner_cos);
     uint64_t (*gpu_bytes)(const ft_method *m);
     void (*worst)(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
     void (*shutdown)(ft_method *m, const ft_gl *gl);
@@ -263,6 +267,11 @@ int ft_method_set_lod_scale(ft_method *m, double scale);
  * now() plus the work's declared cost stays before deadline_ns (the frame
  * loop calls it after the frame, with the next frame's start). */
 void ft_method_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
+
+/* The method's depth range for cam after select (ft_method_ops.fit_depth);
+ * 0 when the scene grid's range stands. */
+int ft_method_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
+                        double corner_cos);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
 void ft_method_worst_case(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);

@@ -31,9 +31,12 @@ static const ft_uniform_name k_cm_uniforms[] = {FT_CM_UNIFORMS(FT_UNIFORM_ROW)};
 _Static_assert(FT_CM_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "clipmap's uniforms fit the table");
 _Static_assert(FT_CM_BLOCK_VERTICES + FT_CM_STRIP_VERTICES <= 65536u, "16-bit indices");
 
-static ft_clip_desc desc_of(const ft_scene *s)
+/* Over a database the levels reach past the scene's grid, whose bounds no
+ * longer hold what is drawn: the cache keeps its own (fit_depth). */
+static ft_clip_desc desc_of(const ft_scene *s, const ft_terrain *t)
 {
-    const ft_clip_desc d = {s->clipmap_side, s->clipmap_levels, s->clipmap_update_samples_max};
+    const ft_clip_desc d = {s->clipmap_side, s->clipmap_levels, s->clipmap_update_samples_max,
+                            t->db != NULL};
     return d;
 }
 
@@ -53,7 +56,7 @@ static void cm_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     ft_clip_source src;
     ft_error err;
-    const ft_clip_desc d = desc_of(s);
+    const ft_clip_desc d = desc_of(s, t);
     ft_clip_source_terrain(&src, t);
     if (t->db != NULL) { /* the database's levels past the window's */
         src.levels = t->db->hdr.level_count - t->db_level;
@@ -265,7 +268,7 @@ static ft_status cm_init(ft_clipmap_method *m, const ft_gl *gl, const ft_scene *
     if (st != FT_OK) {
         return st;
     }
-    const ft_clip_desc d = desc_of(s);
+    const ft_clip_desc d = desc_of(s, t);
     /* over a .ftd window, the cache reads the database itself: the terrain
      * goes on past the window, from the finest level that has data */
     if (t->db != NULL) {
@@ -507,6 +510,31 @@ static void ops_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     cm_plan(s, t, a);
 }
 
+/* Over a database the drawn terrain is the cache's, not the scene's grid:
+ * the depth range comes from the resident samples' bounds (the grid's
+ * range put the near plane 5 km out once the eye left the window, and cut
+ * away the terrain below it). Called after select, so it bounds what this
+ * frame draws. */
+static int ops_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
+                         double corner_cos)
+{
+    const ft_clipmap_method *cm = &m->u.clipmap;
+    if (!cm->cache.desc.keep_bounds) {
+        return 0;
+    }
+    const ft_clip_world w = {t->origin_world_x_m, t->origin_world_y_m, t->cell_x_m, t->cell_y_m};
+    double closest = 0.0, zmin = 0.0, zmax = 0.0, box_min[2], box_max[2];
+    if (!ft_clip_clearance_m(&cm->cache, &w, cam->eye_m, t->curv_drop_per_m2, &closest, box_min,
+                             box_max, &zmin, &zmax)) {
+        return 0;
+    }
+    double near_m = 0.0, far_m = 0.0;
+    ft_camera_depth_range_from(cam->eye_m, closest, zmin, zmax, box_min, box_max, corner_cos,
+                               t->curv_drop_per_m2, &near_m, &far_m);
+    ft_error err;
+    return ft_camera_set_depth_range(cam, near_m, far_m, &err) == FT_OK;
+}
+
 static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
 {
     cm_spare(&m->u.clipmap, now, deadline_ns);
@@ -520,6 +548,7 @@ const ft_method_ops ft_clipmap_ops = {
     .select = ops_select,
     .draw = ops_draw,
     .spare = ops_spare,
+    .fit_depth = ops_fit_depth,
     .gpu_bytes = ops_gpu_bytes,
     .worst = ops_worst,
     .shutdown = ops_shutdown,

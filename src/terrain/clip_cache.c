@@ -7,6 +7,8 @@
 
 #include "terrain/clip_cache.h"
 
+#include "core/camera.h"
+
 static int box_empty(const ft_clip_box *b)
 {
     return b->i1 <= b->i0 || b->j1 <= b->j0;
@@ -33,6 +35,23 @@ static uint32_t wrap_index(int64_t a, uint32_t m)
 }
 
 static int is_pow2(uint32_t v) { return v != 0u && (v & (v - 1u)) == 0u; }
+
+static int64_t floor_div_i64(int64_t a, int64_t b)
+{
+    const int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+static size_t mirror_bytes(const ft_clip_desc *d)
+{
+    return (size_t)d->side * d->side * sizeof(float);
+}
+
+static size_t block_bytes(const ft_clip_desc *d)
+{
+    const size_t n = d->side / FT_CLIP_BOUND_BLOCK;
+    return n * n * sizeof(float);
+}
 
 ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_arena *a,
                        ft_error *err)
@@ -64,6 +83,11 @@ ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_aren
     if (a != NULL) {
         ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max * sizeof(float));
         ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max);
+        for (uint32_t l = 0u; d->keep_bounds && l < d->levels; ++l) {
+            ft_arena_plan(a, FT_POOL_CLIP, mirror_bytes(d));
+            ft_arena_plan(a, FT_POOL_CLIP, block_bytes(d));
+            ft_arena_plan(a, FT_POOL_CLIP, block_bytes(d));
+        }
     }
     return FT_OK;
 }
@@ -84,6 +108,22 @@ ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_so
     }
     if (st != FT_OK) {
         return st;
+    }
+    for (uint32_t l = 0u; d->keep_bounds && l < d->levels; ++l) {
+        void *m = NULL, *lo = NULL, *hi = NULL;
+        st = ft_arena_take(a, FT_POOL_CLIP, mirror_bytes(d), &m, err);
+        if (st == FT_OK) st = ft_arena_take(a, FT_POOL_CLIP, block_bytes(d), &lo, err);
+        if (st == FT_OK) st = ft_arena_take(a, FT_POOL_CLIP, block_bytes(d), &hi, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        c->mirror_m[l] = m;
+        c->block_lo_m[l] = lo;
+        c->block_hi_m[l] = hi;
+        /* nothing uploaded yet: texels read 0, and the blocks say so */
+        memset(m, 0, mirror_bytes(d));
+        memset(lo, 0, block_bytes(d));
+        memset(hi, 0, block_bytes(d));
     }
     c->desc = *d;
     c->src = *src;
@@ -244,6 +284,53 @@ ft_status ft_clip_next_update(ft_clip_cache *c, ft_clip_update *u, int *have, ft
     return FT_OK;
 }
 
+/* The range of block (bx, by) of level l over its texels and the apron
+ * around them (texel indices wrap). */
+static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_t by)
+{
+    const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
+    const float *m = c->mirror_m[l];
+    const int64_t span = (int64_t)FT_CLIP_BOUND_BLOCK + 2 * (int64_t)FT_CLIP_BOUND_APRON;
+    const int64_t x0 = (int64_t)bx * FT_CLIP_BOUND_BLOCK - FT_CLIP_BOUND_APRON;
+    const int64_t y0 = (int64_t)by * FT_CLIP_BOUND_BLOCK - FT_CLIP_BOUND_APRON;
+    float lo = m[(size_t)wrap_index(y0, side) * side + wrap_index(x0, side)], hi = lo;
+    for (int64_t y = y0; y < y0 + span; ++y) {
+        const float *row = m + (size_t)wrap_index(y, side) * side;
+        for (int64_t x = x0; x < x0 + span; ++x) {
+            const float v = row[wrap_index(x, side)];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+    }
+    c->block_lo_m[l][(size_t)by * n + bx] = lo;
+    c->block_hi_m[l][(size_t)by * n + bx] = hi;
+}
+
+/* Copies a committed update into the level's mirror and refreshes the
+ * blocks whose texels or apron it touched. */
+static void keep_bounds_of(ft_clip_cache *c, const ft_clip_update *u)
+{
+    const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
+    float *m = c->mirror_m[u->level];
+    for (uint32_t r = 0u; r < u->h; ++r) {
+        memcpy(m + (size_t)(u->tex_y + r) * side + u->tex_x, u->heights_m + (size_t)r * u->w,
+               (size_t)u->w * sizeof(float));
+    }
+    /* blocks within the apron of the rect, as block indices that may wrap;
+     * at most n per axis */
+    const int64_t a = FT_CLIP_BOUND_APRON, b = FT_CLIP_BOUND_BLOCK;
+    const int64_t bx0 = floor_div_i64((int64_t)u->tex_x - a, b);
+    const int64_t bx1 = floor_div_i64((int64_t)u->tex_x + u->w - 1 + a, b);
+    const int64_t by0 = floor_div_i64((int64_t)u->tex_y - a, b);
+    const int64_t by1 = floor_div_i64((int64_t)u->tex_y + u->h - 1 + a, b);
+    const int64_t nx = min_i64(bx1 - bx0 + 1, (int64_t)n), ny = min_i64(by1 - by0 + 1, (int64_t)n);
+    for (int64_t y = 0; y < ny; ++y) {
+        for (int64_t x = 0; x < nx; ++x) {
+            block_range(c, u->level, wrap_index(bx0 + x, n), wrap_index(by0 + y, n));
+        }
+    }
+}
+
 void ft_clip_commit(ft_clip_cache *c, const ft_clip_update *u)
 {
     /* Only the update produced last, and only while its level has not moved
@@ -253,6 +340,9 @@ void ft_clip_commit(ft_clip_cache *c, const ft_clip_update *u)
     }
     c->pending = 0;
     const uint32_t l = u->level;
+    if (c->desc.keep_bounds) {
+        keep_bounds_of(c, u);
+    }
     ft_clip_box *s = &c->strip[l];
     c->stats.updates++;
     c->stats.samples_uploaded += (uint64_t)u->w * u->h;
@@ -288,4 +378,88 @@ uint32_t ft_clip_finest_current(const ft_clip_cache *c)
         }
     }
     return c->desc.levels;
+}
+
+/* The lattice pieces of one block's texels along one axis: texels
+ * [t0, t0 + BLOCK) hold the wanted box's samples w0 + ((t - w0) mod side),
+ * one run or two where the box's texels wrap; each cut to the valid
+ * [v0, v1). Returns the number of pieces (0..2). */
+static int block_pieces(int64_t t0, int64_t w0, int64_t v0, int64_t v1, uint32_t side,
+                        int64_t p[2][2])
+{
+    const int64_t b = FT_CLIP_BOUND_BLOCK, end = w0 + (int64_t)side;
+    const int64_t a0 = w0 + (int64_t)wrap_index(t0 - w0, side);
+    const int64_t run[2][2] = {{a0, min_i64(a0 + b, end)}, {w0, w0 + (a0 + b - end)}};
+    const int runs = a0 + b > end ? 2 : 1;
+    int k = 0;
+    for (int r = 0; r < runs; ++r) {
+        const int64_t lo = max_i64(run[r][0], v0), hi = min_i64(run[r][1], v1);
+        if (hi > lo) {
+            p[k][0] = lo;
+            p[k][1] = hi;
+            ++k;
+        }
+    }
+    return k;
+}
+
+int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const double eye_m[3],
+                        double curv_k_per_m, double *clearance_m, double box_min_m[2],
+                        double box_max_m[2], double *zmin_m, double *zmax_m)
+{
+    const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
+    int any = 0;
+    double best = INFINITY;
+    for (uint32_t l = 0u; c->desc.keep_bounds && l < c->desc.levels; ++l) {
+        const ft_clip_box *v = &c->level[l].valid, *wb = &c->level[l].want;
+        if (box_empty(v)) {
+            continue;
+        }
+        const double s = (double)((int64_t)1 << l);
+        for (uint32_t by = 0u; by < n; ++by) {
+            int64_t py[2][2];
+            const int ky = block_pieces((int64_t)by * FT_CLIP_BOUND_BLOCK, wb->j0, v->j0, v->j1,
+                                        side, py);
+            for (uint32_t bx = 0u; bx < n && ky > 0; ++bx) {
+                int64_t px[2][2];
+                const int kx = block_pieces((int64_t)bx * FT_CLIP_BOUND_BLOCK, wb->i0, v->i0,
+                                            v->i1, side, px);
+                const double lo = c->block_lo_m[l][(size_t)by * n + bx];
+                const double hi = c->block_hi_m[l][(size_t)by * n + bx];
+                for (int qy = 0; qy < ky; ++qy) {
+                    /* one sample past the piece: the triangles reach it */
+                    const double y0 = w->origin_y_m +
+                                      ((double)py[qy][0] * s - (double)c->src.lattice_j0) * w->cell_y_m;
+                    const double y1 = w->origin_y_m +
+                                      ((double)py[qy][1] * s - (double)c->src.lattice_j0) * w->cell_y_m;
+                    for (int qx = 0; qx < kx; ++qx) {
+                        const double x0 = w->origin_x_m + ((double)px[qx][0] * s -
+                                                           (double)c->src.lattice_i0) * w->cell_x_m;
+                        const double x1 = w->origin_x_m + ((double)px[qx][1] * s -
+                                                           (double)c->src.lattice_i0) * w->cell_x_m;
+                        const double d =
+                            ft_camera_box_distance_m(eye_m, x0, x1, y0, y1, lo, hi, curv_k_per_m);
+                        best = d < best ? d : best;
+                        if (!any) {
+                            box_min_m[0] = x0;
+                            box_max_m[0] = x1;
+                            box_min_m[1] = y0;
+                            box_max_m[1] = y1;
+                            *zmin_m = lo;
+                            *zmax_m = hi;
+                            any = 1;
+                        }
+                        box_min_m[0] = fmin(box_min_m[0], x0);
+                        box_max_m[0] = fmax(box_max_m[0], x1);
+                        box_min_m[1] = fmin(box_min_m[1], y0);
+                        box_max_m[1] = fmax(box_max_m[1], y1);
+                        *zmin_m = fmin(*zmin_m, lo);
+                        *zmax_m = fmax(*zmax_m, hi);
+                    }
+                }
+            }
+        }
+    }
+    *clearance_m = best;
+    return any;
 }

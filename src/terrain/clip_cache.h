@@ -75,7 +75,24 @@ typedef struct ft_clip_desc {
     uint32_t side;               /* samples per level side: power of two, MIN..MAX */
     uint32_t levels;             /* 1 .. min(FT_CLIP_LEVELS_MAX, source levels) */
     uint32_t update_samples_max; /* samples one update reads (>= 2 * side) */
+    int keep_bounds;             /* keep height bounds of what is resident
+                                    (ft_clip_clearance_m): a CPU copy of every
+                                    level, levels x side^2 floats more */
 } ft_clip_desc;
+
+/* Height bounds: per level, blocks of FT_CLIP_BOUND_BLOCK^2 texels, each
+ * with the range of its texels and of FT_CLIP_BOUND_APRON texels around it
+ * (toroidally), so a block's range also holds every triangle that reaches
+ * one sample past it and every transition vertex's blend with the coarser
+ * level (whose samples are this level's, point-sampled, within 2). */
+#define FT_CLIP_BOUND_BLOCK 16u
+#define FT_CLIP_BOUND_APRON 2u
+
+/* Where the level-0 lattice sits in the world: sample (lattice_i0 + i,
+ * lattice_j0 + j) at (origin_x_m + i cell_x_m, origin_y_m + j cell_y_m). */
+typedef struct ft_clip_world {
+    double origin_x_m, origin_y_m, cell_x_m, cell_y_m;
+} ft_clip_world;
 
 /* A rectangle of level-l samples, half-open: [i0, i1) x [j0, j1); empty when
  * i1 <= i0 or j1 <= j0. */
@@ -122,6 +139,10 @@ typedef struct ft_clip_cache {
     int64_t cursor_i[FT_CLIP_LEVELS_MAX], cursor_j[FT_CLIP_LEVELS_MAX];
     int pending;        /* an update was produced and not committed */
     ft_clip_update last; /* the update produced last */
+    /* keep_bounds: each level's texels as uploaded, and its blocks' ranges */
+    float *mirror_m[FT_CLIP_LEVELS_MAX];   /* side^2 */
+    float *block_lo_m[FT_CLIP_LEVELS_MAX]; /* (side / BLOCK)^2 */
+    float *block_hi_m[FT_CLIP_LEVELS_MAX];
 } ft_clip_cache;
 
 /* Checks the description (the message names the scene key: clipmap.side,
@@ -149,6 +170,16 @@ uint32_t ft_clip_texel(const ft_clip_cache *c, int64_t a);
 
 /* The finest level whose valid box equals its wanted box (levels when none). */
 uint32_t ft_clip_finest_current(const ft_clip_cache *c);
+
+/* keep_bounds: a lower bound of the distance from eye_m (world) to any
+ * surface drawn from the resident samples (every level's valid box, block
+ * by block: ft_camera_box_distance_m with the curvature drop curv_k_per_m),
+ * and the horizontal box and height range of all of it (for a far plane).
+ * Returns 0 when nothing is resident (or bounds are not kept). At most
+ * levels x (side / BLOCK)^2 x 4 boxes; no memory. */
+int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const double eye_m[3],
+                        double curv_k_per_m, double *clearance_m, double box_min_m[2],
+                        double box_max_m[2], double *zmin_m, double *zmax_m);
 
 /* 1 when level l's valid box equals its wanted box (and it has one). */
 int ft_clip_level_current(const ft_clip_cache *c, uint32_t l);

@@ -205,11 +205,11 @@ static void jump(const char *backend, const char *dem, const char *format)
     render(&a);
     CHECK(ft_test_clear_pixels(&g_app) == 0u);
     const int64_t span = (int64_t)cm->side << (cm->levels - 1u); /* level-0 samples */
-    const int64_t before_j0 = cm->cache.level[cm->levels - 1u].want.j0 << (cm->levels - 1u);
+    const int64_t before_j0 = cm->cache.level[cm->levels - 1u].want.j0 * ((int64_t)1 << (cm->levels - 1u));
     ft_camera cam;
     ft_frame_stats fs;
     ft_test_frame(&g_app, &b, &cam, &fs);
-    const int64_t after_j0 = cm->cache.level[cm->levels - 1u].want.j0 << (cm->levels - 1u);
+    const int64_t after_j0 = cm->cache.level[cm->levels - 1u].want.j0 * ((int64_t)1 << (cm->levels - 1u));
     const uint32_t clear = ft_test_clear_pixels(&g_app);
     printf("%s %s jump of %lld samples north (the coarsest box spans %lld): the frame ran %u "
            "updates to complete the coarsest level, %u levels behind, %u clear pixels\n",

@@ -38,6 +38,7 @@
 #include "terrain/clip_source.h"
 #include "terrain/db_window.h"
 #include "test_app_util.h"
+#include "test_clip_util.h"
 
 #define WIN_SIDE 121u
 #define CLIP_SIDE 64u
@@ -147,20 +148,7 @@ static void cache(const ft_dbw *w, const ft_terrain *t)
     REQUIRE(ft_clip_init(&c, &d, &src, &a, &err) == FT_OK);
     (void)ft_clip_recentre(&c, (double)w->i0 + 0.5 * (t->width - 1u),
                            (double)w->j0 + 0.5 * (t->height - 1u));
-    for (int k = 0; k < 100000; ++k) {
-        ft_clip_update u;
-        int have = 0;
-        REQUIRE(ft_clip_next_update(&c, &u, &have, &err) == FT_OK);
-        if (!have) {
-            break;
-        }
-        for (uint32_t r = 0; r < u.h; ++r) {
-            const size_t o = (size_t)(u.tex_y + r) * CLIP_SIDE + u.tex_x;
-            memcpy(&g_clip_tex[u.level][o], &u.heights_m[r * u.w], u.w * sizeof(float));
-            memcpy(&g_clip_mark[u.level][o], &u.marks[r * u.w], u.w);
-        }
-        ft_clip_commit(&c, &u);
-    }
+    ft_test_clip_fill(&c, &g_clip_tex[0][0], &g_clip_mark[0][0]);
     CHECK(c.stats.levels_behind == 0u);
     uint64_t compared = 0u, wrong = 0u, east = 0u;
     for (uint32_t l = 0; l < CLIP_LEVELS; ++l) {

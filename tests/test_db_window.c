@@ -29,6 +29,7 @@
 #include "terrain/db_window.h"
 #include "terrain/dem_hgt.h"
 #include "test_app_util.h"
+#include "test_clip_util.h"
 
 #define HGT_SIDE 1201
 #define SIDE_MAX 1201u
@@ -223,20 +224,7 @@ static uint64_t compare_clip_cache(const char *path, const ft_dbw *w, const ft_t
     REQUIRE(ft_clip_init(&c, &d, &src, &a, &err) == FT_OK);
     ft_clip_recentre(&c, (double)w->i0 + 0.5 * (t->width - 1u),
                      (double)w->j0 + 0.5 * (t->height - 1u));
-    for (int k = 0; k < 100000; ++k) {
-        ft_clip_update u;
-        int have = 0;
-        REQUIRE(ft_clip_next_update(&c, &u, &have, &err) == FT_OK);
-        if (!have) {
-            break;
-        }
-        for (uint32_t r = 0; r < u.h; ++r) {
-            const size_t o = (size_t)(u.tex_y + r) * CLIP_SIDE + u.tex_x;
-            memcpy(&g_clip_tex[u.level][o], &u.heights_m[r * u.w], u.w * sizeof(float));
-            memcpy(&g_clip_mark[u.level][o], &u.marks[r * u.w], u.w);
-        }
-        ft_clip_commit(&c, &u);
-    }
+    ft_test_clip_fill(&c, &g_clip_tex[0][0], &g_clip_mark[0][0]);
     CHECK(c.stats.levels_behind == 0u);
     uint64_t compared = 0u, wrong = 0u;
     for (uint32_t l = 0; l < CLIP_LEVELS; ++l) {

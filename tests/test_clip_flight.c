@@ -9,9 +9,11 @@
  * cache, and its updates (each a read through the database source and a
  * sub-image upload) run only in the tick's spare time (ft_method_spare with
  * 8 ms left, clipmap.updates_per_frame = 0), as the frame loop runs them; every
- * RENDER_EVERY ticks the frame is drawn and measured against the reference
- * (the scene's window of the same database, level 0, 2801 samples around the
- * flight: the finest data the database has there, ETOPO5 east of 2 E).
+ * RENDER_EVERY ticks the frame is drawn and measured against the truth: a
+ * window of the same database, level 0, 2801^2 samples, that follows the eye
+ * (measure/ref_window.h: the finest data the database has there, ETOPO5
+ * east of 2 E). The truth's samples are checked bit for bit against the
+ * scene's window at the start and against the cache's level 0 at the end.
  *
  * Required:
  *  - no frame shows a hole: coverage mismatch against the reference within
@@ -54,6 +56,7 @@ static const char *k_etopo = "/usr/share/ferret-vis/data/etopo5.cdf";
 static ft_app g_app;
 static char g_scene[4096];
 static double g_tick_ms[TICKS_MAX];
+static double g_last_eye[3]; /* the last measured frame's eye */
 
 static const double k_from[2] = {41.2, 1.2}, k_to[2] = {43.0, 3.0};
 
@@ -69,6 +72,51 @@ static int build_db(const char *path)
                     (char *)FT_SHARED_DATA_DIR "/N41E001.hgt",
                     (char *)FT_SHARED_DATA_DIR "/N42E001.hgt", (char *)k_etopo};
     return ft_cmd_import_db(7, argv) == 0;
+}
+
+/* The truth's window (measure/ref_window.h) against the terrain window t:
+ * every sample both hold is bit-identical. Returns the samples compared. */
+static uint64_t truth_vs_window(const ft_ref_window *w, const ft_terrain *t, uint64_t *differ)
+{
+    uint64_t n = 0u;
+    *differ = 0u;
+    const uint32_t side = w->t.width;
+    for (uint32_t j = 0u; j < side; ++j) {
+        const int64_t wj = w->j0 + (int64_t)j - t->db_j0;
+        if (wj < 0 || wj >= (int64_t)t->height) continue;
+        for (uint32_t i = 0u; i < side; ++i) {
+            const int64_t wi = w->i0 + (int64_t)i - t->db_i0;
+            if (wi < 0 || wi >= (int64_t)t->width) continue;
+            const float a = w->t.heights_m[(size_t)j * side + i];
+            const float b = t->heights_m[(size_t)wj * t->width + (size_t)wi];
+            *differ += memcmp(&a, &b, sizeof a) != 0;
+            ++n;
+        }
+    }
+    return n;
+}
+
+/* The truth's window against the clipmap cache's level 0 as uploaded (its
+ * CPU copy), read strip by strip through the cache's own source: every
+ * resident level-0 sample inside the window bit-identical. */
+static uint64_t truth_vs_cache(const ft_ref_window *w, const ft_clip_cache *c, uint64_t *differ)
+{
+    uint64_t n = 0u;
+    *differ = 0u;
+    const ft_clip_box *v = &c->level[0].valid;
+    const uint32_t side = w->t.width, cs = c->desc.side;
+    for (int64_t b = v->j0; b < v->j1; ++b) {
+        if (b < w->j0 || b >= w->j0 + (int64_t)side) continue;
+        for (int64_t a = v->i0; a < v->i1; ++a) {
+            if (a < w->i0 || a >= w->i0 + (int64_t)side) continue;
+            const float x = w->t.heights_m[(size_t)(b - w->j0) * side + (size_t)(a - w->i0)];
+            const float y = c->mirror_m[0][(size_t)((uint64_t)b & (cs - 1u)) * cs +
+                                           (size_t)((uint64_t)a & (cs - 1u))];
+            *differ += memcmp(&x, &y, sizeof x) != 0;
+            ++n;
+        }
+    }
+    return n;
 }
 
 int main(int argc, char **argv)
@@ -92,9 +140,9 @@ int main(int argc, char **argv)
                    "[clipmap]\nside = 128\nlevels = 8\nupdate_samples_max = 8192\n"
                    "updates_per_frame = 0\ntile_slots = 16\n"
                    "[gpu]\ntexture_bytes = 160M\n"
-                   "[metric]\nenabled = 1\n"
+                   "[metric]\nenabled = 1\ntruth_side_samples = 2801\n"
                    "[budget]\nheights_bytes = 33M\npyramids_bytes = 100M\ndem_io_bytes = 8M\n"
-                   "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 4M\n"
+                   "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 136M\n"
                    "metric_bytes = 1M\ngpu_staging_bytes = 16M\nmethod_bytes = 4M\n"
                    "clip_bytes = 8M\n",
                    db_path);
@@ -104,7 +152,7 @@ int main(int argc, char **argv)
     ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
     const uint64_t gpu_bytes = cm->gpu_bytes;
     printf("cache: %u levels of %u^2 samples, %llu bytes of GPU textures; database window "
-           "%u^2 samples (the reference)\n",
+           "%u^2 samples (the scene's window)\n",
            cm->levels, cm->side, (unsigned long long)gpu_bytes, t->width);
     CHECK(gpu_bytes <= GPU_CACHE_MAX_BYTES);
 
@@ -133,6 +181,17 @@ int main(int argc, char **argv)
         /* the high-water marks from here on are the flight's */
         cm->cache.stats.levels_behind_max = 0u;
         cm->cache.stats.samples_outstanding_max = 0u;
+        /* the truth follows the eye through the database: here it overlaps
+         * the scene's window, which read the same samples by the same rule */
+        const ft_terrain *truth = NULL;
+        REQUIRE(g_app.truth_ready && ft_app_truth(&g_app, &cam0, &truth, &err) == FT_OK);
+        uint64_t differ = 0u;
+        const uint64_t n = truth_vs_window(&g_app.truth, t, &differ);
+        printf("truth at the start: window of %u^2 at lattice (%lld, %lld), %llu samples "
+               "shared with the scene's window, %llu differ\n",
+               g_app.truth.t.width, (long long)g_app.truth.i0, (long long)g_app.truth.j0,
+               (unsigned long long)n, (unsigned long long)differ);
+        CHECK(n > 0u && differ == 0u);
     }
     uint64_t behind = 0u, coarser = 0u, samples0 = cm->cache.stats.samples_uploaded;
     uint64_t rendered = 0u;
@@ -174,6 +233,7 @@ int main(int argc, char **argv)
         ft_error_stats es;
         ft_test_frame(&g_app, &p, &cam, &fs);
         ft_test_measure(&g_app, &cam, &es);
+        memcpy(g_last_eye, cam.eye_m, sizeof g_last_eye);
         ++rendered;
         const uint32_t mismatch = es.only_method_px + es.only_ref_px;
         uint32_t ref_px = es.terrain_px + es.only_ref_px - es.only_method_px;
@@ -210,6 +270,24 @@ int main(int argc, char **argv)
            "terrain, %llu with unmeasured pixels, %llu with a hole\n",
            err_max, (unsigned long long)east_frames, (unsigned long long)unmeasured_frames,
            (unsigned long long)holes);
+    /* at the flight's end (43 N 3 E, ETOPO5 only, past the scene's window)
+     * the truth has followed the eye: the eye well inside it, its samples
+     * those the cache read through its own source */
+    {
+        const double eye_i = (g_last_eye[0] - g_app.truth.t.origin_world_x_m) / t->cell_x_m;
+        const double eye_j = (g_last_eye[1] - g_app.truth.t.origin_world_y_m) / t->cell_y_m;
+        const double side = (double)g_app.truth.t.width;
+        uint64_t differ = 0u;
+        const uint64_t n = truth_vs_cache(&g_app.truth, &cm->cache, &differ);
+        printf("truth at the end: %llu window reads, eye at sample (%.0f, %.0f) of %.0f^2, "
+               "%llu level-0 samples shared with the cache, %llu differ\n",
+               (unsigned long long)g_app.truth.loads, eye_i, eye_j, side,
+               (unsigned long long)n, (unsigned long long)differ);
+        CHECK(g_app.truth.loads > 1u);
+        CHECK(eye_i >= 0.37 * side && eye_i <= 0.63 * side && eye_j >= 0.37 * side &&
+              eye_j <= 0.63 * side);
+        CHECK(n >= (uint64_t)cm->side * cm->side / 2u && differ == 0u);
+    }
     /* the spare-time rule on its own: a jump leaves the levels to refill
      * (the coarsest is completed by the selection itself); no time left
      * runs nothing, a little runs some and stops in time */

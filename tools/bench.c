@@ -630,7 +630,10 @@ static ft_status measure(int path, int slot, const ft_camera *cam, ft_error_stat
     if (c != NULL && c->ref != NULL && cam_matches(c, cam)) {
         ft_status s = ft_renderer_draw_positions(&g_app.renderer, cam, err);
         if (s != FT_OK) return s;
-        return ft_metric_compute(&g_app.terrain, cam, g_app.renderer.pos, c->ref,
+        const ft_terrain *truth = NULL;
+        s = ft_app_truth(&g_app, cam, &truth, err);
+        if (s != FT_OK) return s;
+        return ft_metric_compute(truth, cam, g_app.renderer.pos, c->ref,
                                  g_app.metric_scratch,
                                  ft_metric_scratch_bytes(cam->width_px, cam->height_px), es, err);
     }

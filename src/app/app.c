@@ -105,6 +105,14 @@ static size_t dbw_io_bytes(const ft_dbw *w)
     return ft_dbw_index_bytes(w) + ft_dbw_staging_bytes(w);
 }
 
+#if FT_WITH_REFERENCE
+/* Samples per side of the truth's database window (measure/ref_window.h). */
+static uint32_t truth_side(const ft_app *app)
+{
+    return app->scene.metric_truth_side != 0u ? app->scene.metric_truth_side : app->dbw.side;
+}
+#endif
+
 static void plan(ft_app *app)
 {
     const ft_scene *s = &app->scene;
@@ -128,6 +136,10 @@ static void plan(ft_app *app)
         size_t px = (size_t)s->width_px * s->height_px;
         ft_arena_plan(a, FT_POOL_REFERENCE, px * sizeof(ft_ref_pixel));
         ft_arena_plan(a, FT_POOL_METRIC, ft_metric_scratch_bytes(s->width_px, s->height_px));
+        if (app->dem_kind == FT_DEM_FTD) {
+            ft_arena_plan(a, FT_POOL_REFERENCE,
+                          ft_ref_window_bytes(&app->dbw.hdr, app->dbw.level, truth_side(app)));
+        }
     }
 #endif
 #if FT_WITH_PNG
@@ -331,6 +343,17 @@ ft_status ft_app_init(ft_app *app, const ft_scene *scene, ft_error *err)
                                ft_metric_scratch_bytes(app->scene.width_px, app->scene.height_px),
                                &app->metric_scratch, err);
         }
+        if (st == FT_OK && app->terrain.db != NULL) {
+            const size_t bytes =
+                ft_ref_window_bytes(&app->dbw.hdr, app->dbw.level, truth_side(app));
+            void *mem = NULL;
+            st = ft_arena_take(&app->arena, FT_POOL_REFERENCE, bytes, &mem, err);
+            if (st == FT_OK) {
+                st = ft_ref_window_init(&app->truth, &app->terrain, truth_side(app), mem, bytes,
+                                        err);
+            }
+            app->truth_ready = (st == FT_OK);
+        }
         if (st != FT_OK) {
             goto fail_renderer;
         }
@@ -419,12 +442,32 @@ ft_status ft_app_measure(ft_app *app, const ft_camera *cam, ft_error_stats *out,
     if (s != FT_OK) {
         return s;
     }
-    s = ft_reference_render(&app->terrain, cam, app->ref, px, err);
+    const ft_terrain *truth = NULL;
+    s = ft_app_truth(app, cam, &truth, err);
     if (s != FT_OK) {
         return s;
     }
-    return ft_metric_compute(&app->terrain, cam, app->renderer.pos, app->ref, app->metric_scratch,
+    s = ft_reference_render(truth, cam, app->ref, px, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    return ft_metric_compute(truth, cam, app->renderer.pos, app->ref, app->metric_scratch,
                              ft_metric_scratch_bytes(cam->width_px, cam->height_px), out, err);
+}
+
+ft_status ft_app_truth(ft_app *app, const ft_camera *cam, const ft_terrain **t, ft_error *err)
+{
+    *t = &app->terrain;
+    if (!app->truth_ready) {
+        return FT_OK;
+    }
+    int moved = 0;
+    const ft_status s = ft_ref_window_follow(&app->truth, cam->eye_m, &moved, err);
+    if (s != FT_OK) {
+        return s;
+    }
+    *t = &app->truth.t;
+    return FT_OK;
 }
 #endif
 

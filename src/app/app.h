@@ -23,6 +23,7 @@
 #include "terrain/terrain_file.h"
 #if FT_WITH_REFERENCE
 #include "measure/metric.h"
+#include "measure/ref_window.h"
 #include "measure/reference.h"
 #endif
 
@@ -50,6 +51,10 @@ typedef struct ft_app {
 #if FT_WITH_REFERENCE
     ft_ref_pixel *ref;     /* FT_POOL_REFERENCE (metric.enabled) */
     void *metric_scratch;  /* FT_POOL_METRIC (metric.enabled): ft_metric_scratch_bytes */
+    /* over a database window: the truth read from the database around the
+     * eye (FT_POOL_REFERENCE; measure/ref_window.h) */
+    ft_ref_window truth;
+    int truth_ready;
 #endif
     uint64_t init_ns;
     char pool_table[FT_POOL_TABLE_TEXT_MAX];
@@ -77,6 +82,10 @@ ft_status ft_app_render_annunciated(ft_app *app, const ft_pose *pose, const char
 #if FT_WITH_REFERENCE
 /* Position pass + reference + metric for the camera (metric.enabled). */
 ft_status ft_app_measure(ft_app *app, const ft_camera *cam, ft_error_stats *out, ft_error *err);
+/* The terrain the reference casts against for the camera: the scene's, or
+ * over a database window the database around the eye (read when the eye
+ * moved on; measure/ref_window.h). */
+ft_status ft_app_truth(ft_app *app, const ft_camera *cam, const ft_terrain **t, ft_error *err);
 #endif
 
 void ft_app_shutdown(ft_app *app);

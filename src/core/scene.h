@@ -145,6 +145,7 @@ typedef struct ft_scene {
     double present_haze_km; /* presentation.haze_km: haze visibility, 0 = none */
     double present_grid_m;  /* presentation.grid_m: ground grid spacing, 0 = none */
     int metric_enabled; /* metric.enabled: position target, reference, error stats */
+    uint32_t metric_truth_side; /* metric.truth_side_samples (0: terrain.db_side_samples) */
     double frame_period_ms;   /* frame.period_ms */
     double frame_budget_ms;   /* frame.budget_ms, 0 = the period */
     int frame_degrade;        /* frame.degrade */
@@ -285,6 +286,9 @@ typedef struct ft_scene {
       "m", "ground grid spacing (0 = no grid)")                                                  \
     X(metric, enabled, FLAG, metric_enabled, 0, 1, NULL, "0", "",                                \
       "measure the screen-space error against the reference")                                    \
+    X(metric, truth_side_samples, U32, metric_truth_side, 0, FT_GRID_SIDE_MAX, NULL, "0",         \
+      "samples", ".ftd window: samples per side of the database window the truth reads around "  \
+      "the eye (0 = terrain.db_side_samples)")                                                   \
     X(frame, period_ms, F64, frame_period_ms, 1, 1000, NULL, "16.667", "ms",                     \
       "display frame period; replay renders one frame per period of log time")                   \
     X(frame, budget_ms, F64, frame_budget_ms, 0, 1000, NULL, "0", "ms",                          \

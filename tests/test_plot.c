@@ -458,7 +458,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "triangles_mean", "budget_hits", "init_ms", "occlusion_mismatch_px",
         "occlusion_mismatch_mean_px", "occlusion_err_max_px", "raycast_fraction_mean",
         "raycast_fraction_max", "oracle_median_ms", "x_oracle", "tau_achieved_max_px",
-        "bound_short_frames"};
+        "bound_short_frames", "raycast_fraction_max_measured",
+        "raycast_fraction_max_measured_view", "raycast_small_terrain_frames"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);

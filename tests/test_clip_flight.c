@@ -287,6 +287,19 @@ int main(int argc, char **argv)
         CHECK(eye_i >= 0.37 * side && eye_i <= 0.63 * side && eye_j >= 0.37 * side &&
               eye_j <= 0.63 * side);
         CHECK(n >= (uint64_t)cm->side * cm->side / 2u && differ == 0u);
+        /* an eye far past every lattice: the truth is the floor, marked
+         * missing, and it comes back; a non-finite eye is refused */
+        const double far_eye[3] = {1.0e9, -1.0e9, 5000.0};
+        int moved = 0;
+        CHECK(ft_ref_window_follow(&g_app.truth, far_eye, &moved, &err) == FT_OK && moved);
+        CHECK(g_app.truth.counts.missing_samples == side * side);
+        CHECK(ft_ref_window_follow(&g_app.truth, g_last_eye, &moved, &err) == FT_OK && moved);
+        CHECK(truth_vs_cache(&g_app.truth, &cm->cache, &differ) == n && differ == 0u);
+        const double nan_eye[3] = {NAN, 0.0, 0.0};
+        CHECK(ft_ref_window_follow(&g_app.truth, nan_eye, &moved, &err) != FT_OK && !moved);
+        printf("truth far past the lattice: %llu samples at the floor; back at the end: the "
+               "same samples; a NaN eye: \"%s\"\n",
+               (unsigned long long)(side * side), err.text);
     }
     /* the spare-time rule on its own: a jump leaves the levels to refill
      * (the coarsest is completed by the selection itself); no time left

@@ -47,22 +47,25 @@ ft_status ft_ref_window_init(ft_ref_window *w, const ft_terrain *scene, uint32_t
                        need);
     }
     const ref_parts p = parts_of(&scene->db->hdr, scene->db_level, side);
-    unsigned char *m = mem;
+    unsigned char *m = mem; /* the parts in order */
     w->scene = scene;
     w->t = *scene;
     w->t.width = side;
     w->t.height = side;
     w->t.heights_m = (float *)(void *)m;
+    m += p.heights;
     memset(&w->t.pyr, 0, sizeof w->t.pyr);
-    ft_status st = ft_pyramid_layout(&w->t, m + p.heights, p.pyramid, err);
+    ft_status st = ft_pyramid_layout(&w->t, m, p.pyramid, err);
     if (st != FT_OK) {
         return st;
     }
-    w->t.void_bits = m + p.heights + p.pyramid; /* the read's marks (the caster ignores them) */
+    m += p.pyramid;
+    w->t.void_bits = m; /* the read's marks (the caster ignores them) */
     w->t.void_count = 0u;
-    ft_tdb_tile_cache_init(&w->tiles, &scene->db->hdr, FT_REF_WINDOW_TILE_SLOTS,
-                           m + p.heights + p.pyramid + p.bits);
-    w->coarse_m = (float *)(void *)(m + p.heights + p.pyramid + p.bits + p.tiles);
+    m += p.bits;
+    ft_tdb_tile_cache_init(&w->tiles, &scene->db->hdr, FT_REF_WINDOW_TILE_SLOTS, m);
+    m += p.tiles;
+    w->coarse_m = (float *)(void *)m;
     w->coarse_bytes = p.coarse;
     return FT_OK;
 }
@@ -108,12 +111,8 @@ ft_status ft_ref_window_follow(ft_ref_window *w, const double eye_m[3], int *mov
     if (st != FT_OK) {
         return st;
     }
-    for (size_t k = 0u; k < n && remaining > 0u; ++k) {
-        if (w->t.heights_m[k] == FT_TDB_NODATA_M) {
-            w->t.heights_m[k] = s->db_fill_m;
-            ++w->counts.missing_samples;
-        }
-    }
+    w->counts.missing_samples += ft_dbw_floor_missing(w->t.heights_m, n, s->db_fill_m,
+                                                      w->t.void_bits);
     w->t.db_i0 = i0;
     w->t.db_j0 = j0;
     w->t.origin_world_x_m = s->origin_world_x_m + (double)(i0 - s->db_i0) * s->cell_x_m;

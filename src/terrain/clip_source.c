@@ -91,16 +91,9 @@ static ft_status read_db(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint
     if (st != FT_OK) {
         return st;
     }
-    for (size_t k = 0u; k < n; ++k) {
-        int marked = ((s->bits[k >> 3] >> (k & 7u)) & 1u) != 0u;
-        if (heights_m[k] == FT_TDB_NODATA_M) {
-            heights_m[k] = s->fill_m;
-            marked = 1;
-            ++s->counts.missing_samples;
-        }
-        if (marks != NULL) {
-            marks[k] = (uint8_t)marked;
-        }
+    s->counts.missing_samples += ft_dbw_floor_missing(heights_m, n, s->fill_m, s->bits);
+    for (size_t k = 0u; k < n && marks != NULL; ++k) {
+        marks[k] = (uint8_t)((s->bits[k >> 3] >> (k & 7u)) & 1u);
     }
     return FT_OK;
 }

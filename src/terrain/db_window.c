@@ -198,6 +198,19 @@ static void mark(uint8_t *bits, size_t i)
     bits[i >> 3] = (uint8_t)(bits[i >> 3] | (1u << (i & 7u)));
 }
 
+uint64_t ft_dbw_floor_missing(float *heights_m, size_t n, float fill_m, uint8_t *void_bits)
+{
+    uint64_t missing = 0u;
+    for (size_t k = 0u; k < n; ++k) {
+        if (heights_m[k] == FT_TDB_NODATA_M) {
+            heights_m[k] = fill_m;
+            mark(void_bits, k);
+            ++missing;
+        }
+    }
+    return missing;
+}
+
 /* floor(a / b) for b > 0 (a may be negative: west of -180 deg). */
 static int64_t floor_div(int64_t a, int64_t b)
 {
@@ -465,13 +478,7 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
                        "corner) holds no data of %s at any level",
                        w->side, w->level, t->origin_y, t->origin_x, name);
     }
-    for (size_t k = 0u; k < n; ++k) {
-        if (t->heights_m[k] == FT_TDB_NODATA_M) {
-            t->heights_m[k] = lo_m;
-            mark(t->void_bits, k);
-            ++counts->missing_samples;
-        }
-    }
+    counts->missing_samples += ft_dbw_floor_missing(t->heights_m, n, lo_m, t->void_bits);
     counts->fill_m = lo_m;
     t->min_height_m = lo_m;
     t->max_height_m = hi_m;

@@ -134,6 +134,10 @@ ft_status ft_dbw_read_rect(const ft_tdb *db, const ft_dbw_rect *r, ft_tdb_tile_c
                            float *coarse_m, size_t coarse_bytes, ft_dbw_counts *c,
                            uint64_t *remaining, ft_error *err);
 
+/* Samples no level has (FT_TDB_NODATA_M after ft_dbw_read_rect) drawn at
+ * fill_m and marked in void_bits (bit k of sample k); returns how many. */
+uint64_t ft_dbw_floor_missing(float *heights_m, size_t n, float fill_m, uint8_t *void_bits);
+
 /* Opens the database (index into io, checked), reads the window's tiles one
  * by one into t->heights_m (bound, side*side) and marks t->void_bits (bound,
  * zeroed); sets void_count and the height range. io holds

@@ -9,14 +9,17 @@
  * as uniforms per draw on GLES 2).
  *
  * Geomorphing is a function of the grid vertex alone (src/lod/bintree.c,
- * ft_bt_vertex_morph, is the same rule on the CPU): the vertex is the
- * midpoint of a coarse edge e0-e1 and enters the mesh when one diamond c
- * splits; its height slides from (h(e0) + h(e1)) / 2 to h(g) as
- *   rho = K * err(c) / (|P - eye| cos^2 theta)  goes from split (the
- * selection's split threshold, f * tau) to tau; theta is P's angle off the
- * view axis (capped at the frustum corner's), the stretch a perspective
- * image gives an angle there, as the selection's box bound does. Every tile that draws the vertex therefore
- * computes the same position from the same inputs: no cracks, even mid-morph.
+ * ft_bt_diamond_q and ft_bt_morph_weight, is the same rule on the CPU): the
+ * vertex is the midpoint of a coarse edge e0-e1 and enters the mesh when one
+ * diamond c splits; its height slides from (h(e0) + h(e1)) / 2 to h(g) with
+ * weight clamp(2 Q / W + 1, 0, 1), Q = K (err + chord) gain / tau - d over
+ * c's box (bintree.h: d the distance from the eye to the box, gain the
+ * off-axis gain over its corners), W = morph_width x c's square side. A
+ * parent's Q is at least its child's + W, so the endpoints of a moving
+ * vertex are at their own heights: the coarse height is the drawn edge's
+ * midpoint and a split never pops. Every tile that draws the vertex
+ * computes the same position from the same inputs: no cracks, even
+ * mid-morph.
  *
  * Sub-sample levels (bintree.subsample_levels S > 0): tile coordinates are
  * in fine units (2^-S of a cell). A vertex on a sample reads it; a vertex
@@ -28,11 +31,12 @@
  * src/lod/bintree.c (sub_q x the largest twist over the diamond's closure, from
  * <= 4 texels of the twist atlas).
  *
- * GLES 3: a vertex on a sample does one fetch, its texel of the vertex table
- * (src/lod/bintree.h, ft_bt_sample_texel: height, the morph's coarse height,
- * the inserting diamond's error, a 12+12-bit hemi-octahedral normal), and no search; the
- * lowest set bit of a coordinate is integer arithmetic. GLES 2 (and GLES 3
- * with bintree.vertex_table = 0) reads the samples, the error table and the
+ * GLES 3: a vertex on a sample does two fetches, its texel of the vertex
+ * table (src/lod/bintree.h, ft_bt_sample_texel: height, the morph's coarse
+ * height, -1 when it never morphs, a 12+12-bit hemi-octahedral normal) and
+ * its diamond's texel (error and height range), and no search; the lowest
+ * set bit of a coordinate is integer arithmetic. GLES 2 (and GLES 3 with
+ * bintree.vertex_table = 0) reads the samples, the diamond texel and the
  * normal's four neighbours.
  *
  * Padding: coordinates are clamped into the real grid; clamped vertices do
@@ -60,10 +64,11 @@ uniform vec3 u_origin_rel_eye_m;
 uniform mat4 u_view_proj;
 uniform vec2 u_pack;
 
-uniform sampler2D u_bt_err;   /* saturated diamond error (m) on the split-vertex lattice */
-uniform vec2 u_bt_err_pack;   /* like u_pack, for u_bt_err */
+uniform highp sampler2D u_bt_dia; /* per lattice diamond: (saturated error, box z0, z1) (m) */
+uniform highp sampler2D u_bt_zb;  /* S > 0: (min, max) height of aligned blocks of cells */
+uniform vec4 u_bt_gap;        /* (morph_width, metres per fine unit, block side in cells, 0) */
 uniform vec3 u_bt_lattice;    /* (2^k, lattice side, N 2^S: the domain in fine units) */
-uniform vec4 u_bt_morph;      /* (K px, split px, tau - split px, on) */
+uniform vec4 u_bt_morph;      /* (K px, tau px, 0, on) */
 uniform vec4 u_bt_axis;       /* (view axis (world, unit), cos of the frustum corner) */
 uniform vec4 u_bt_sub;        /* (2^S, 2^(k+S): table lattice step in fine units,
                                  twist levels, 1 if S > 0) */
@@ -123,10 +128,20 @@ float ft_twist_texel(vec2 p)
     return ft_decode(t, u_bt_twist_pack.xy);
 }
 
-/* Closed-form error of a diamond below the samples (src/lod/bintree.c,
- * ft_bt_sub_error): split vertex c, square side sd (fine units), even
- * level when c is a square's centre. */
-float ft_sub_error(vec2 c, float sd, bool even_level)
+vec2 ft_zblock(vec2 b)
+{
+#if FT_ES3
+    return texelFetch(u_bt_zb, ivec2(b), 0).xy;
+#else
+    vec2 n = ceil((u_grid_size - 1.0) / u_bt_gap.z);
+    return texture2DLod(u_bt_zb, (b + 0.5) / n, 0.0).xy;
+#endif
+}
+
+/* Closed form below the samples (src/lod/bintree.c, ft_bt_sub_error):
+ * split vertex c, square side sd (fine units), even level when c is a
+ * square's centre: (error, raw height range of its closure). */
+vec3 ft_sub_diamond(vec2 c, float sd, bool even_level)
 {
     float f = u_bt_sub.x;
     float a = sd / (u_bt_lattice.x * f); /* its template squares' side, cells */
@@ -153,16 +168,26 @@ float ft_sub_error(vec2 c, float sd, bool even_level)
     d = max(d, ft_twist_texel(off + vec2(b1.x, b0.y)));
     d = max(d, ft_twist_texel(off + vec2(b0.x, b1.y)));
     d = max(d, ft_twist_texel(off + b1));
-    return 0.25 * leg * leg * d;
+    /* its height range: the <= 2 x 2 height blocks under the same cells */
+    vec2 z0 = floor(c0 / u_bt_gap.z), z1 = floor(c1 / u_bt_gap.z);
+    vec2 za = ft_zblock(z0), zb = ft_zblock(vec2(z1.x, z0.y));
+    vec2 zc = ft_zblock(vec2(z0.x, z1.y)), zd = ft_zblock(z1);
+    float zlo = min(min(za.x, zb.x), min(zc.x, zd.x));
+    float zhi = max(max(za.y, zb.y), max(zc.y, zd.y));
+    return vec3(0.25 * leg * leg * d, zlo, zhi);
 }
 #endif
 
-/* Error of the diamond that inserts vertex g (fine units) and the coarse
- * edge e0-e1 it bisects. Negative when g never morphs. */
-float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
+/* The inserting diamond of vertex g (fine units): the coarse edge e0-e1 it
+ * bisects, the diamond's split vertex c and square side sd (fine units),
+ * even when c is a square's centre. False when g never morphs. */
+bool ft_insertion(vec2 g, out vec2 e0, out vec2 e1, out vec2 c, out float sd, out bool even_level)
 {
     e0 = g;
     e1 = g;
+    c = g;
+    sd = 0.0;
+    even_level = false;
     /* s: the lowest power of two that does not divide both coordinates */
 #if FT_ES3
     int gi = int(g.x) | int(g.y);
@@ -178,15 +203,15 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
         p *= 2.0;
     }
 #endif
-    float sd = 2.0 * s * u_bt_lattice.x; /* square side of the inserting diamond */
+    sd = 2.0 * s * u_bt_lattice.x; /* square side of the inserting diamond */
     if (s == 0.0 || sd > u_bt_lattice.z) {
-        return -1.0;
+        return false;
     }
     bool odd_x = mod(g.x, 2.0 * s) != 0.0;
     bool odd_y = mod(g.y, 2.0 * s) != 0.0;
+    even_level = odd_x && odd_y;
     vec2 base = floor(g / sd) * sd;
-    vec2 c;
-    if (odd_x && odd_y) {
+    if (even_level) {
         vec2 q = (g - s) / (2.0 * s);
         float dy = (mod(q.x + q.y, 2.0) == 0.0) ? s : -s;
         e0 = g - vec2(s, dy);
@@ -211,20 +236,87 @@ float ft_morph_error(vec2 g, out vec2 e0, out vec2 e1)
     if (top.x > (u_grid_size.x - 1.0) * u_bt_sub.x || top.y > (u_grid_size.y - 1.0) * u_bt_sub.x) {
         e0 = g;
         e1 = g;
-        return -1.0;
+        return false;
     }
+    return true;
+}
+
+/* The lattice diamond at split vertex c (fine units): (error, box z0, z1). */
+vec3 ft_lattice_diamond(vec2 c)
+{
     vec2 lc = c / u_bt_sub.y;
+#if FT_ES3
+    return texelFetch(u_bt_dia, ivec2(lc), 0).xyz;
+#else
+    return texture2DLod(u_bt_dia, (lc + 0.5) / u_bt_lattice.y, 0.0).xyz;
+#endif
+}
+
+/* (error, box z0, z1) of the diamond at c: the lattice texel, or below the
+ * samples the closed form with its z range widened by the box margin. */
+vec3 ft_diamond(vec2 c, float sd, bool even_level)
+{
 #if FT_BT_SUB
+    vec2 lc = c / u_bt_sub.y;
     if (lc != floor(lc)) {
-        return ft_sub_error(c, sd, odd_x && odd_y); /* a diamond below the samples */
+        vec3 d = ft_sub_diamond(c, sd, even_level);
+        float mz = (even_level ? 3.0 : 2.0) * u_bt_gap.x * sd * u_bt_gap.y;
+        return vec3(d.x, d.y - mz, d.z + mz);
     }
 #endif
-#if FT_ES3
-    vec4 t = texelFetch(u_bt_err, ivec2(lc), 0);
-#else
-    vec4 t = texture2DLod(u_bt_err, (lc + 0.5) / u_bt_lattice.y, 0.0);
-#endif
-    return ft_decode(t, u_bt_err_pack);
+    return ft_lattice_diamond(c);
+}
+
+/* cos of the angle off the view axis at corner p (relative to the eye);
+ * bad: p at or behind the eye. */
+void ft_corner(vec3 p, inout float cos_min, inout bool bad)
+{
+    float len = length(p);
+    float along = dot(p, u_bt_axis.xyz);
+    if (!(len > 0.0) || !(along > 0.0)) {
+        bad = true;
+    } else {
+        cos_min = min(cos_min, along / len);
+    }
+}
+
+/* Morph weight of the vertices diamond c inserts (src/lod/bintree.c,
+ * ft_bt_diamond_q): its box is the closure widened by the margin (xy) and
+ * the height range d.yz, drawn on the curved earth. */
+float ft_morph_weight(vec2 c, float sd, bool even_level, vec3 d)
+{
+    float f = u_bt_sub.x;
+    float r = (even_level ? 1.5 + 3.0 * u_bt_gap.x : 1.0 + 2.0 * u_bt_gap.x) * sd;
+    vec3 lo = u_origin_rel_eye_m + vec3((c - r) / f * u_cell_m, d.y);
+    vec3 hi = u_origin_rel_eye_m + vec3((c + r) / f * u_cell_m, d.z);
+    vec2 near_xy = max(max(lo.xy, -hi.xy), vec2(0.0));
+    vec2 far_xy = max(abs(lo.xy), abs(hi.xy));
+    lo.z -= u_earth_drop_per_m2 * dot(far_xy, far_xy);
+    hi.z -= u_earth_drop_per_m2 * dot(near_xy, near_xy);
+    float dist = length(max(max(lo, -hi), vec3(0.0)));
+    vec2 ext = hi.xy - lo.xy;
+    float e = d.x + 0.25 * u_earth_drop_per_m2 * dot(ext, ext);
+    if (!(e > 0.0)) {
+        return 0.0;
+    }
+    if (!(dist > 0.0)) {
+        return 1.0;
+    }
+    float cc = u_bt_axis.w;
+    float cos_min = 1.0;
+    bool bad = false;
+    ft_corner(lo, cos_min, bad);
+    ft_corner(vec3(hi.x, lo.y, lo.z), cos_min, bad);
+    ft_corner(vec3(lo.x, hi.y, lo.z), cos_min, bad);
+    ft_corner(vec3(hi.x, hi.y, lo.z), cos_min, bad);
+    ft_corner(vec3(lo.x, lo.y, hi.z), cos_min, bad);
+    ft_corner(vec3(hi.x, lo.y, hi.z), cos_min, bad);
+    ft_corner(vec3(lo.x, hi.y, hi.z), cos_min, bad);
+    ft_corner(hi, cos_min, bad);
+    float gain = (bad || cos_min <= cc) ? 1.0 / (cc * cc) : 1.0 / (cos_min * cos_min);
+    float q = u_bt_morph.x * e * gain / u_bt_morph.y - dist;
+    float w_m = u_bt_gap.x * sd * u_bt_gap.y;
+    return clamp(2.0 * q / w_m + 1.0, 0.0, 1.0);
 }
 
 /* The outputs of a vertex at grid point gs with drawn height h, morph w. */
@@ -236,19 +328,9 @@ void ft_emit(vec2 gs, float h, float w)
     gl_Position = u_view_proj * vec4(v_pos_rel_eye_m, 1.0);
 }
 
-/* Morph weight of a vertex at gs, true height h, inserting diamond error err_m. */
-float ft_morph_weight(vec2 gs, float h, float err_m)
-{
-    vec3 p_true = ft_earth_curve(u_origin_rel_eye_m + vec3(gs * u_cell_m, h));
-    float dist = max(length(p_true), 1e-3);
-    float c = max(dot(p_true, u_bt_axis.xyz) / dist, u_bt_axis.w);
-    float rho = u_bt_morph.x * err_m / (dist * c * c);
-    return clamp((rho - u_bt_morph.y) / u_bt_morph.z, 0.0, 1.0);
-}
-
 #if FT_ES3 && FT_BT_VTX
-/* A vertex on a sample, one fetch: height, coarse height, inserting
- * diamond's error, normal. moved: the padding clamp moved it (no morph). */
+/* A vertex on a sample, two fetches: height, coarse height, normal, then its
+ * inserting diamond. moved: the padding clamp moved it (no morph). */
 void ft_sample_vertex(vec2 gs, bool moved)
 {
     vec4 vt = texelFetch(u_bt_vtx, ivec2(gs), 0);
@@ -259,8 +341,13 @@ void ft_sample_vertex(vec2 gs, bool moved)
     v_normal = normalize(vec3(nxy, 1.0 - abs(nxy.x) - abs(nxy.y)));
     float w = 1.0;
     if (u_bt_morph.w > 0.5 && vt.z >= 0.0 && !moved) {
-        w = ft_morph_weight(gs, h, vt.z);
-        h = mix(vt.y, h, w);
+        vec2 e0, e1, c;
+        float sd;
+        bool even_level;
+        if (ft_insertion(gs * u_bt_sub.x, e0, e1, c, sd, even_level)) {
+            w = ft_morph_weight(c, sd, even_level, ft_lattice_diamond(c));
+            h = mix(vt.y, h, w);
+        }
     }
     ft_emit(gs, h, w);
 }
@@ -299,10 +386,11 @@ void ft_general_vertex(vec2 g_raw, vec2 g, vec2 gs, bool on_sample)
 
     float w = 1.0;
     if (u_bt_morph.w > 0.5) {
-        vec2 e0, e1;
-        float err_m = ft_morph_error(g_raw, e0, e1);
-        if (err_m >= 0.0) {
-            w = ft_morph_weight(gs, h, err_m);
+        vec2 e0, e1, c;
+        float sd;
+        bool even_level;
+        if (ft_insertion(g_raw, e0, e1, c, sd, even_level)) {
+            w = ft_morph_weight(c, sd, even_level, ft_diamond(c, sd, even_level));
 #if FT_BT_SUB
             /* a sub-sample vertex's coarse edge lies in its own cell */
             float h0 = on_sample ? ft_height(e0 / f) : ft_bilinear(cell, cf, e0);

@@ -322,8 +322,9 @@ static int check_vertex_table(const ft_bintree *bt, const ft_terrain *t)
             const float h = t->heights_m[(size_t)gy * t->width + gx];
             bad += tx[0] != h;
             int32_t e0[2], e1[2], c[2];
+            uint32_t level = 0;
             const int32_t x = (int32_t)gx << bt->sub, y = (int32_t)gy << bt->sub;
-            if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c)) {
+            if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c, &level)) {
                 bad += tx[1] != h || tx[2] != -1.0f;
             } else {
                 const float h0 = ft_bt_height_fine(bt, e0[0], e0[1]);
@@ -340,6 +341,7 @@ static int check_vertex_table(const ft_bintree *bt, const ft_terrain *t)
                 float box[FT_BT_BOX_FLOATS];
                 const double e = ft_bt_diamond_error(bt, 2u * half + (even ? 0u : 1u), c, box);
                 bad += (double)tx[2] != e;
+                bad += level != 2u * half + (even ? 0u : 1u);
                 morphing += 1u;
             }
             /* the normal: central differences, one-sided at the edge */
@@ -385,7 +387,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     ft_error err;
     REQUIRE(mem != NULL && ft_arena_bind(&a, mem, total, &err) == FT_OK);
     ft_bintree bt;
-    ft_status st = ft_bintree_init(&bt, &t, k, sub, tiles_max, &a, &err);
+    ft_status st = ft_bintree_init(&bt, &t, k, sub, FT_BT_MORPH_WIDTH, tiles_max, &a, &err);
     if (st != FT_OK) {
         fprintf(stderr, "init %ux%u k=%u: %s\n", w, h, k, err.text);
     }
@@ -401,7 +403,9 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     static const double taus[] = {0.0, 0.5, 1.0, 2.0, 4.0, 16.0};
     uint32_t total_tiles = 0, morph_vertices = 0, checked_vertices = 0;
     int bad_conf = 0, bad_subset = 0, bad_err = 0, bad_bound = 0, bad_morph = 0;
-    int leaf_tiles = 0, leaf_short = 0, bad_tjunctions = 0;
+    int leaf_tiles = 0, leaf_short = 0, bad_tjunctions = 0, bad_pop = 0;
+    uint32_t moving_vertices = 0, gap_pairs = 0;
+    int bad_gap = 0;
     double dense_max_ratio = 0.0; /* largest dense error / stored error: <= 1 */
     int ratio_tiles = 0;
     for (uint32_t vi = 0; vi < views; ++vi) {
@@ -425,7 +429,8 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         uint32_t n_nocull = ss.tiles;
         memcpy(nocull, bt.tiles, n_nocull * sizeof *nocull);
         qsort(nocull, n_nocull, sizeof *nocull, tile_key_cmp);
-        const double thr = tau * (morph ? FT_BT_SPLIT_FRACTION : 1.0);
+        /* an unsplit diamond's box projects under tau, with or without the morph */
+        const double thr = tau;
         for (uint32_t i = 0; i < n_nocull && exact_checks; ++i) {
             const ft_bt_tile *tile = &nocull[i];
             int32_t x0 = tile->apex[0], x1 = x0, y0 = tile->apex[1], y1 = y0;
@@ -490,13 +495,35 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
                 double d = e < lo[q] ? lo[q] - e : (e > hi[q] ? e - hi[q] : 0.0);
                 d2 += d * d;
             }
-            if (dev > 1e-3 && v.k_px * dev > thr * sqrt(d2) * (1.0 + 1e-6) + 1e-3) ++bad_bound;
+            if (dev > 1e-3 && v.k_px * dev > thr * sqrt(d2) * (1.0 + 1e-6) + 1e-3) {
+                if (bad_bound < 3) {
+                    double w_m;
+                    const double q = ft_bt_diamond_q(&bt, &v, tile->level, c, tau, &w_m);
+                    fprintf(stderr, "bound: level %u dev %.3f stored %.3f d %.1f tau %.2f morph %d "
+                            "Q %.2f W %.2f\n", tile->level, dev, stored, sqrt(d2), tau, morph, q, w_m);
+                }
+                ++bad_bound;
+            }
         }
         /* geomorph rule on every template vertex of every tile */
         for (uint32_t i = 0; i < n_nocull && exact_checks; i += 7u) {
             const ft_bt_tile *tile = &nocull[i];
             int32_t anc[FT_BT_LEVELS_MAX][2];
             uint32_t na = ancestors(&bt, tile, anc);
+            /* the gap: a parent's Q is at least its child's + the child's W */
+            for (uint32_t q = 1; q < na && morph; ++q) {
+                double wp, wc;
+                const double qp = ft_bt_diamond_q(&bt, &v, q - 1u, anc[q - 1u], tau, &wp);
+                const double qc = ft_bt_diamond_q(&bt, &v, q, anc[q], tau, &wc);
+                ++gap_pairs;
+                if (isfinite(qc) && isfinite(qp) && qp < qc + wc - 1e-9 * fabs(qc) - 1e-6) {
+                    if (bad_gap < 3) {
+                        fprintf(stderr, "gap: level %u Q %.4f, parent Q %.4f, W %.4f\n", q, qc,
+                                qp, wc);
+                    }
+                    ++bad_gap;
+                }
+            }
             int32_t s = 1 << k;
             for (int32_t ib = 0; ib <= s; ++ib) {
                 for (int32_t ia = 0; ia + ib <= s; ++ia) {
@@ -505,9 +532,34 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
                     int32_t gy = tile->apex[1] + (ia * (tile->left[1] - tile->apex[1]) +
                                                   ib * (tile->right[1] - tile->apex[1])) / s;
                     int32_t e0[2], e1[2], c[2];
+                    uint32_t level = 0;
                     ++checked_vertices;
-                    if (!ft_bt_vertex_morph(&bt, gx, gy, e0, e1, c)) continue;
+                    if (!ft_bt_vertex_morph(&bt, gx, gy, e0, e1, c, &level)) continue;
                     ++morph_vertices;
+                    if (morph) {
+                        /* a moving vertex's endpoints are at their own heights:
+                         * its coarse height is the drawn edge's midpoint */
+                        double w_m;
+                        const double q = ft_bt_diamond_q(&bt, &v, level, c, tau, &w_m);
+                        const double mw = ft_bt_morph_weight(q, w_m);
+                        moving_vertices += (mw > 0.0 && mw < 1.0);
+                        for (int end = 0; end < 2 && mw > 0.0; ++end) {
+                            const int32_t *ep = end ? e1 : e0;
+                            int32_t f0[2], f1[2], fc[2];
+                            uint32_t fl = 0;
+                            if (!ft_bt_vertex_morph(&bt, ep[0], ep[1], f0, f1, fc, &fl)) continue;
+                            double fw_m;
+                            const double fq = ft_bt_diamond_q(&bt, &v, fl, fc, tau, &fw_m);
+                            if (ft_bt_morph_weight(fq, fw_m) != 1.0 || !(fq >= q + w_m * 0.999)) {
+                                if (bad_pop < 3) {
+                                    fprintf(stderr, "vertex (%d,%d) w %.4f (Q %.3f, W %.3f): "
+                                            "endpoint (%d,%d) Q %.3f\n", gx, gy, mw, q, w_m,
+                                            ep[0], ep[1], fq);
+                                }
+                                ++bad_pop;
+                            }
+                        }
+                    }
                     int found = 0;
                     for (uint32_t q = 0; q < na; ++q) found |= (anc[q][0] == c[0] && anc[q][1] == c[1]);
                     if (!found || e0[0] + e1[0] != 2 * gx || e0[1] + e1[1] != 2 * gy) {
@@ -552,6 +604,11 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     CHECK(bad_err == 0);
     CHECK(bad_bound == 0);
     CHECK(bad_morph == 0);
+    printf("  geomorph: %u vertices mid-morph, %d with an endpoint not at its own height; "
+           "%u parent-child pairs, %d without the gap\n", moving_vertices, bad_pop, gap_pairs,
+           bad_gap);
+    CHECK(bad_pop == 0);
+    CHECK(bad_gap == 0);
     if (exact_checks && bt.leaf_level > 0u) {
         CHECK(morph_vertices > 0u);
     }
@@ -651,12 +708,12 @@ int main(void)
         ft_error err;
         REQUIRE(mem && ft_arena_bind(&a, mem, total, &err) == FT_OK);
         ft_bintree bt;
-        CHECK(ft_bintree_init(&bt, &t, 4, 0u, 16, &a, &err) == FT_ERR_CONFIG);
+        CHECK(ft_bintree_init(&bt, &t, 4, 0u, FT_BT_MORPH_WIDTH, 16, &a, &err) == FT_ERR_CONFIG);
         CHECK(strstr(err.text, "too large") != NULL);
-        CHECK(ft_bintree_init(&bt, &t, 2, 0u, 1, &a, &err) == FT_ERR_CONFIG);
+        CHECK(ft_bintree_init(&bt, &t, 2, 0u, FT_BT_MORPH_WIDTH, 1, &a, &err) == FT_ERR_CONFIG);
         ft_terrain t2;
         make_terrain(&t2, 2, 2, 30.0); /* one cell: no template fits */
-        CHECK(ft_bintree_init(&bt, &t2, 1, 0u, 16, &a, &err) == FT_ERR_CONFIG);
+        CHECK(ft_bintree_init(&bt, &t2, 1, 0u, FT_BT_MORPH_WIDTH, 16, &a, &err) == FT_ERR_CONFIG);
         free(t2.heights_m);
         free(mem);
         free(t.heights_m);

@@ -164,7 +164,7 @@ int main(void)
     CHECK(a.pose_horizon_ms == FT_POSE_HORIZON_DEFAULT_MS &&
           a.pose_converge_ms == FT_POSE_CONVERGE_DEFAULT_MS &&
           a.pose_snap_m == FT_POSE_SNAP_DEFAULT_M);
-    CHECK(a.bintree_split_fraction == FT_BT_SPLIT_FRACTION);
+    CHECK(a.bintree_morph_width == FT_BT_MORPH_WIDTH);
 
     /* Suffixes and overrides. */
     CHECK(parse("[budget]\nheights_bytes = 3M\npng_bytes=512K\n[view]\nwidth_px=640\n", &a, &err) ==

@@ -83,7 +83,7 @@ static double time_tables_ms(const ft_terrain *t, uint32_t k, uint32_t sub, uint
         return NAN;
     }
     uint64_t t0 = ft_plat_monotonic_ns();
-    ft_status st = ft_bintree_init(&bt, t, k, sub, tiles_max, &a, &err);
+    ft_status st = ft_bintree_init(&bt, t, k, sub, FT_BT_MORPH_WIDTH, tiles_max, &a, &err);
     uint64_t t1 = ft_plat_monotonic_ns();
     free(mem);
     return st == FT_OK ? (double)(t1 - t0) * 1e-6 : NAN;

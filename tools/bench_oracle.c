@@ -126,8 +126,7 @@ ft_status bench_oracle_prepare(bench_oracle *o, ft_renderer *r, const ft_camera 
                        tiles, verts);
     }
     ft_bt_mesh_uniforms u;
-    ft_bt_mesh_uniforms_for(r->terrain, cam, bm->sel.tau_used_px, bm->morph, bm->split_fraction,
-                            &u);
+    ft_bt_mesh_uniforms_for(r->terrain, cam, bm->sel.tau_used_px, bm->morph, &u);
     u.vertex_table = bm->vertex_table;
     if (ft_bt_mesh_build(&bm->bt, tiles, &u, o->tmpl_uv, o->tmpl_verts, o->verts, o->verts_cap) !=
         verts) {

@@ -66,9 +66,12 @@ typedef enum ft_method_kind {
 const char *ft_method_name(ft_method_kind m);
 int ft_method_from_name(const char *name, ft_method_kind *out);
 
-/* bintree.split_fraction: default (and least) and most */
-#define FT_BT_SPLIT_FRACTION 0.5
-#define FT_BT_SPLIT_FRACTION_MAX 0.95
+/* bintree.morph_width: a vertex morphs in over this fraction of its
+ * diamond's square side of eye travel (src/lod/bintree.h); default, least,
+ * most */
+#define FT_BT_MORPH_WIDTH 0.25
+#define FT_BT_MORPH_WIDTH_MIN 0.0625
+#define FT_BT_MORPH_WIDTH_MAX 1.0
 
 /* [presentation]: how the terrain is coloured (src/gpu/shade.h). Relative
  * colouring paints bands of terrain height relative to the aircraft's
@@ -120,7 +123,7 @@ typedef struct ft_scene {
     uint32_t bintree_tiles_max;  /* bintree.tiles_max */
     double bintree_tau_px;       /* bintree.tau_px */
     int bintree_morph;           /* bintree.morph */
-    double bintree_split_fraction; /* bintree.split_fraction */
+    double bintree_morph_width; /* bintree.morph_width */
     uint32_t bintree_subsample_levels; /* bintree.subsample_levels */
     int bintree_vertex_table;          /* bintree.vertex_table (GLES 3 only) */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
@@ -236,9 +239,9 @@ typedef struct ft_scene {
     X(bintree, tau_px, F64, bintree_tau_px, 0, 1000, NULL, "1.0", "px",                          \
       "target screen-space error")                                                               \
     X(bintree, morph, FLAG, bintree_morph, 0, 1, NULL, "1", "", "geomorph split vertices")       \
-    X(bintree, split_fraction, F64, bintree_split_fraction, FT_BT_SPLIT_FRACTION,                \
-      FT_BT_SPLIT_FRACTION_MAX, NULL, "0.5", "",                                                 \
-      "with morph, a diamond splits at this x tau and its vertices morph in before tau")         \
+    X(bintree, morph_width, F64, bintree_morph_width, FT_BT_MORPH_WIDTH_MIN,                     \
+      FT_BT_MORPH_WIDTH_MAX, NULL, "0.25", "",                                                   \
+      "with morph, a split's vertices move over this x their diamond's side of eye travel")      \
     X(bintree, subsample_levels, U32, bintree_subsample_levels, 0, 4, NULL, "0", "",             \
       "tiles refine to 2^-S of a cell, their vertices on the bilinear surface")                  \
     X(bintree, vertex_table, FLAG, bintree_vertex_table, 0, 1, NULL, "1", "",                    \

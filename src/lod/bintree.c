@@ -55,13 +55,19 @@ void ft_bt_twist_layout_for(uint32_t w, uint32_t h, uint32_t k, ft_bt_twist_layo
     l->atlas_h = (y > l->h[0]) ? y : l->h[0];
 }
 
+void ft_bt_zblock_size(uint32_t w, uint32_t h, uint32_t k, uint32_t *bw, uint32_t *bh)
+{
+    *bw = ceil_shift(w - 1u, k + 2u);
+    *bh = ceil_shift(h - 1u, k + 2u);
+}
+
 void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
                      uint32_t tiles_max)
 {
     uint32_t n = ft_bt_domain_n(w, h);
     size_t m = lattice_side(n, k);
     ft_arena_plan(a, FT_POOL_METHOD, m * m * sizeof(float));
-    ft_arena_plan(a, FT_POOL_METHOD, m * m * FT_BT_BOX_FLOATS * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, m * m * 4u * sizeof(float));
     if (sub == 0u) {
         const size_t leaves = (k <= n) ? ((size_t)1 << (n - k)) * ((size_t)1 << (n - k)) : 1u;
         ft_arena_plan(a, FT_POOL_METHOD, leaves * sizeof(float));
@@ -70,6 +76,9 @@ void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t s
         ft_bt_twist_layout l;
         ft_bt_twist_layout_for(w, h, k, &l);
         ft_arena_plan(a, FT_POOL_METHOD, (size_t)l.atlas_w * l.atlas_h * sizeof(float));
+        uint32_t bw, bh;
+        ft_bt_zblock_size(w, h, k, &bw, &bh);
+        ft_arena_plan(a, FT_POOL_METHOD, (size_t)bw * bh * 4u * sizeof(float));
     }
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile));
     if (k >= FT_BT_TEMPLATE_K_MIN && k <= FT_BT_TEMPLATE_K_MAX) {
@@ -281,14 +290,60 @@ static void box_set_empty(float *b)
     b[1] = b[3] = b[5] = -FLT_MAX;
 }
 
-static void box_add(float *b, const float *o)
+/* Square side (fine units) of the diamonds of `level`. */
+static double square_side(const ft_bintree *bt, uint32_t level)
 {
-    b[0] = (o[0] < b[0]) ? o[0] : b[0];
-    b[1] = (o[1] > b[1]) ? o[1] : b[1];
-    b[2] = (o[2] < b[2]) ? o[2] : b[2];
-    b[3] = (o[3] > b[3]) ? o[3] : b[3];
-    b[4] = (o[4] < b[4]) ? o[4] : b[4];
-    b[5] = (o[5] > b[5]) ? o[5] : b[5];
+    return (double)(bt->fine_side >> (level / 2u));
+}
+
+/* The morph width W of a diamond of `level`, metres (see bintree.h). */
+static double morph_width_m(const ft_bintree *bt, uint32_t level)
+{
+    return bt->morph_width * square_side(bt, level) * bt->fine_m;
+}
+
+/* The box margin M of a diamond of `level`, fine units. */
+static double box_margin(const ft_bintree *bt, uint32_t level)
+{
+    return (((level & 1u) != 0u) ? 2.0 : 3.0) * bt->morph_width * square_side(bt, level);
+}
+
+/* Widens box b's z range by m metres, rounded outward (empty stays empty). */
+static void widen_z(float *b, double m)
+{
+    if (!(b[4] <= b[5])) {
+        return;
+    }
+    const double lo = (double)b[4] - m, hi = (double)b[5] + m;
+    b[4] = (float)lo;
+    b[5] = (float)hi;
+    if ((double)b[4] > lo) {
+        b[4] = nextafterf(b[4], -FLT_MAX);
+    }
+    if ((double)b[5] < hi) {
+        b[5] = nextafterf(b[5], FLT_MAX);
+    }
+}
+
+/* The closed-form xy of the box of diamond c (fine units) at `level`: its
+ * closure widened by the margin, in grid units, not clamped (clamping would
+ * close the gap at the grid's edge). */
+static void closure_xy(const ft_bintree *bt, uint32_t level, const int32_t c[2], float b[4])
+{
+    const double f = (double)(1u << bt->sub);
+    const double s = square_side(bt, level);
+    const double r = (((level & 1u) != 0u) ? s : 1.5 * s) + box_margin(bt, level);
+    const double v[4] = {((double)c[0] - r) / f, ((double)c[0] + r) / f, ((double)c[1] - r) / f,
+                         ((double)c[1] + r) / f};
+    for (int i = 0; i < 4; ++i) {
+        b[i] = (float)v[i];
+        /* outward: lower bounds down, upper bounds up */
+        if ((i & 1) == 0 && (double)b[i] > v[i]) {
+            b[i] = nextafterf(b[i], -FLT_MAX);
+        } else if ((i & 1) == 1 && (double)b[i] < v[i]) {
+            b[i] = nextafterf(b[i], FLT_MAX);
+        }
+    }
 }
 
 /* The (at most two) triangles of the diamond with split vertex c at level
@@ -396,7 +451,10 @@ static void own_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
 {
     ft_bintree *bt = bc->bt;
     size_t li = lat_index(bt, cx, cy);
-    measure_diamond(bc, level, cx, cy, &bt->err_m[li], bt->box + li * FT_BT_BOX_FLOATS);
+    float b[FT_BT_BOX_FLOATS];
+    measure_diamond(bc, level, cx, cy, &bt->err_m[li], b);
+    bt->dia[4u * li + 1u] = b[4];
+    bt->dia[4u * li + 2u] = b[5];
 }
 
 static void leaf_error(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
@@ -456,10 +514,19 @@ static void saturate(build_ctx *bc, uint32_t level, int32_t cx, int32_t cy)
             } else {
                 const size_t ci = lat_index(bt, mx, my);
                 ce = bt->err_m[ci];
-                memcpy(cb, bt->box + ci * FT_BT_BOX_FLOATS, sizeof cb);
+                box_set_empty(cb);
+                cb[4] = bt->dia[4u * ci + 1u];
+                cb[5] = bt->dia[4u * ci + 2u];
             }
             bt->err_m[li] = (ce > bt->err_m[li]) ? ce : bt->err_m[li];
-            box_add(bt->box + li * FT_BT_BOX_FLOATS, cb);
+            if (cb[4] <= cb[5]) {
+                /* the child's range widened by its morph width: the gap the
+                 * geomorph's rule needs (see bintree.h) */
+                widen_z(cb, morph_width_m(bt, level + 1u));
+                float *z = &bt->dia[4u * li + 1u];
+                z[0] = (cb[4] < z[0]) ? cb[4] : z[0];
+                z[1] = (cb[5] > z[1]) ? cb[5] : z[1];
+            }
         }
     }
 }
@@ -539,18 +606,48 @@ static double cover_twist(const ft_bintree *bt, double gx0, double gx1, double g
     return dmax;
 }
 
+/* The height range of the aligned 2^(k+2)-cell blocks under the cells of
+ * grid rectangle [gx0, gx1] x [gy0, gy1] (inside the grid) into z. A
+ * sub-rectangle gets a subset of the blocks: nested in, nested out. */
+static void zblock_range(const ft_bintree *bt, double gx0, double gx1, double gy0, double gy1,
+                         float z[2])
+{
+    const int32_t cmx = (int32_t)bt->width - 2, cmy = (int32_t)bt->height - 2;
+    const int32_t cx0 = clamp_range((int32_t)floor(gx0), 0, cmx);
+    const int32_t cy0 = clamp_range((int32_t)floor(gy0), 0, cmy);
+    const int32_t cx1 = clamp_range((int32_t)ceil(gx1) - 1, cx0, cmx);
+    const int32_t cy1 = clamp_range((int32_t)ceil(gy1) - 1, cy0, cmy);
+    const uint32_t sh = bt->zblock_shift;
+    z[0] = FLT_MAX;
+    z[1] = -FLT_MAX;
+    for (int32_t by = cy0 >> sh; by <= (cy1 >> sh); ++by) {
+        for (int32_t bx = cx0 >> sh; bx <= (cx1 >> sh); ++bx) {
+            const float *b = &bt->zblock[4u * ((size_t)by * bt->zblock_w + (size_t)bx)];
+            z[0] = (b[0] < z[0]) ? b[0] : z[0];
+            z[1] = (b[1] > z[1]) ? b[1] : z[1];
+        }
+    }
+}
+
 double ft_bt_sub_error(const ft_bintree *bt, uint32_t level, const int32_t c[2],
                        float box[FT_BT_BOX_FLOATS])
 {
     const double f = (double)(1u << bt->sub);
-    const double s = (double)(bt->fine_side >> (level / 2u));
+    const double s = square_side(bt, level);
     const double r = ((level & 1u) != 0u) ? s : 1.5 * s;
     const double wx = (double)bt->width - 1.0, hy = (double)bt->height - 1.0;
     const double gx0 = fmin(fmax(((double)c[0] - r) / f, 0.0), wx);
     const double gx1 = fmin(fmax(((double)c[0] + r) / f, 0.0), wx);
     const double gy0 = fmin(fmax(((double)c[1] - r) / f, 0.0), hy);
     const double gy1 = fmin(fmax(((double)c[1] + r) / f, 0.0), hy);
-    return sub_q(bt, level) * cover_twist(bt, gx0, gx1, gy0, gy1, box);
+    const double e = sub_q(bt, level) * cover_twist(bt, gx0, gx1, gy0, gy1, box);
+    float z[2];
+    zblock_range(bt, gx0, gx1, gy0, gy1, z);
+    closure_xy(bt, level, c, box);
+    box[4] = z[0];
+    box[5] = z[1];
+    widen_z(box, box_margin(bt, level) * bt->fine_m);
+    return e;
 }
 
 /* A leaf tile's own error and box (S > 0): its template triangles lie in
@@ -628,9 +725,33 @@ static void build_twist(ft_bintree *bt)
     }
 }
 
+/* Height range of every aligned 2^(k+2)-cell block (its cells' corners). */
+static void build_zblocks(ft_bintree *bt)
+{
+    const uint32_t sh = bt->zblock_shift;
+    for (uint32_t by = 0; by < bt->zblock_h; ++by) {
+        for (uint32_t bx = 0; bx < bt->zblock_w; ++bx) {
+            float z0 = FLT_MAX, z1 = -FLT_MAX;
+            const uint32_t x1 = ((bx + 1u) << sh) < bt->width ? ((bx + 1u) << sh) : bt->width - 1u;
+            const uint32_t y1 = ((by + 1u) << sh) < bt->height ? ((by + 1u) << sh) : bt->height - 1u;
+            for (uint32_t y = by << sh; y <= y1; ++y) {
+                for (uint32_t x = bx << sh; x <= x1; ++x) {
+                    const float h = bt->heights_m[(size_t)y * bt->width + x];
+                    z0 = (h < z0) ? h : z0;
+                    z1 = (h > z1) ? h : z1;
+                }
+            }
+            float *o = &bt->zblock[4u * ((size_t)by * bt->zblock_w + bx)];
+            o[0] = z0;
+            o[1] = z1;
+            o[2] = 0.0f;
+            o[3] = 0.0f;
+        }
+    }
+}
+
 ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t sub,
-                          uint32_t tiles_max,
-                          ft_arena *a, ft_error *err)
+                          double morph_width, uint32_t tiles_max, ft_arena *a, ft_error *err)
 {
     memset(bt, 0, sizeof *bt);
     if (t->heights_m == NULL || t->width < FT_GRID_SIDE_MIN || t->height < FT_GRID_SIDE_MIN) {
@@ -652,6 +773,10 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     if (sub > FT_BT_SUB_MAX) {
         return ft_fail(err, FT_ERR_CONFIG, "bintree.subsample_levels = %u outside 0..%u", sub,
                        FT_BT_SUB_MAX);
+    }
+    if (!(morph_width >= FT_BT_MORPH_WIDTH_MIN && morph_width <= FT_BT_MORPH_WIDTH_MAX)) {
+        return ft_fail(err, FT_ERR_CONFIG, "bintree.morph_width = %g outside %g..%g", morph_width,
+                       FT_BT_MORPH_WIDTH_MIN, FT_BT_MORPH_WIDTH_MAX);
     }
     if (sub > 0u && t->pyr.minmax_levels == 0u) {
         return ft_fail(err, FT_ERR_ARG, "bintree: sub-sample levels need the terrain's pyramids");
@@ -677,6 +802,8 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     bt->domain_z[0] = t->min_height_m;
     bt->domain_z[1] = t->max_height_m;
     bt->tiles_max = tiles_max;
+    bt->morph_width = morph_width;
+    bt->fine_m = fmin(t->cell_x_m, t->cell_y_m) / (double)(1u << sub);
 
     bt->leaf_side = bt->side_cells >> k;
     const size_t m2 = (size_t)bt->lattice_side * bt->lattice_side;
@@ -684,8 +811,9 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     int16_t *tmpl = NULL;
     ft_status st = ft_arena_take(a, FT_POOL_METHOD, m2 * sizeof(float), (void **)&bt->err_m, err);
     if (st == FT_OK) {
-        st = ft_arena_take(a, FT_POOL_METHOD, m2 * FT_BT_BOX_FLOATS * sizeof(float),
-                           (void **)&bt->box, err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, m2 * 4u * sizeof(float), (void **)&bt->dia, err);
     }
     if (st == FT_OK && sub == 0u) {
         st = ft_arena_take(a, FT_POOL_METHOD, leaves * sizeof(float), (void **)&bt->leaf_err_m,
@@ -700,6 +828,13 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
         st = ft_arena_take(a, FT_POOL_METHOD,
                            (size_t)bt->twist.atlas_w * bt->twist.atlas_h * sizeof(float),
                            (void **)&bt->twist_atlas, err);
+        bt->zblock_shift = k + 2u;
+        ft_bt_zblock_size(t->width, t->height, k, &bt->zblock_w, &bt->zblock_h);
+        if (st == FT_OK) {
+            st = ft_arena_take(a, FT_POOL_METHOD,
+                               (size_t)bt->zblock_w * bt->zblock_h * 4u * sizeof(float),
+                               (void **)&bt->zblock, err);
+        }
     }
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, (size_t)tiles_max * sizeof(ft_bt_tile),
@@ -714,11 +849,13 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     }
     ft_bt_template_corners(k, tmpl);
     for (size_t i = 0; i < m2; ++i) {
-        box_set_empty(bt->box + i * FT_BT_BOX_FLOATS);
+        bt->dia[4u * i + 1u] = FLT_MAX; /* empty height range */
+        bt->dia[4u * i + 2u] = -FLT_MAX;
     }
     build_ctx bc = {bt, tmpl, ft_bt_template_triangles(k)};
     if (sub > 0u) {
         build_twist(bt);
+        build_zblocks(bt);
     }
     for (uint32_t level = 0; level < bt->sub_level; ++level) {
         for_each_diamond(&bc, level, own_error);
@@ -728,6 +865,10 @@ ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint3
     }
     for (uint32_t level = bt->sub_level; level-- > 0u;) {
         for_each_diamond(&bc, level, saturate);
+    }
+    for (size_t i = 0; i < m2; ++i) {
+        bt->dia[4u * i] = bt->err_m[i];
+        bt->dia[4u * i + 3u] = 0.0f;
     }
     if (bt->flipped_triangles != 0u) {
         return ft_fail(err, FT_ERR_ARG,
@@ -763,7 +904,6 @@ void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull,
     v->curv_drop_per_m2 = t->curv_drop_per_m2;
     v->cull = cull;
     v->morph = morph;
-    v->split_fraction = FT_BT_SPLIT_FRACTION;
     const double tv = tan(0.5 * cam->fovy_rad);
     const double th = tv * (double)cam->width_px / (double)cam->height_px;
     for (int i = 0; i < 3; ++i) {
@@ -838,6 +978,32 @@ static double box_error_px(const ft_bt_view *v, double err_m, const float *b)
     return v->k_px * e * ft_view_offaxis_gain(v->forward, v->corner_cos, lo, hi) / sqrt(d2);
 }
 
+/* Q of an error err_m over grid box b at target tau (see bintree.h). */
+static double box_q_m(const ft_bt_view *v, double err_m, const float *b, double tau_px)
+{
+    if (!(tau_px >= 0.0) || !isfinite(tau_px)) {
+        return -INFINITY;
+    }
+    double lo[3], hi[3], d2 = 0.0;
+    box_to_m(v, b, lo, hi);
+    for (int i = 0; i < 3; ++i) {
+        double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
+        d2 += g * g;
+        lo[i] -= v->eye_m[i];
+        hi[i] -= v->eye_m[i];
+    }
+    const double l2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]);
+    const double e = err_m + 0.25 * v->curv_drop_per_m2 * l2;
+    if (!(e > 0.0)) {
+        return -INFINITY;
+    }
+    if (!(d2 > 0.0) || tau_px == 0.0) {
+        return INFINITY; /* the eye in its box, or a target of 0: split */
+    }
+    return v->k_px * e * ft_view_offaxis_gain(v->forward, v->corner_cos, lo, hi) / tau_px -
+           sqrt(d2);
+}
+
 /* 1 if the box is wholly outside one frustum side plane or behind the eye. */
 static int box_outside(const ft_bt_view *v, const double lo[3], const double hi[3])
 {
@@ -872,7 +1038,9 @@ double ft_bt_diamond_error(const ft_bintree *bt, uint32_t level, const int32_t c
 {
     if (level < bt->sub_level) {
         const size_t li = lat_index(bt, c[0] >> bt->sub, c[1] >> bt->sub);
-        memcpy(box, bt->box + li * FT_BT_BOX_FLOATS, FT_BT_BOX_FLOATS * sizeof(float));
+        closure_xy(bt, level, c, box);
+        box[4] = bt->dia[4u * li + 1u];
+        box[5] = bt->dia[4u * li + 2u];
         return (double)bt->err_m[li];
     }
     if (bt->sub == 0u) {
@@ -882,10 +1050,37 @@ double ft_bt_diamond_error(const ft_bintree *bt, uint32_t level, const int32_t c
     return ft_bt_sub_error(bt, level, c, box);
 }
 
-/* One selection at threshold thr_px (= f * tau). Returns 0 when the tiles
+uint32_t ft_bt_level_of(const ft_bintree *bt, int32_t sd, int odd)
+{
+    uint32_t l = 0;
+    while (l < FT_BT_LEVELS_MAX && (int32_t)(bt->fine_side >> (l / 2u)) > sd) {
+        l += 2u;
+    }
+    return l + (odd ? 1u : 0u);
+}
+
+double ft_bt_diamond_q(const ft_bintree *bt, const ft_bt_view *v, uint32_t level,
+                       const int32_t c[2], double tau_px, double *w_m)
+{
+    float box[FT_BT_BOX_FLOATS];
+    const double e = ft_bt_diamond_error(bt, level, c, box);
+    *w_m = morph_width_m(bt, level);
+    if (!(box[4] <= box[5])) {
+        return -INFINITY;
+    }
+    return box_q_m(v, e, box, tau_px);
+}
+
+double ft_bt_morph_weight(double q_m, double w_m)
+{
+    const double w = 2.0 * q_m / w_m + 1.0;
+    return (w > 1.0) ? 1.0 : ((w > 0.0) ? w : 0.0);
+}
+
+/* One selection at target tau_px. Returns 0 when the tiles
  * would exceed tiles_max (bt->tiles then holds a partial list). Tile
  * coordinates are fine units (2^-S cells). */
-static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt_select_stats *st)
+static int select_once(ft_bintree *bt, const ft_bt_view *v, double tau_px, ft_bt_select_stats *st)
 {
     bt_node stack[FT_BT_STACK_MAX];
     uint32_t sp = 0;
@@ -919,7 +1114,7 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
         const int leaf = (t.level >= bt->leaf_level);
         float dbox[FT_BT_BOX_FLOATS];
         const double e = ft_bt_diamond_error(bt, t.level, c, dbox);
-        if (dbox[0] > dbox[1]) {
+        if (dbox[4] > dbox[5]) {
             continue; /* no sample under it or its descendants: zero area after the clamp */
         }
         if (v->cull) {
@@ -938,7 +1133,9 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
             }
         }
         if (!leaf) {
-            if (box_error_px(v, e, dbox) > thr_px) {
+            const double q = box_q_m(v, e, dbox, tau_px);
+            const double w_m = morph_width_m(bt, t.level);
+            if (v->morph ? (q > -w_m) : (q > 0.0)) {
                 stack[sp++] = (bt_node){{c[0], c[1]},
                                         {t.right[0], t.right[1]},
                                         {t.apex[0], t.apex[1]},
@@ -991,13 +1188,12 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double thr_px, ft_bt
 void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
                        ft_bt_select_stats *st)
 {
-    const double f = v->morph ? v->split_fraction : 1.0;
     double tau = (tau_px > 0.0) ? tau_px : 0.0;
     memset(st, 0, sizeof *st);
     st->tau_target_px = tau;
     for (uint32_t i = 0; i < FT_BT_COARSEN_STEPS_MAX; ++i) {
         st->attempts = i + 1u;
-        if (select_once(bt, v, f * tau, st)) {
+        if (select_once(bt, v, tau, st)) {
             st->budget_hit = (i > 0u);
             st->tau_used_px = tau;
             st->tau_achieved_px = (st->leaf_px_max > tau) ? st->leaf_px_max : tau;
@@ -1020,7 +1216,7 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
 /* ---- geomorph rule (mirrors shaders/bintree.vert.glsl) --------------------------------- */
 
 int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
-                       int32_t c[2])
+                       int32_t c[2], uint32_t *level)
 {
     const int32_t n = (int32_t)bt->fine_side;
     if ((x | y) == 0) {
@@ -1063,6 +1259,7 @@ int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2]
     if (x > wx || y > hy || e0[0] > wx || e0[1] > hy || e1[0] > wx || e1[1] > hy) {
         return 0;
     }
+    *level = ft_bt_level_of(bt, sd, !(odd_x && odd_y));
     return 1;
 }
 
@@ -1121,8 +1318,9 @@ void ft_bt_sample_texel(const ft_bintree *bt, uint32_t gx, uint32_t gy, float ou
     const double n[3] = {-dhx / len, -dhy / len, 1.0 / len};
     out[3] = ft_bt_pack_normal(n);
     int32_t e0[2], e1[2], c[2];
+    uint32_t level;
     const int32_t x = (int32_t)(gx << bt->sub), y = (int32_t)(gy << bt->sub);
-    if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c)) {
+    if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c, &level)) {
         return;
     }
     /* a sample's inserting diamond lies on the table lattice (its square side

@@ -24,8 +24,8 @@
  *   err_m[c]  saturated object-space error: max of the exact template error
  *             of the diamond's triangles and err_m of its child diamonds
  *             (the midpoints of its triangles' legs).
- *   box[c]    nested bounds: bbox (grid x, y; heights z) of the diamond's
- *             samples, united with its child diamonds' boxes.
+ *   dia[c]    (err_m[c], z0, z1, 0): its height range (see Boxes below;
+ *             the box's xy is a closed form), the geomorph's texel.
  * Level-L (leaf) diamonds have their own table (leaf_err_m, leaf_z,
  * (N/2^k)^2 entries): nothing refines them, so their error is not a split
  * criterion but what the frame achieves where one is drawn.
@@ -38,12 +38,33 @@
  * or along the triangle's edges, where between two cell lines the
  * difference is a quadratic (ends and one stationary point). Along a cell
  * diagonal this is the classic |D| / 4 of a cell split into two triangles.
- * Selection: diamond c is active iff err_m[c] > 0 and
- *   K * err_m[c] > f * tau * dist(eye, box[c])
- * (K = px_per_rad_k, f = FT_BT_SPLIT_FRACTION with geomorphing, 1 without).
- * Because err_m and box are nested, a child diamond is active only if its
- * parents are, so splitting every triangle of an active diamond gives a
- * conforming bintree by construction (no forced splits). Frustum culling
+ * Boxes (the selection's and the geomorph's): a diamond of level l has
+ * square side s = N 2^S >> (l / 2) (fine units); its descendants lie in
+ * its closure, the square of half-side 1.5 s (even l, c a square's centre)
+ * or s (odd l) around c. Its box is that square widened by the margin
+ * M = 3 w s (even) or 2 w s (odd), w = bintree.morph_width, unclamped, in
+ * xy, and in z the height range under the closure widened by M in metres
+ * (M fine units x the smaller cell side / 2^S). The margins are what the
+ * geomorph's rule needs: a child's box widened by its morph width
+ * W = w s_child lies inside its parent's box (tight: 1.5 + 3w >= 0.5 + 1 +
+ * 2w + w and 1 + 2w >= 0.25 + (1.5 + 3w) / 2 + w / 2), so a parent is at
+ * least W nearer the eye than its child. Lattice diamonds keep their height
+ * range in dia[c] (the samples of their triangles united with their
+ * children's ranges widened by the child's W); diamonds below the samples
+ * take the range of the aligned 2^(k+2)-cell blocks (zblock) under their
+ * closure widened by M.
+ * Selection and geomorph: with Q = K (err + chord) gain / tau - d (metres;
+ * d the distance from the eye to the drawn box, gain the off-axis gain over
+ * it, view_scale.h), diamond c is split iff err > 0 and Q > -W (Q > 0
+ * without geomorphing), and a vertex it inserts has morph weight
+ * clamp(2 Q / W + 1, 0, 1): it starts to move at Q = -W / 2 and is at its
+ * own height from Q = 0, where the box's projected error reaches tau. A
+ * parent's Q is at least its child's + W (errors saturate, boxes nest with
+ * the gap), so while a vertex moves, the endpoints of the edge it bisects
+ * (inserted by ancestors) are at their own heights: a split never pops,
+ * and every unsplit or moving diamond projects under tau. The same Q
+ * nests the selection, so splitting every triangle of a split diamond gives
+ * a conforming bintree by construction (no forced splits). Frustum culling
  * drops whole subtrees (their edges are outside the view).
  *
  * Budget: at most tiles_max tiles. If tau needs more, tau is multiplied by
@@ -71,10 +92,6 @@
 #define FT_BT_STACK_MAX (FT_BT_LEVELS_MAX + 4u)
 #define FT_BT_TILES_MIN 2u
 #define FT_BT_TILES_MAX_LIMIT 1048576u
-/* With geomorphing a diamond splits at a fraction f of the target and its
- * new vertices morph in over the rest of the way, so the drawn surface stays
- * within tau (bintree.split_fraction, scene.h: FT_BT_SPLIT_FRACTION is the
- * default and the least, FT_BT_SPLIT_FRACTION_MAX the most). */
 #define FT_BT_COARSEN_FACTOR 1.5
 #define FT_BT_COARSEN_STEPS_MAX 40u
 #define FT_BT_BOX_FLOATS 6u /* x0, x1, y0, y1 (grid), z0, z1 (m) */
@@ -124,7 +141,9 @@ typedef struct ft_bintree {
     float domain_z[2];     /* min / max height of the grid */
     const float *heights_m;
     float *err_m; /* lattice_side^2 */
-    float *box;   /* lattice_side^2 * FT_BT_BOX_FLOATS */
+    float *dia;   /* lattice_side^2 * 4: (err_m, z0, z1, 0), the geomorph's texture */
+    double morph_width;  /* w = bintree.morph_width: W = w s fine units (see the top) */
+    double fine_m;       /* the smaller cell side / 2^S: metres per fine unit of W and M */
     uint32_t leaf_side;  /* N / 2^k: level-L diamonds a side */
     float *leaf_err_m;   /* leaf_side^2: error of the level-L diamonds (not refinable) */
     float *leaf_z;       /* leaf_side^2 * 2: their height range (the box's xy is their square) */
@@ -134,7 +153,12 @@ typedef struct ft_bintree {
      * m >= 1 at (w0, sum of the heights of levels 1..m-1). */
     ft_bt_twist_layout twist;
     float *twist_atlas; /* twist.atlas_w * twist.atlas_h */
-    const ft_terrain *terrain; /* its min/max pyramid bounds sub-sample boxes */
+    const ft_terrain *terrain;
+    /* S > 0: height range of aligned blocks of 2^zblock_shift cells
+     * (zblock_shift = k + 2: a closure below the samples spans <= 2 a side),
+     * zblock_w x zblock_h blocks, (min, max, 0, 0) each: the GPU's texture */
+    uint32_t zblock_shift, zblock_w, zblock_h;
+    float *zblock;
     uint32_t tiles_max;
     ft_bt_tile *tiles; /* tiles_max */
     uint32_t flipped_triangles; /* template triangles the padding clamp flipped (must be 0) */
@@ -152,7 +176,6 @@ typedef struct ft_bt_view {
     double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
     int cull;
     int morph;
-    double split_fraction; /* with morph: split at this x tau (FT_BT_SPLIT_FRACTION unless set) */
 } ft_bt_view;
 
 /* Smallest n with 2^n >= max(w, h) - 1. */
@@ -162,13 +185,30 @@ uint32_t ft_bt_domain_n(uint32_t w, uint32_t h);
 void ft_bintree_plan(ft_arena *a, uint32_t w, uint32_t h, uint32_t k, uint32_t sub,
                      uint32_t tiles_max);
 
+/* Height blocks below the samples (S > 0) for a w x h grid and template k. */
+void ft_bt_zblock_size(uint32_t w, uint32_t h, uint32_t k, uint32_t *bw, uint32_t *bh);
+
 /* Twist pyramid geometry for a w x h grid and template k. */
 void ft_bt_twist_layout_for(uint32_t w, uint32_t h, uint32_t k, ft_bt_twist_layout *l);
 
 /* Builds the error and bound tables (O(L * N^2)). Fails on k > n, tiles_max
- * outside FT_BT_TILES_MIN..FT_BT_TILES_MAX_LIMIT, or arena exhaustion. */
+ * outside FT_BT_TILES_MIN..FT_BT_TILES_MAX_LIMIT, morph_width outside
+ * FT_BT_MORPH_WIDTH_MIN..MAX, or arena exhaustion. */
 ft_status ft_bintree_init(ft_bintree *bt, const ft_terrain *t, uint32_t k, uint32_t sub,
-                          uint32_t tiles_max, ft_arena *a, ft_error *err);
+                          double morph_width, uint32_t tiles_max, ft_arena *a, ft_error *err);
+
+/* Level of the diamond whose square side is sd fine units; odd: a square
+ * side's midpoint (else the square's centre). */
+uint32_t ft_bt_level_of(const ft_bintree *bt, int32_t sd, int odd);
+
+/* The geomorph and split quantity of diamond c (fine units) at `level` for
+ * target tau (see the top): Q in metres (+inf when the eye is in its box,
+ * -inf when its error is 0 or tau is not finite); *w_m its morph width W. */
+double ft_bt_diamond_q(const ft_bintree *bt, const ft_bt_view *v, uint32_t level,
+                       const int32_t c[2], double tau_px, double *w_m);
+
+/* Morph weight from Q and W: clamp(2 Q / W + 1, 0, 1). */
+double ft_bt_morph_weight(double q_m, double w_m);
 
 /* The selection's error (m) and box (grid units) of the diamond with split
  * vertex c (fine units) at `level`: the tables below sub_level, the leaf
@@ -196,9 +236,10 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
 
 /* Morph endpoints and insertion diamond of grid vertex (x, y), the same rule
  * the vertex shader uses: the vertex is the midpoint of e0-e1; it appears when
- * diamond c (lattice) splits. Returns 0 when the vertex never morphs. */
+ * diamond c (fine units, level *level) splits. Returns 0 when the vertex
+ * never morphs. */
 int ft_bt_vertex_morph(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2], int32_t e1[2],
-                       int32_t c[2]);
+                       int32_t c[2], uint32_t *level);
 
 /* The one-fetch vertex table (GLES 3): per sample one RGBA32F texel with
  * what a vertex on that sample needs, so it does one texel fetch and no

@@ -8,7 +8,7 @@
 #include "core/view_scale.h"
 
 void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_target_px,
-                             int morph, double split_fraction, ft_bt_mesh_uniforms *u)
+                             int morph, ft_bt_mesh_uniforms *u)
 {
     memset(u, 0, sizeof *u);
     /* renderer.c draw_pass: the subtraction in double */
@@ -20,11 +20,10 @@ void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double t
     u->drop_per_m2 = t->curv_drop_per_m2;
     /* method_bintree.c ft_bintree_method_draw */
     const double tau = tau_target_px;
-    const double split = morph ? split_fraction * tau : tau;
     u->k_px = cam->px_per_rad_k;
-    u->split_px = split;
-    u->band_px = (tau - split > 1e-6) ? tau - split : 1e-6;
+    u->tau_px = tau;
     u->morph = (morph && isfinite(tau)) ? 1 : 0;
+    ft_bt_view_from_camera(cam, t, 0, morph, &u->view);
     for (int i = 0; i < 3; ++i) {
         u->axis[i] = cam->forward[i];
     }
@@ -103,11 +102,10 @@ static double sub_error(const ft_bintree *bt, const int32_t c[2], double sd, int
  * the vertex never morphs (the rule is ft_bt_vertex_morph's, bintree.h).
  * *closed_form: the error came from sub_error, not the table. */
 static double morph_error(const ft_bintree *bt, int32_t x, int32_t y, int32_t e0[2],
-                          int32_t e1[2], int *closed_form)
+                          int32_t e1[2], int32_t c[2], uint32_t *level, int *closed_form)
 {
-    int32_t c[2];
     *closed_form = 0;
-    if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c)) {
+    if (!ft_bt_vertex_morph(bt, x, y, e0, e1, c, level)) {
         return -1.0;
     }
     const uint32_t sh = bt->k + bt->sub; /* table lattice step 2^(k+S), fine units */
@@ -200,28 +198,40 @@ void ft_bt_mesh_vertex_of(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
     }
     out->on_sample = on_sample;
     out->err_m = -1.0;
+    out->q_m = -INFINITY;
+    out->w_m = 0.0;
+    out->q_scale_m = 0.0;
+    out->morph_span_m = 0.0;
     out->err_closed_form = 0;
 
     double w = 1.0;
     if (u->morph) {
-        int32_t e0[2], e1[2];
+        int32_t e0[2], e1[2], c[2];
+        uint32_t level = 0;
         int closed_form = 0;
-        const double err_m =
-            morph_error(bt, (int32_t)g_raw[0], (int32_t)g_raw[1], e0, e1, &closed_form);
+        const double err_m = morph_error(bt, (int32_t)g_raw[0], (int32_t)g_raw[1], e0, e1, c,
+                                         &level, &closed_form);
         if (err_m >= 0.0) {
             out->err_m = err_m;
             out->err_closed_form = closed_form;
-            double p_true[3];
-            position(u, gs, h, p_true);
-            double dist = sqrt(p_true[0] * p_true[0] + p_true[1] * p_true[1] +
-                               p_true[2] * p_true[2]);
-            dist = (dist > 1e-3) ? dist : 1e-3;
-            double cc = (p_true[0] * u->axis[0] + p_true[1] * u->axis[1] +
-                         p_true[2] * u->axis[2]) / dist;
-            cc = (cc > u->corner_cos) ? cc : u->corner_cos;
-            const double rho = u->k_px * err_m / (dist * cc * cc);
-            w = (rho - u->split_px) / u->band_px;
-            w = (w < 0.0) ? 0.0 : ((w > 1.0) ? 1.0 : w);
+            memcpy(out->e0, e0, sizeof out->e0);
+            memcpy(out->e1, e1, sizeof out->e1);
+            /* ft_morph_weight: the inserting diamond's Q over its box */
+            double w_m;
+            out->q_m = ft_bt_diamond_q(bt, &u->view, level, c, u->tau_px, &w_m);
+            w = ft_bt_morph_weight(out->q_m, w_m);
+            out->w_m = w_m;
+            float box[FT_BT_BOX_FLOATS];
+            (void)ft_bt_diamond_error(bt, level, c, box);
+            const double bx = ((double)box[1] - (double)box[0]) * u->cell_m[0];
+            const double by = ((double)box[3] - (double)box[2]) * u->cell_m[1];
+            const double bz = (box[5] >= box[4]) ? (double)box[5] - (double)box[4] : 0.0;
+            double p_now[3];
+            position(u, gs, h, p_now);
+            out->q_scale_m = (isfinite(out->q_m) ? fabs(out->q_m) : 0.0) +
+                             2.0 * (sqrt(p_now[0] * p_now[0] + p_now[1] * p_now[1] +
+                                         p_now[2] * p_now[2]) +
+                                    sqrt(bx * bx + by * by + bz * bz));
             /* a sub-sample vertex's coarse edge lies in its own cell */
             double h0, h1;
             if (on_sample) {
@@ -234,6 +244,7 @@ void ft_bt_mesh_vertex_of(const ft_bintree *bt, const ft_bt_mesh_uniforms *u,
                 h1 = bilinear(cell, cf, pe1, f);
             }
             const double mid = 0.5 * (h0 + h1);
+            out->morph_span_m = fabs(h - mid);
             h = mid * (1.0 - w) + h * w; /* mix(mid, h, w) */
         }
     }

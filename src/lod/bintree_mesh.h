@@ -50,9 +50,9 @@ typedef struct ft_bt_mesh_uniforms {
     double cell_m[2];           /* u_cell_m */
     double drop_per_m2;         /* u_earth_drop_per_m2 */
     double k_px;                /* u_bt_morph.x: K = px_per_rad_k */
-    double split_px;            /* u_bt_morph.y */
-    double band_px;             /* u_bt_morph.z: tau - split, at least 1e-6 */
+    double tau_px;              /* u_bt_morph.y: the selection's tau */
     int morph;                  /* u_bt_morph.w > 0.5 */
+    ft_bt_view view;            /* the same view as the selection's (Q, bintree.h) */
     double axis[3];             /* u_bt_axis.xyz: unit view axis */
     double corner_cos;          /* u_bt_axis.w: ft_view_corner_cos */
     int vertex_table;           /* GLES 3: a sample vertex's normal is the vertex
@@ -61,10 +61,9 @@ typedef struct ft_bt_mesh_uniforms {
 
 /* The uniforms the method sets for a frame (src/lod/method_bintree.c,
  * ft_bintree_method_draw, and the renderer's draw pass): tau_target_px is
- * the selection's target (tau_used_px), morph and split_fraction the
- * scene's bintree.morph and bintree.split_fraction. */
+ * the selection's target (tau_used_px), morph the scene's bintree.morph. */
 void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double tau_target_px,
-                             int morph, double split_fraction, ft_bt_mesh_uniforms *u);
+                             int morph, ft_bt_mesh_uniforms *u);
 
 /* One vertex as the shader outputs it. */
 typedef struct ft_bt_mesh_vertex {
@@ -75,6 +74,13 @@ typedef struct ft_bt_mesh_vertex {
     /* how it was computed (for the tests) */
     int on_sample;           /* on a sample (always with S = 0), else between samples */
     double err_m;            /* error of its inserting diamond; -1 when it does not morph */
+    double q_m;              /* that diamond's Q (bintree.h; -inf when it does not morph) */
+    int32_t e0[2], e1[2];    /* the coarse edge it bisects (fine units) when it morphs */
+    double w_m;              /* that diamond's morph width W (m) */
+    double q_scale_m;        /* the size of Q's operands (distances over the box, m): the
+                                shader's float Q is off by a few ulps of this */
+    double morph_span_m;     /* |own height - coarse height| (m): the height a unit of
+                                weight moves */
     int err_closed_form;     /* err_m from the closed form (ft_sub_error), not the table */
 } ft_bt_mesh_vertex;
 

@@ -51,7 +51,9 @@ typedef struct ft_brute {
 
 typedef struct ft_bintree_method {
     ft_bintree bt;
-    GLuint vbo, ibo, inst_vbo, err_tex;
+    GLuint vbo, ibo, inst_vbo;
+    GLuint dia_tex;                /* geomorph: per lattice diamond (err, z0, z1, 0), unit 1 */
+    GLuint zb_tex;                 /* geomorph below the samples: height blocks, unit 4 */
     GLuint twist_tex;              /* sub-sample levels: the twist atlas (unit 2) */
     GLuint vtx_tex;                /* GLES 3: the one-fetch vertex table (unit 3, RGBA32F) */
     ft_scalar_format twist_fmt;
@@ -61,8 +63,7 @@ typedef struct ft_bintree_method {
     double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
     int morph, es3;
     int vertex_table; /* GLES 3 and bintree.vertex_table: vtx_tex is used */
-    double split_fraction; /* bintree.split_fraction */
-    ft_scalar_format err_fmt;
+    double morph_width;    /* bintree.morph_width */
     uint64_t gpu_bytes;
     /* the last selection and the view it was made for */
     ft_view_key sel_view;

@@ -28,12 +28,14 @@
 #define FT_BT_VTX_STRIP_ROWS 8u
 
 /* The bintree's uniforms (shaders/bintree.vert.glsl): tile corners per draw
- * on GLES 2, the error and twist textures, the morph and view axis. */
+ * on GLES 2, the diamond, height-block and twist textures, the morph and
+ * view axis. */
 #define FT_BT_UNIFORMS(X)                                      \
     X(FT_BT_U_TILE0, "u_tile0", 1u)                           \
     X(FT_BT_U_TILE1, "u_tile1", 1u)                           \
-    X(FT_BT_U_ERR, "u_bt_err", 1u)                            \
-    X(FT_BT_U_ERR_PACK, "u_bt_err_pack", 1u)                  \
+    X(FT_BT_U_DIA, "u_bt_dia", 1u)                            \
+    X(FT_BT_U_ZB, "u_bt_zb", 1u)                              \
+    X(FT_BT_U_GAP, "u_bt_gap", 1u)                            \
     X(FT_BT_U_LATTICE, "u_bt_lattice", 1u)                    \
     X(FT_BT_U_MORPH, "u_bt_morph", 1u)                        \
     X(FT_BT_U_AXIS, "u_bt_axis", 1u)                          \
@@ -92,11 +94,12 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     m->tau_px = s->bintree_tau_px;
     m->lod_scale = 1.0;
     m->morph = s->bintree_morph;
-    m->split_fraction = s->bintree_split_fraction;
+    m->morph_width = s->bintree_morph_width;
     m->es3 = (gl->api == FT_GL_API_ES3);
     m->vertex_table = m->es3 && s->bintree_vertex_table;
     ft_status st =
-        ft_bintree_init(&m->bt, t, k, s->bintree_subsample_levels, s->bintree_tiles_max, a, err);
+        ft_bintree_init(&m->bt, t, k, s->bintree_subsample_levels, s->bintree_morph_width,
+                        s->bintree_tiles_max, a, err);
     if (st != FT_OK) {
         return st;
     }
@@ -142,17 +145,31 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
         m->gpu_bytes += bytes;
     }
-    /* Diamond errors for the geomorph: float where the context samples float
-     * textures in the vertex stage, else 24-bit fixed point over [0, max]. */
-    m->err_fmt.format = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT
-                                                    : FT_HEIGHT_FORMAT_PACKED;
-    m->err_fmt.pack_min = 0.0f;
-    m->err_fmt.pack_range = (m->bt.max_err_m > 0.0) ? (float)m->bt.max_err_m : 1.0f;
-    st = ft_gpu_upload_scalar(gl, &m->err_fmt, m->bt.err_m, m->bt.lattice_side,
-                              m->bt.lattice_side, GL_TEXTURE1, a, &m->err_tex, &m->gpu_bytes,
-                              err);
-    if (st != FT_OK) {
-        return st;
+    /* The geomorph reads each diamond's error and height range (its box,
+     * bintree.h), and below the samples the height blocks, as float RGBA
+     * texels: one fetch a diamond. */
+    if (m->morph) {
+        if (!gl->caps.has_float_textures || gl->caps.max_vertex_texture_units < 5) {
+            return ft_fail(err, FT_ERR_UNSUPPORTED,
+                           "bintree.morph needs float vertex textures on 5 units (this device: "
+                           "float %s, %d units); set bintree.morph = 0",
+                           gl->caps.has_float_textures ? "yes" : "no",
+                           gl->caps.max_vertex_texture_units);
+        }
+        const ft_texture_desc dd = {GL_TEXTURE1, m->bt.lattice_side, m->bt.lattice_side,
+                                    m->es3 ? GL_RGBA32F : GL_RGBA, GL_RGBA, GL_FLOAT,
+                                    4u * sizeof(float)};
+        ft_gpu_texture_create(gl, &dd, m->bt.dia, &m->dia_tex, &m->gpu_bytes);
+        if (m->bt.sub > 0u) {
+            const ft_texture_desc zd = {GL_TEXTURE4, m->bt.zblock_w, m->bt.zblock_h,
+                                        m->es3 ? GL_RGBA32F : GL_RGBA, GL_RGBA, GL_FLOAT,
+                                        4u * sizeof(float)};
+            ft_gpu_texture_create(gl, &zd, m->bt.zblock, &m->zb_tex, &m->gpu_bytes);
+        }
+        st = ft_gl_check(gl, "bintree diamond textures", err);
+        if (st != FT_OK) {
+            return st;
+        }
     }
     if (m->vertex_table) {
         if (gl->caps.max_vertex_texture_units < 4) {
@@ -192,7 +209,8 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
                 dmax = (d > dmax) ? d : dmax;
             }
         }
-        m->twist_fmt.format = m->err_fmt.format;
+        m->twist_fmt.format = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT
+                                                          : FT_HEIGHT_FORMAT_PACKED;
         m->twist_fmt.pack_min = 0.0f;
         m->twist_fmt.pack_range = (dmax > 0.0f) ? dmax : 1.0f;
         st = ft_gpu_upload_scalar(gl, &m->twist_fmt, m->bt.twist_atlas, tl->atlas_w, tl->atlas_h,
@@ -211,7 +229,6 @@ static void bintree_select(ft_bintree_method *m, const ft_terrain *t, const ft_c
     }
     ft_bt_view v;
     ft_bt_view_from_camera(cam, t, 1, m->morph, &v);
-    v.split_fraction = m->split_fraction;
     ft_bintree_select(&m->bt, &v, m->tau_px * m->lod_scale, &m->sel);
     for (uint32_t i = 0; i < m->sel.tiles; ++i) {
         const ft_bt_tile *tile = &m->bt.tiles[i];
@@ -240,12 +257,11 @@ static void bintree_set_lod_scale(ft_bintree_method *m, double scale)
 static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
                          const struct ft_terrain_program *p, const ft_camera *cam)
 {
-    const double tau = m->sel.tau_used_px; /* the morph band is the selection's */
-    const double split = m->morph ? m->split_fraction * tau : tau;
-    const double band = (tau - split > 1e-6) ? tau - split : 1e-6;
-    gl->Uniform1i(p->method_u[FT_BT_U_ERR], 1);
-    gl->Uniform2f(p->method_u[FT_BT_U_ERR_PACK], m->err_fmt.pack_min,
-                  m->err_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->err_fmt.pack_range : 0.0f);
+    const double tau = m->sel.tau_used_px; /* the morph is the selection's */
+    gl->Uniform1i(p->method_u[FT_BT_U_DIA], 1);
+    gl->Uniform1i(p->method_u[FT_BT_U_ZB], 4);
+    gl->Uniform4f(p->method_u[FT_BT_U_GAP], (float)m->bt.morph_width, (float)m->bt.fine_m,
+                  (float)(1u << m->bt.zblock_shift), 0.0f);
     gl->Uniform3f(p->method_u[FT_BT_U_LATTICE], (float)m->bt.step, (float)m->bt.lattice_side,
                   (float)m->bt.fine_side);
     const ft_bt_twist_layout *tl = &m->bt.twist;
@@ -264,8 +280,9 @@ static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
             gl->Uniform2f(p->method_u[FT_BT_U_TWIST_OFF + l], (float)tl->ox[l], (float)tl->oy[l]);
         }
     }
-    gl->Uniform4f(p->method_u[FT_BT_U_MORPH], (float)cam->px_per_rad_k, (float)split, (float)band,
-                  (m->morph && isfinite(tau)) ? 1.0f : 0.0f);
+    gl->Uniform4f(p->method_u[FT_BT_U_MORPH], (float)cam->px_per_rad_k,
+                  isfinite(tau) ? (float)tau : 0.0f, 0.0f,
+                  (m->morph && isfinite(tau) && tau > 0.0) ? 1.0f : 0.0f);
     gl->Uniform4f(p->method_u[FT_BT_U_AXIS], (float)cam->forward[0], (float)cam->forward[1],
                   (float)cam->forward[2], (float)ft_view_corner_cos(cam));
 }
@@ -288,8 +305,14 @@ static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
                          const ft_camera *cam, ft_method_draw_stats *st)
 {
     bintree_select(m, t, cam);
-    gl->ActiveTexture(GL_TEXTURE1);
-    gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
+    if (m->morph) {
+        gl->ActiveTexture(GL_TEXTURE1);
+        gl->BindTexture(GL_TEXTURE_2D, m->dia_tex);
+        if (m->bt.sub > 0u) {
+            gl->ActiveTexture(GL_TEXTURE4);
+            gl->BindTexture(GL_TEXTURE_2D, m->zb_tex);
+        }
+    }
     if (m->bt.sub > 0u) {
         gl->ActiveTexture(GL_TEXTURE2);
         gl->BindTexture(GL_TEXTURE_2D, m->twist_tex);
@@ -365,10 +388,11 @@ static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)
     if (m->vbo) gl->DeleteBuffers(1, &m->vbo);
     if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
     if (m->inst_vbo) gl->DeleteBuffers(1, &m->inst_vbo);
-    if (m->err_tex) gl->DeleteTextures(1, &m->err_tex);
+    if (m->dia_tex) gl->DeleteTextures(1, &m->dia_tex);
+    if (m->zb_tex) gl->DeleteTextures(1, &m->zb_tex);
     if (m->twist_tex) gl->DeleteTextures(1, &m->twist_tex);
     if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
-    m->vbo = m->ibo = m->inst_vbo = m->err_tex = m->twist_tex = m->vtx_tex = 0u;
+    m->vbo = m->ibo = m->inst_vbo = m->dia_tex = m->zb_tex = m->twist_tex = m->vtx_tex = 0u;
 }
 
 /* ---- the method table ---------------------------------------------------------- */

@@ -14,7 +14,7 @@
  * diamond c splits; its height slides from (h(e0) + h(e1)) / 2 to h(g) with
  * weight clamp(2 Q / W + 1, 0, 1), Q = K (err + chord) gain / tau - d over
  * c's box (bintree.h: d the distance from the eye to the box, gain the
- * off-axis gain over its corners), W = morph_width x c's square side. A
+ * pixels a vertical metre covers bounded over its corners, view_scale.h), W = morph_width x c's square side. A
  * parent's Q is at least its child's + W, so the endpoints of a moving
  * vertex are at their own heights: the coarse height is the drawn edge's
  * midpoint and a split never pops. Every tile that draws the vertex
@@ -69,7 +69,8 @@ uniform highp sampler2D u_bt_zb;  /* S > 0: (min, max) height of aligned blocks 
 uniform vec4 u_bt_gap;        /* (morph_width, metres per fine unit, block side in cells, 0) */
 uniform vec3 u_bt_lattice;    /* (2^k, lattice side, N 2^S: the domain in fine units) */
 uniform vec4 u_bt_morph;      /* (K px, tau px, 0, on) */
-uniform vec4 u_bt_axis;       /* (view axis (world, unit), cos of the frustum corner) */
+uniform vec3 u_bt_axis;       /* view axis (world, unit) */
+uniform vec2 u_bt_gain_cap;   /* largest A and B over the image (core/view_scale.h) */
 uniform vec4 u_bt_sub;        /* (2^S, 2^(k+S): table lattice step in fine units,
                                  twist levels, 1 if S > 0) */
 uniform sampler2D u_bt_twist; /* twist atlas (S > 0) */
@@ -267,16 +268,19 @@ vec3 ft_diamond(vec2 c, float sd, bool even_level)
     return ft_lattice_diamond(c);
 }
 
-/* cos of the angle off the view axis at corner p (relative to the eye);
- * bad: p at or behind the eye. */
-void ft_corner(vec3 p, inout float cos_min, inout bool bad)
+/* The vertical gain's factors at box corner p (relative to the eye),
+ * squared, into ab2 = (max A^2, max B^2) (src/core/view_scale.c: A Z =
+ * sqrt(|p_h|^2 - (p_x f_y - p_y f_x)^2), B = |p| / Z); bad: p at or behind
+ * the eye. */
+void ft_corner(vec3 p, inout vec2 ab2, inout bool bad)
 {
-    float len = length(p);
-    float along = dot(p, u_bt_axis.xyz);
-    if (!(len > 0.0) || !(along > 0.0)) {
+    float z = dot(p, u_bt_axis);
+    if (!(z > 0.0)) {
         bad = true;
     } else {
-        cos_min = min(cos_min, along / len);
+        float c = p.x * u_bt_axis.y - p.y * u_bt_axis.x;
+        float z2 = z * z;
+        ab2 = max(ab2, vec2(max(dot(p.xy, p.xy) - c * c, 0.0) / z2, dot(p, p) / z2));
     }
 }
 
@@ -302,18 +306,18 @@ float ft_morph_weight(vec2 c, float sd, bool even_level, vec3 d)
     if (!(dist > 0.0)) {
         return 1.0;
     }
-    float cc = u_bt_axis.w;
-    float cos_min = 1.0;
+    vec2 ab2 = vec2(0.0, 1.0);
     bool bad = false;
-    ft_corner(lo, cos_min, bad);
-    ft_corner(vec3(hi.x, lo.y, lo.z), cos_min, bad);
-    ft_corner(vec3(lo.x, hi.y, lo.z), cos_min, bad);
-    ft_corner(vec3(hi.x, hi.y, lo.z), cos_min, bad);
-    ft_corner(vec3(lo.x, lo.y, hi.z), cos_min, bad);
-    ft_corner(vec3(hi.x, lo.y, hi.z), cos_min, bad);
-    ft_corner(vec3(lo.x, hi.y, hi.z), cos_min, bad);
-    ft_corner(hi, cos_min, bad);
-    float gain = (bad || cos_min <= cc) ? 1.0 / (cc * cc) : 1.0 / (cos_min * cos_min);
+    ft_corner(lo, ab2, bad);
+    ft_corner(vec3(hi.x, lo.y, lo.z), ab2, bad);
+    ft_corner(vec3(lo.x, hi.y, lo.z), ab2, bad);
+    ft_corner(vec3(hi.x, hi.y, lo.z), ab2, bad);
+    ft_corner(vec3(lo.x, lo.y, hi.z), ab2, bad);
+    ft_corner(vec3(hi.x, lo.y, hi.z), ab2, bad);
+    ft_corner(vec3(lo.x, hi.y, hi.z), ab2, bad);
+    ft_corner(hi, ab2, bad);
+    vec2 ab = bad ? u_bt_gain_cap : min(sqrt(ab2), u_bt_gain_cap);
+    float gain = ab.x * ab.y;
     float q = u_bt_morph.x * e * gain / u_bt_morph.y - dist;
     float w_m = u_bt_gap.x * sd * u_bt_gap.y;
     return clamp(2.0 * q / w_m + 1.0, 0.0, 1.0);

@@ -329,6 +329,9 @@ static void test_watertight(const char *dem)
             ft_test_pose(42.20, 1.10, 2400.0, 60.0, -12.0, -20.0),
             ft_test_pose(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),
             ft_test_pose(42.02, 1.97, 3000.0, 225.0, -15.0, 0.0), /* near the grid corner */
+            /* about 200 m over the ground: sub-sample vertices near the eye */
+            ft_test_pose(42.30, 1.50, 1650.0, 30.0, -10.0, 0.0),
+            ft_test_pose(42.20, 1.10, 1750.0, 300.0, -8.0, 0.0),
         };
         tf_totals tot;
         memset(&tot, 0, sizeof tot);

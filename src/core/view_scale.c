@@ -1,4 +1,4 @@
-/* view_scale.c - the off-axis pixel gain (view_scale.h). */
+/* view_scale.c - the pixels a vertical metre covers (view_scale.h). */
 #include "core/view_scale.h"
 
 #include <math.h>
@@ -10,31 +10,64 @@ double ft_view_corner_cos(const ft_camera *c)
     return 1.0 / sqrt(1.0 + tx * tx + ty * ty);
 }
 
-double ft_view_offaxis_gain(const double fwd[3], double corner_cos, const double lo[3],
-                            const double hi[3])
+/* (A Z)^2 of q: |q_h|^2 - (q_x f_y - q_y f_x)^2, never negative. */
+static double a_z_sq(const double f[3], const double q[3])
 {
-    if (!(corner_cos > 0.0) || corner_cos > 1.0) {
-        corner_cos = 1e-3; /* a degenerate frustum: the largest gain pgrid allows too */
+    const double c = q[0] * f[1] - q[1] * f[0];
+    const double v = q[0] * q[0] + q[1] * q[1] - c * c;
+    return (v > 0.0) ? v : 0.0;
+}
+
+double ft_view_vertical_a(const double fwd[3], const double q[3])
+{
+    const double z = q[0] * fwd[0] + q[1] * fwd[1] + q[2] * fwd[2];
+    return sqrt(a_z_sq(fwd, q)) / z;
+}
+
+void ft_view_gain_frame_from_camera(const ft_camera *c, ft_view_gain_frame *g)
+{
+    const double ty = tan(0.5 * c->fovy_rad);
+    const double tx = ty * (double)c->width_px / (double)(c->height_px > 0u ? c->height_px : 1u);
+    double cc = ft_view_corner_cos(c);
+    if (!(cc > 0.0) || cc > 1.0) {
+        cc = 1e-3; /* a degenerate frustum: the largest gain pgrid allows too */
     }
-    const double worst = 1.0 / (corner_cos * corner_cos);
-    /* The angle off the axis is quasi-convex where it is below 90 degrees
-     * (its sublevel sets are convex cones), so over a box in front of the
-     * eye it peaks at a corner. A sub-box therefore never gets a larger gain
-     * than its box: the selection's nested boxes keep nested errors. */
-    double cos_min = 1.0;
+    g->b_cap = 1.0 / cc;
+    g->a_cap = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        g->fwd[i] = c->forward[i];
+    }
+    for (int corner = 0; corner < 4; ++corner) {
+        const double x = (corner & 1) ? tx : -tx, y = (corner & 2) ? ty : -ty;
+        const double q[3] = {c->forward[0] + x * c->right[0] + y * c->up[0],
+                             c->forward[1] + x * c->right[1] + y * c->up[1],
+                             c->forward[2] + x * c->right[2] + y * c->up[2]};
+        const double a = ft_view_vertical_a(g->fwd, q);
+        g->a_cap = (a > g->a_cap) ? a : g->a_cap;
+    }
+    if (!(g->a_cap <= g->b_cap)) {
+        g->a_cap = g->b_cap; /* A <= B everywhere; also catches a NaN */
+    }
+}
+
+double ft_view_vertical_gain(const ft_view_gain_frame *g, const double lo[3], const double hi[3])
+{
+    const double *f = g->fwd;
+    double a2_max = 0.0, b2_max = 1.0;
     for (int corner = 0; corner < 8; ++corner) {
-        const double p[3] = {(corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1],
+        const double q[3] = {(corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1],
                              (corner & 4) ? hi[2] : lo[2]};
-        const double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        const double along = p[0] * fwd[0] + p[1] * fwd[1] + p[2] * fwd[2];
-        if (!(len > 0.0) || !(along > 0.0)) {
-            return worst; /* a corner at or behind the eye: the box may hold any angle */
+        const double z = q[0] * f[0] + q[1] * f[1] + q[2] * f[2];
+        if (!(z > 0.0)) {
+            return g->a_cap * g->b_cap; /* a corner at or behind the eye: any angle */
         }
-        const double c = along / len;
-        cos_min = (c < cos_min) ? c : cos_min;
+        const double z2 = z * z;
+        const double a2 = a_z_sq(f, q) / z2;
+        const double b2 = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) / z2;
+        a2_max = (a2 > a2_max) ? a2 : a2_max;
+        b2_max = (b2 > b2_max) ? b2 : b2_max;
     }
-    if (cos_min <= corner_cos) {
-        return worst;
-    }
-    return 1.0 / (cos_min * cos_min);
+    const double a = fmin(sqrt(a2_max), g->a_cap);
+    const double b = fmin(sqrt(b2_max), g->b_cap);
+    return a * b;
 }

@@ -1,31 +1,64 @@
-/* view_scale.h - how many pixels a length subtends off the view axis.
+/* view_scale.h - how many pixels a vertical metre covers, bounded over a box.
  *
- * A perspective image maps a direction at angle theta off the view axis to
- * K tan(theta) pixels from the centre (K = camera.h's px_per_rad_k), so a
- * small angle there spans K / cos^2 theta pixels radially (K / cos theta
- * across): 1.9x at the corners of a 60 deg 4:3 view, 15x at FOV 150. A
- * displacement of L metres at distance d therefore moves a point by at most
- * K L / (d cos^2 theta) pixels (to first order). The error metric measures
- * this exactly (metric.h); the methods' bounds use the same gain, bounded
- * over a box (bintree) or per fragment (pgrid), so the bounds they claim
- * are bounds of the metric. Points outside the frustum are not drawn, so
- * theta is capped at the frustum corner's angle. */
+ * Every error the methods bound is vertical: the drawn surface lies within
+ * e metres of the truth straight above or below it. A point q (relative to
+ * the eye; camera axes f forward, r right, u up, all in world coordinates)
+ * is drawn at K (q.r, q.u) / Z pixels from the image centre, Z = q.f. Moving
+ * it up by dz moves its image by
+ *
+ *   K dz / Z * |(r_z - x f_z, u_z - y f_z)|,   (x, y) = (q.r, q.u) / Z,
+ *
+ * (the derivative of the projection along world z). With Z = d cos theta
+ * (d = |q|, theta off the view axis) that is K dz G / d, G = A B:
+ *   A = |(r_z - x f_z, u_z - y f_z)|: how much of the vertical is seen
+ *       across the ray (0 looking straight down it);
+ *   B = sqrt(1 + x^2 + y^2) = 1 / cos theta: the image plane's stretch.
+ * Since (p x e)_z summed in squares over the orthonormal axes e is |q_h|^2
+ * (q_h the horizontal part of q), A Z = sqrt(|q_h|^2 - (q_x f_y - q_y f_x)^2):
+ * no cancellation near the nadir, and only the view axis is needed.
+ * A <= B (Cauchy-Schwarz, (r_z, u_z, f_z) is a unit vector), so G is at
+ * most 1 / cos^2 theta, the radial stretch an arbitrary displacement would
+ * get, and about 1 / cos theta for a level view: 1.39 instead of 1.92 at
+ * the corners of a 60 deg 4:3 view. The error metric measures the same
+ * displacement exactly (metric.h), so a bound built on G bounds the metric.
+ *
+ * Over a box in front of the eye, the image of the box is the convex hull
+ * of its corners' images, and A and B are convex in (x, y), so each peaks at
+ * a corner: G over the box <= max A x max B over the 8 corners, and a
+ * sub-box never gets more (nested boxes keep nested errors). Points outside
+ * the frustum are not drawn, so each factor is also capped at its largest
+ * over the image rectangle (a convex function: at a corner of the image);
+ * a box with a corner at or behind the eye gets the caps.
+ *
+ * The bintree bounds its boxes with G. pgrid's per-fragment rho keeps
+ * 1 / cos^2 theta (>= G): its mesh also misplaces the terrain's edge
+ * sideways, which no vertical bound covers, and its sweep test at 100 km
+ * straight down relies on the larger factor marking those pixels. */
 #ifndef FT_VIEW_SCALE_H
 #define FT_VIEW_SCALE_H
 
 #include "core/camera.h"
 
+/* What the gain needs of a camera. */
+typedef struct ft_view_gain_frame {
+    double fwd[3]; /* the view axis (world, unit) */
+    double a_cap; /* largest A over the image rectangle */
+    double b_cap; /* largest B over it: 1 / ft_view_corner_cos */
+} ft_view_gain_frame;
+
 /* Cosine of the angle between the view axis and a frustum corner ray:
  * 1 / sqrt(1 + tan^2(fovx/2) + tan^2(fovy/2)). */
 double ft_view_corner_cos(const ft_camera *c);
 
-/* Upper bound of 1 / cos^2 theta over the points of the axis-aligned box
- * [lo, hi] (relative to the eye, metres) that lie inside the frustum; fwd
- * is the unit view axis. The largest angle over the box is at one of its
- * corners (exact, and monotone: a sub-box never gets more); a box with a
- * corner at or behind the eye gets the frustum corner's gain
- * 1 / corner_cos^2. Always in [1, 1 / corner_cos^2]. */
-double ft_view_offaxis_gain(const double fwd[3], double corner_cos, const double lo_rel_m[3],
-                            const double hi_rel_m[3]);
+void ft_view_gain_frame_from_camera(const ft_camera *c, ft_view_gain_frame *g);
+
+/* A of the point q (relative to the eye, in front of it: q.f > 0). */
+double ft_view_vertical_a(const double fwd[3], const double q[3]);
+
+/* Upper bound of G = A B over the points of the axis-aligned box [lo, hi]
+ * (relative to the eye, metres) that lie inside the frustum (see the top).
+ * Always in [0, a_cap b_cap]. */
+double ft_view_vertical_gain(const ft_view_gain_frame *g, const double lo_rel_m[3],
+                             const double hi_rel_m[3]);
 
 #endif

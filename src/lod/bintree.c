@@ -900,7 +900,7 @@ void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull,
     v->cell_m[0] = t->cell_x_m;
     v->cell_m[1] = t->cell_y_m;
     v->k_px = cam->px_per_rad_k;
-    v->corner_cos = ft_view_corner_cos(cam);
+    ft_view_gain_frame_from_camera(cam, &v->gain);
     v->curv_drop_per_m2 = t->curv_drop_per_m2;
     v->cull = cull;
     v->morph = morph;
@@ -954,7 +954,7 @@ static void box_to_m(const ft_bt_view *v, const float *b, double lo[3], double h
 
 /* Screen-space size in pixels of a diamond error err_m over grid box b:
  * K (err + chord) * gain / distance, with the distance from the eye to the
- * drawn box, the off-axis gain bounded over it (view_scale.h), and the
+ * drawn box, the vertical gain bounded over it (view_scale.h), and the
  * chord k L^2 / 4 by which a straight edge of length L (at most the box's
  * xy diagonal) lies under the curved surface. */
 static double box_error_px(const ft_bt_view *v, double err_m, const float *b)
@@ -975,7 +975,7 @@ static double box_error_px(const ft_bt_view *v, double err_m, const float *b)
     if (!(d2 > 0.0)) {
         return INFINITY;
     }
-    return v->k_px * e * ft_view_offaxis_gain(v->forward, v->corner_cos, lo, hi) / sqrt(d2);
+    return v->k_px * e * ft_view_vertical_gain(&v->gain, lo, hi) / sqrt(d2);
 }
 
 /* Q of an error err_m over grid box b at target tau (see bintree.h). */
@@ -1000,7 +1000,7 @@ static double box_q_m(const ft_bt_view *v, double err_m, const float *b, double 
     if (!(d2 > 0.0) || tau_px == 0.0) {
         return INFINITY; /* the eye in its box, or a target of 0: split */
     }
-    return v->k_px * e * ft_view_offaxis_gain(v->forward, v->corner_cos, lo, hi) / tau_px -
+    return v->k_px * e * ft_view_vertical_gain(&v->gain, lo, hi) / tau_px -
            sqrt(d2);
 }
 

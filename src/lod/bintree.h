@@ -54,8 +54,8 @@
  * take the range of the aligned 2^(k+2)-cell blocks (zblock) under their
  * closure widened by M.
  * Selection and geomorph: with Q = K (err + chord) gain / tau - d (metres;
- * d the distance from the eye to the drawn box, gain the off-axis gain over
- * it, view_scale.h), diamond c is split iff err > 0 and Q > -W (Q > 0
+ * d the distance from the eye to the drawn box, gain the pixels a vertical
+ * metre covers at distance 1 bounded over it, view_scale.h), diamond c is split iff err > 0 and Q > -W (Q > 0
  * without geomorphing), and a vertex it inserts has morph weight
  * clamp(2 Q / W + 1, 0, 1): it starts to move at Q = -W / 2 and is at its
  * own height from Q = 0, where the box's projected error reaches tau. A
@@ -83,6 +83,7 @@
 #include "core/ft_status.h"
 #include "core/mem_budget.h"
 #include "core/scene.h"
+#include "core/view_scale.h"
 #include "terrain/terrain.h"
 
 #define FT_BT_N_MAX 14u /* N = 2^14: FT_GRID_SIDE_MAX = 16385 */
@@ -172,7 +173,7 @@ typedef struct ft_bt_view {
     double forward[3];
     double plane_n[4][3];  /* frustum side planes: inside iff dot(n, p - eye) >= 0 */
     double k_px;
-    double corner_cos;       /* view_scale.h: off-axis gain is capped at the corner's */
+    ft_view_gain_frame gain; /* view_scale.h: pixels a vertical metre covers */
     double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
     int cull;
     int morph;

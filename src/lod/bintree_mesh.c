@@ -24,10 +24,6 @@ void ft_bt_mesh_uniforms_for(const ft_terrain *t, const ft_camera *cam, double t
     u->tau_px = tau;
     u->morph = (morph && isfinite(tau)) ? 1 : 0;
     ft_bt_view_from_camera(cam, t, 0, morph, &u->view);
-    for (int i = 0; i < 3; ++i) {
-        u->axis[i] = cam->forward[i];
-    }
-    u->corner_cos = ft_view_corner_cos(cam);
 }
 
 /* ft_height: the coordinate (grid units) clamped into the real grid, then

@@ -52,9 +52,8 @@ typedef struct ft_bt_mesh_uniforms {
     double k_px;                /* u_bt_morph.x: K = px_per_rad_k */
     double tau_px;              /* u_bt_morph.y: the selection's tau */
     int morph;                  /* u_bt_morph.w > 0.5 */
-    ft_bt_view view;            /* the same view as the selection's (Q, bintree.h) */
-    double axis[3];             /* u_bt_axis.xyz: unit view axis */
-    double corner_cos;          /* u_bt_axis.w: ft_view_corner_cos */
+    ft_bt_view view;            /* the same view as the selection's (Q, bintree.h);
+                                   view.gain: u_bt_axis, u_bt_gain_cap */
     int vertex_table;           /* GLES 3: a sample vertex's normal is the vertex
                                    table's 12+12-bit one (ft_bt_sample_texel) */
 } ft_bt_mesh_uniforms;

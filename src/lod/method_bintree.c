@@ -28,8 +28,8 @@
 #define FT_BT_VTX_STRIP_ROWS 8u
 
 /* The bintree's uniforms (shaders/bintree.vert.glsl): tile corners per draw
- * on GLES 2, the diamond, height-block and twist textures, the morph and
- * view axis. */
+ * on GLES 2, the diamond, height-block and twist textures, the morph, the
+ * view axis and the vertical gain's caps (core/view_scale.h). */
 #define FT_BT_UNIFORMS(X)                                      \
     X(FT_BT_U_TILE0, "u_tile0", 1u)                           \
     X(FT_BT_U_TILE1, "u_tile1", 1u)                           \
@@ -39,6 +39,7 @@
     X(FT_BT_U_LATTICE, "u_bt_lattice", 1u)                    \
     X(FT_BT_U_MORPH, "u_bt_morph", 1u)                        \
     X(FT_BT_U_AXIS, "u_bt_axis", 1u)                          \
+    X(FT_BT_U_GAIN_CAP, "u_bt_gain_cap", 1u)                  \
     X(FT_BT_U_SUB, "u_bt_sub", 1u)                            \
     X(FT_BT_U_TWIST, "u_bt_twist", 1u)                        \
     X(FT_BT_U_TWIST_PACK, "u_bt_twist_pack", 1u)              \
@@ -283,8 +284,11 @@ static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
     gl->Uniform4f(p->method_u[FT_BT_U_MORPH], (float)cam->px_per_rad_k,
                   isfinite(tau) ? (float)tau : 0.0f, 0.0f,
                   (m->morph && isfinite(tau) && tau > 0.0) ? 1.0f : 0.0f);
-    gl->Uniform4f(p->method_u[FT_BT_U_AXIS], (float)cam->forward[0], (float)cam->forward[1],
-                  (float)cam->forward[2], (float)ft_view_corner_cos(cam));
+    ft_view_gain_frame gain;
+    ft_view_gain_frame_from_camera(cam, &gain);
+    gl->Uniform3f(p->method_u[FT_BT_U_AXIS], (float)gain.fwd[0], (float)gain.fwd[1],
+                  (float)gain.fwd[2]);
+    gl->Uniform2f(p->method_u[FT_BT_U_GAIN_CAP], (float)gain.a_cap, (float)gain.b_cap);
 }
 
 /* GLES 3: tiles [first, first + count) of the instance buffer, instanced. */

@@ -52,6 +52,7 @@ static const char k_scene_fmt[] =
     "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[bintree]\ntemplate_k = %u\ntiles_max = %u\ntau_px = %.3f\nmorph = %d\nsubsample_levels = %u\n"
+    "cull_back_faces = %d\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 40M\npng_bytes = 512K\n";
@@ -62,13 +63,14 @@ typedef struct setup {
     double tau;
     int metric, morph;
     uint32_t sub; /* bintree.subsample_levels */
+    int no_cull;  /* bintree.cull_back_faces = 0 */
 } setup;
 
 static void app_init(const setup *c)
 {
     char what[64];
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, c->w, c->h, c->dem,
-                   c->metric, c->k, c->tiles_max, c->tau, c->morph, c->sub);
+                   c->metric, c->k, c->tiles_max, c->tau, c->morph, c->sub, !c->no_cull);
     (void)snprintf(what, sizeof what, "%s k=%u S=%u", c->method, c->k, c->sub);
     ft_test_app_init(&g_app, g_text, what);
 }
@@ -300,7 +302,7 @@ static void test_watertight(const char *dem)
     static const uint32_t subs[] = {0, 0, 2, 1};
     for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ++ki) {
         const uint32_t k = ks[ki], sub = subs[ki];
-        setup c = {"bintree", "egl-gles3", dem, 256, 192, k, 65536, 1.0, 0, 1, sub};
+        setup c = {"bintree", "egl-gles3", dem, 256, 192, k, 65536, 1.0, 0, 1, sub, 0};
         app_init(&c);
         ft_error err;
         REQUIRE(ft_renderer_enable_capture_of(&g_app.renderer, k_capture, 3u, &err) == FT_OK);
@@ -383,7 +385,7 @@ static void test_cracks(const char *backend, const char *dem)
     uint32_t worst = 0;
     for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ++ki) {
         for (size_t ti = 0; ti < sizeof taus / sizeof taus[0]; ++ti) {
-            setup c = {"bintree", backend, dem, 320, 240, ks[ki], 65536, taus[ti], 0, 1, subs[ki]};
+            setup c = {"bintree", backend, dem, 320, 240, ks[ki], 65536, taus[ti], 0, 1, subs[ki], 0};
             app_init(&c);
             const int es2 = strcmp(backend, "egl-gles2") == 0;
             if (es2) {
@@ -430,6 +432,77 @@ static void test_cracks(const char *backend, const char *dem)
            worst);
 }
 
+/* ---- 2b. back faces ------------------------------------------------------------- */
+
+/* Culling back faces changes no pixel where the selection says they are
+ * hidden (the eye over the grid, above the drawn surface under it): every
+ * view is drawn with culling and without and the images compared; the
+ * views over the ground do cull, the one under the ground and the one off
+ * the grid do not (there a ray can meet a surface from below). A pixel may
+ * differ where a back face and the front face hiding it quantise to the
+ * same depth at the ridge line they share (GL_LESS keeps whichever came
+ * first; measured: one pixel in ten views with GLES 2's 24-bit fixed-point
+ * depth, none with 32-bit float), so at most CULL_DIFF_PX_MAX a view;
+ * culling with the wrong winding changes thousands. */
+#define CULL_VIEWS 10u
+#define CULL_DIFF_PX_MAX 4u
+static void test_back_faces(const char *backend, const char *dem)
+{
+    const ft_pose views[CULL_VIEWS] = {
+        ft_test_covered_view(0), ft_test_covered_view(2), ft_test_covered_view(3),
+        ft_test_pose(42.30, 1.50, 1650.0, 30.0, -10.0, 0.0),
+        ft_test_pose(42.20, 1.10, 1750.0, 300.0, -8.0, 0.0),
+        ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
+        ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
+        ft_test_pose(42.30, 1.50, 2600.0, 200.0, 5.0, 0.0),
+        /* under the ground (about 2300 m there) */
+        ft_test_pose(42.45, 1.60, 1500.0, 90.0, 10.0, 0.0),
+        /* north of the grid, looking back at it */
+        ft_test_pose(43.10, 1.50, 3000.0, 180.0, -10.0, 0.0),
+    };
+    const int must_cull[CULL_VIEWS] = {1, 1, 1, 1, 1, 1, 1, 1, 0, 0};
+    const size_t px = 320u * 240u;
+    uint8_t *img = malloc(CULL_VIEWS * px * 4u);
+    REQUIRE(img != NULL);
+    uint32_t culled = 0, differ_px = 0, worst_view_px = 0, wrong_flag = 0, depth_bits = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        setup c = {"bintree", backend, dem, 320, 240, 3, 65536, 1.0, 0, 1, 2, pass};
+        app_init(&c);
+        depth_bits = g_app.renderer.depth_bits;
+        for (uint32_t v = 0; v < CULL_VIEWS; ++v) {
+            ft_camera cam;
+            ft_frame_stats fs;
+            ft_test_frame(&g_app, &views[v], &cam, &fs);
+            const uint8_t *rgba = g_app.renderer.rgba;
+            if (pass == 0) {
+                memcpy(img + v * px * 4u, rgba, px * 4u);
+                culled += (uint32_t)fs.back_faces_culled;
+                if (fs.back_faces_culled != must_cull[v]) {
+                    fprintf(stderr, "back faces, view %u: culled %d, expected %d\n", v,
+                            fs.back_faces_culled, must_cull[v]);
+                    ++wrong_flag;
+                }
+            } else {
+                CHECK(fs.back_faces_culled == 0);
+                uint32_t d = 0;
+                for (size_t i = 0; i < px; ++i) {
+                    d += memcmp(rgba + 4u * i, img + (v * px + i) * 4u, 4u) != 0;
+                }
+                if (d > 0u) fprintf(stderr, "back faces, view %u: %u pixels differ\n", v, d);
+                differ_px += d;
+                worst_view_px = (d > worst_view_px) ? d : worst_view_px;
+            }
+        }
+        ft_app_shutdown(&g_app);
+    }
+    printf("back faces (%s): culled in %u of %u views, %u pixels differ from the unculled "
+           "images (at most %u a view), %u-bit depth\n", backend, culled, CULL_VIEWS, differ_px,
+           worst_view_px, depth_bits);
+    CHECK(wrong_flag == 0u);
+    CHECK(worst_view_px <= CULL_DIFF_PX_MAX);
+    free(img);
+}
+
 /* ---- 3. error bound ------------------------------------------------------------- */
 
 #define PATH_FRAMES 8
@@ -473,7 +546,7 @@ static void test_error_bound(const char *dem, uint32_t sub)
 {
     ft_error err;
     double brute_max[PATH_FRAMES];
-    setup cb = {"brute", "egl-gles3", dem, 256, 192, 3, 65536, 1.0, 1, 1, 0};
+    setup cb = {"brute", "egl-gles3", dem, 256, 192, 3, 65536, 1.0, 1, 1, 0, 0};
     app_init(&cb);
     for (int f = 0; f < PATH_FRAMES; ++f) {
         ft_camera cam;
@@ -491,7 +564,7 @@ static void test_error_bound(const char *dem, uint32_t sub)
            "in brackets):\n", PATH_FRAMES, sub);
     for (size_t ti = 0; ti < sizeof taus / sizeof taus[0]; ++ti) {
         const double tau = taus[ti];
-        setup c = {"bintree", "egl-gles3", dem, 256, 192, 3, 65536, tau, 1, 1, sub};
+        setup c = {"bintree", "egl-gles3", dem, 256, 192, 3, 65536, tau, 1, 1, sub, 0};
         app_init(&c);
         double worst_excess = -INFINITY, worst_max = 0.0;
         int held = 0, leaf_short = 0;
@@ -538,6 +611,7 @@ int main(int argc, char **argv)
     if (!ft_test_have_data(dem)) return FT_TEST_SKIP;
     if (strcmp(mode, "es2") == 0) {
         test_cracks("egl-gles2", dem);
+        test_back_faces("egl-gles2", dem);
         return ft_test_result("test_bintree_gl es2");
     }
     if (strcmp(mode, "bound-sub") == 0) {
@@ -550,6 +624,7 @@ int main(int argc, char **argv)
     }
     test_watertight(dem);
     test_cracks("egl-gles3", dem);
+    test_back_faces("egl-gles3", dem);
     test_error_bound(dem, 0u);
     return ft_test_result("test_bintree_gl es3");
 }

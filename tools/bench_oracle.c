@@ -190,8 +190,18 @@ ft_status bench_oracle_frame(bench_oracle *o, ft_renderer *r, const ft_camera *c
                             (const void *)(3u * sizeof(float)));
     gl->VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, ORACLE_STRIDE,
                             (const void *)(6u * sizeof(float)));
+    /* the same triangles in the same state: culled when the method culled */
+    const ft_bintree_method *bm = &r->method.u.bintree;
+    const int cull = bm->cull_back_faces && bm->sel.back_faces_hidden;
+    if (cull) {
+        gl->Enable(GL_CULL_FACE);
+        gl->CullFace(GL_BACK);
+    }
     if (o->index_count > 0u) {
         gl->DrawElements(GL_TRIANGLES, (GLsizei)o->index_count, GL_UNSIGNED_INT, (const void *)0);
+    }
+    if (cull) {
+        gl->Disable(GL_CULL_FACE);
     }
     restore_renderer_vao(o, r);
     const ft_status st = ft_renderer_read_rgba(r, err); /* waits for the GPU */

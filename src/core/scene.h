@@ -126,6 +126,7 @@ typedef struct ft_scene {
     double bintree_morph_width; /* bintree.morph_width */
     uint32_t bintree_subsample_levels; /* bintree.subsample_levels */
     int bintree_vertex_table;          /* bintree.vertex_table (GLES 3 only) */
+    int bintree_cull_back_faces;       /* bintree.cull_back_faces */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */
@@ -247,6 +248,9 @@ typedef struct ft_scene {
     X(bintree, vertex_table, FLAG, bintree_vertex_table, 0, 1, NULL, "1", "",                    \
       "GLES 3: a vertex on a sample reads one RGBA32F texel (16 bytes a sample of GPU memory) "  \
       "instead of 8 fetches")                                                                    \
+    X(bintree, cull_back_faces, FLAG, bintree_cull_back_faces, 0, 1, NULL, "1", "",              \
+      "cull back faces while the eye is over the grid and above the drawn surface under it "     \
+      "(they are hidden then)")                                                                  \
     X(pgm, grid_cols, U32, pgm_grid_cols, 2, 8192, NULL, "430", "vertices",                      \
       "persistent grid: vertices across the view")                                               \
     X(pgm, grid_rows, U32, pgm_grid_rows, 2, 8192, NULL, "430", "vertices",                      \

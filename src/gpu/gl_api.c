@@ -154,6 +154,7 @@ typedef void *ft_gl_voidp;
     V(CompileShader, (GLuint shader), (shader))                                                    \
     R(GLuint, CreateProgram, (void), ())                                                           \
     R(GLuint, CreateShader, (GLenum type), (type))                                                 \
+    V(CullFace, (GLenum mode), (mode))                                                             \
     V(DeleteBuffers, (GLsizei n, const GLuint *buffers), (n, buffers))                             \
     V(DeleteFramebuffers, (GLsizei n, const GLuint *framebuffers), (n, framebuffers))              \
     V(DeleteProgram, (GLuint program), (program))                                                  \

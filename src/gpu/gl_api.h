@@ -34,6 +34,7 @@
     X(PFNGLCOMPILESHADERPROC, CompileShader)                       \
     X(PFNGLCREATEPROGRAMPROC, CreateProgram)                       \
     X(PFNGLCREATESHADERPROC, CreateShader)                         \
+    X(PFNGLCULLFACEPROC, CullFace)                                 \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                       \
     X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)             \
     X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                       \

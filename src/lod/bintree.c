@@ -1185,6 +1185,69 @@ static int select_once(ft_bintree *bt, const ft_bt_view *v, double tau_px, ft_bt
     return 1;
 }
 
+/* 2x the signed area of (a, b, p), p in fine units (exact for the
+ * integer corners; p's rounding moves it by far less than a millimetre). */
+static double orient(const int32_t a[2], const int32_t b[2], const double p[2])
+{
+    return ((double)b[0] - a[0]) * (p[1] - a[1]) - ((double)b[1] - a[1]) * (p[0] - a[0]);
+}
+
+static int in_triangle(const bt_node *t, const double p[2])
+{
+    const double a = orient(t->apex, t->left, p), b = orient(t->left, t->right, p),
+                 c = orient(t->right, t->apex, p);
+    return (a >= 0.0 && b >= 0.0 && c >= 0.0) || (a <= 0.0 && b <= 0.0 && c <= 0.0);
+}
+
+/* Whether back faces are hidden: the eye over the real grid and above the
+ * drawn surface under it. A height field seen from above it is met first
+ * on its upper side along every ray: a ray that reaches a back face comes
+ * from below the surface there, so it crossed the surface downwards
+ * nearer the eye, at a point of a tile frustum culling keeps. Culling
+ * never changes which diamonds split, so the surface under the eye is
+ * the unculled selection's: walk from the root down the diamonds holding
+ * the eye's xy, splitting as the selection does at tau; the first unsplit
+ * one (or a leaf) is drawn there, and its box top bounds every height it
+ * draws (sample heights, morph midpoints, sub-sample bilinear heights;
+ * the curvature only lowers them). */
+static int back_faces_hidden(const ft_bintree *bt, const ft_bt_view *v, double tau_px)
+{
+    const double f = (double)(1u << bt->sub);
+    const double ex = v->eye_m[0] / v->cell_m[0], ey = v->eye_m[1] / v->cell_m[1];
+    if (!(ex >= 0.0 && ey >= 0.0 && ex <= (double)bt->width - 1.0 &&
+          ey <= (double)bt->height - 1.0)) {
+        return 0; /* off the grid: a ray may enter under the surface through its edge */
+    }
+    const double p[2] = {ex * f, ey * f};
+    const int32_t n = (int32_t)bt->fine_side;
+    bt_node t = {{0, n}, {0, 0}, {n, n}, 0u};
+    const bt_node t0 = {{n, 0}, {n, n}, {0, 0}, 0u};
+    if (!in_triangle(&t, p)) {
+        t = t0;
+    }
+    /* bounded: one level a step, at most leaf_level + 1 steps */
+    for (uint32_t step = 0; step <= bt->leaf_level; ++step) {
+        const int32_t c[2] = {(t.left[0] + t.right[0]) / 2, (t.left[1] + t.right[1]) / 2};
+        float dbox[FT_BT_BOX_FLOATS];
+        const double e = ft_bt_diamond_error(bt, t.level, c, dbox);
+        int split = 0;
+        if (t.level < bt->leaf_level) {
+            const double q = box_q_m(v, e, dbox, tau_px);
+            split = v->morph ? (q > -morph_width_m(bt, t.level)) : (q > 0.0);
+        }
+        if (!split) {
+            /* a centimetre over the float box top */
+            return v->eye_m[2] > (double)dbox[5] + 0.01;
+        }
+        const bt_node a = {{c[0], c[1]}, {t.right[0], t.right[1]}, {t.apex[0], t.apex[1]},
+                           t.level + 1u};
+        const bt_node b = {{c[0], c[1]}, {t.apex[0], t.apex[1]}, {t.left[0], t.left[1]},
+                           t.level + 1u};
+        t = in_triangle(&a, p) ? a : b;
+    }
+    return 0;
+}
+
 void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
                        ft_bt_select_stats *st)
 {
@@ -1197,6 +1260,7 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
             st->budget_hit = (i > 0u);
             st->tau_used_px = tau;
             st->tau_achieved_px = (st->leaf_px_max > tau) ? st->leaf_px_max : tau;
+            st->back_faces_hidden = back_faces_hidden(bt, v, tau);
             return;
         }
         tau = (tau > 0.0) ? tau * FT_BT_COARSEN_FACTOR : 1e-3;
@@ -1211,6 +1275,7 @@ void ft_bintree_select(ft_bintree *bt, const ft_bt_view *v, double tau_px,
     const double e = ft_bt_diamond_error(bt, 0u, root_c, b);
     st->tau_used_px = box_error_px(v, e, b);
     st->tau_achieved_px = st->tau_used_px;
+    st->back_faces_hidden = back_faces_hidden(bt, v, INFINITY);
 }
 
 /* ---- geomorph rule (mirrors shaders/bintree.vert.glsl) --------------------------------- */

@@ -119,6 +119,10 @@ typedef struct ft_bt_select_stats {
     double leaf_px_max;      /* largest projected error of a leaf tile drawn (0: none) */
     double tau_achieved_px;  /* the bound the drawn tiles meet: max(tau_used, leaf_px_max) */
     uint32_t level_min, level_max;
+    /* 1: the eye is over the grid and above the drawn surface there (the
+     * box top of the unsplit diamond under it), so every back face is
+     * hidden by a front face nearer on its ray and may be culled */
+    int back_faces_hidden;
 } ft_bt_select_stats;
 
 typedef struct ft_bt_twist_layout {

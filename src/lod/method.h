@@ -33,6 +33,7 @@ typedef struct ft_method_draw_stats {
                                 tile is itself over it. 0 for other methods */
     int budget_hit;          /* bintree: tau was raised to fit the tile budget;
                                 pgrid: the ray-casting budget raised gamma */
+    int back_faces_culled;   /* bintree: the eye was above the surface, back faces culled */
     /* clipmap: how far behind its cache is at this frame's draw */
     uint32_t cache_levels_behind;       /* levels whose valid box is not the wanted one */
     uint64_t cache_samples_outstanding; /* samples still to read and upload */
@@ -63,6 +64,7 @@ typedef struct ft_bintree_method {
     double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
     int morph, es3;
     int vertex_table; /* GLES 3 and bintree.vertex_table: vtx_tex is used */
+    int cull_back_faces;   /* bintree.cull_back_faces */
     double morph_width;    /* bintree.morph_width */
     uint64_t gpu_bytes;
     /* the last selection and the view it was made for */

@@ -95,6 +95,7 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     m->tau_px = s->bintree_tau_px;
     m->lod_scale = 1.0;
     m->morph = s->bintree_morph;
+    m->cull_back_faces = s->bintree_cull_back_faces;
     m->morph_width = s->bintree_morph_width;
     m->es3 = (gl->api == FT_GL_API_ES3);
     m->vertex_table = m->es3 && s->bintree_vertex_table;
@@ -341,6 +342,14 @@ static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
     gl->EnableVertexAttribArray(FT_ATTRIB_UV);
     gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     const uint32_t tiles = m->sel.tiles;
+    /* every tile keeps the roots' counter-clockwise winding seen from above
+     * (a bisection child lists its corners in its parent's turn), and GL's
+     * front faces are counter-clockwise */
+    const int cull = m->cull_back_faces && m->sel.back_faces_hidden;
+    if (cull) {
+        gl->Enable(GL_CULL_FACE);
+        gl->CullFace(GL_BACK);
+    }
     if (tiles > 0u && m->es3) {
         gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
         if (!m->uploaded) {
@@ -380,11 +389,15 @@ static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
         }
         st->draw_calls = tiles;
     }
+    if (cull) {
+        gl->Disable(GL_CULL_FACE);
+    }
     st->triangles = (uint64_t)tiles * m->triangles_per_tile;
     st->tiles = tiles;
     st->tau_achieved_px = m->sel.tau_achieved_px;
     st->tau_target_px = m->sel.tau_used_px;
     st->budget_hit = m->sel.budget_hit;
+    st->back_faces_culled = cull;
 }
 
 static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)

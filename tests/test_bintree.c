@@ -369,6 +369,45 @@ static int check_vertex_table(const ft_bintree *bt, const ft_terrain *t)
     return bad;
 }
 
+/* 2x the signed area of (a, b, p), p in fine units. */
+static double orient_fine(const int32_t a[2], const int32_t b[2], const double p[2])
+{
+    return ((double)b[0] - a[0]) * (p[1] - a[1]) - ((double)b[1] - a[1]) * (p[0] - a[0]);
+}
+
+/* The back-face rule recomputed from the selection itself: the eye over
+ * the grid and above the box top of every selected (unculled) tile that
+ * holds its xy. */
+static int back_faces_hidden_brute(const ft_bintree *bt, const ft_terrain *t,
+                                   const ft_bt_view *v, uint32_t tiles)
+{
+    const double f = (double)(1u << bt->sub);
+    const double ex = v->eye_m[0] / t->cell_x_m, ey = v->eye_m[1] / t->cell_y_m;
+    if (!(ex >= 0.0 && ey >= 0.0 && ex <= (double)t->width - 1.0 &&
+          ey <= (double)t->height - 1.0)) {
+        return 0;
+    }
+    const double p[2] = {ex * f, ey * f};
+    int found = 0;
+    double top = -INFINITY;
+    for (uint32_t i = 0; i < tiles; ++i) {
+        const ft_bt_tile *tl = &bt->tiles[i];
+        const double a = orient_fine(tl->apex, tl->left, p), b = orient_fine(tl->left, tl->right, p),
+                     c = orient_fine(tl->right, tl->apex, p);
+        if ((a >= 0.0 && b >= 0.0 && c >= 0.0) || (a <= 0.0 && b <= 0.0 && c <= 0.0)) {
+            const int32_t cc[2] = {(tl->left[0] + tl->right[0]) / 2,
+                                   (tl->left[1] + tl->right[1]) / 2};
+            float box[FT_BT_BOX_FLOATS];
+            (void)ft_bt_diamond_error(bt, tl->level, cc, box);
+            top = fmax(top, (double)box[5]);
+            found = 1;
+        }
+    }
+    return found && v->eye_m[2] > top + 0.01;
+}
+
+static int g_low_hidden, g_low_shown; /* eyes near the ground, over all cases */
+
 static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t views,
                      int exact_checks)
 {
@@ -406,6 +445,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     int leaf_tiles = 0, leaf_short = 0, bad_tjunctions = 0, bad_pop = 0;
     uint32_t moving_vertices = 0, gap_pairs = 0;
     int bad_gap = 0;
+    int bad_back = 0, hidden_views = 0;
     double dense_max_ratio = 0.0; /* largest dense error / stored error: <= 1 */
     int ratio_tiles = 0;
     for (uint32_t vi = 0; vi < views; ++vi) {
@@ -423,6 +463,10 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         CHECK(!ss.budget_hit);
         CHECK(ss.tau_used_px == tau);
         CHECK(ss.tau_achieved_px == fmax(tau, ss.leaf_px_max));
+        /* the back-face rule's walk finds the tile the selection draws under the eye */
+        const int hidden = back_faces_hidden_brute(&bt, &t, &v, ss.tiles);
+        bad_back += (hidden != ss.back_faces_hidden);
+        hidden_views += hidden;
         leaf_short += ss.leaf_px_max > tau;
         bad_conf += check_conforming(&bt, ss.tiles, edges);
         total_tiles += ss.tiles;
@@ -589,6 +633,31 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         }
         CHECK(ss.tiles <= n_nocull);
     }
+    /* the back-face rule near the ground: eyes a little under or over the
+     * sample under them, where the diamond the walk ends in decides */
+    int low_hidden = 0, low_shown = 0;
+    for (uint32_t i = 0; i < 4u * views; ++i) {
+        static const double offsets_m[] = {-30.0, 1.0, 5.0, 20.0, 80.0};
+        const double gx = urand() * (double)(t.width - 1u), gy = urand() * (double)(t.height - 1u);
+        const double ground_m = t.heights_m[(size_t)(gy + 0.5) * t.width + (size_t)(gx + 0.5)];
+        const double eye[3] = {gx * t.cell_x_m, gy * t.cell_y_m, ground_m + offsets_m[i % 5u]};
+        ft_camera cam;
+        ft_error cerr;
+        REQUIRE(ft_camera_init(&cam, eye, urand() * 6.283, -0.8 + urand(), 0.0, 1.0, 640, 480,
+                               1.0, 1e6, &cerr) == FT_OK);
+        ft_bt_view v;
+        ft_bt_view_from_camera(&cam, &t, 0, (int)(i & 1u), &v);
+        ft_bt_select_stats ss;
+        ft_bintree_select(&bt, &v, (i % 3u == 0u) ? 0.5 : 2.0, &ss);
+        const int hidden = back_faces_hidden_brute(&bt, &t, &v, ss.tiles);
+        bad_back += (hidden != ss.back_faces_hidden);
+        low_hidden += hidden;
+        low_shown += !hidden;
+    }
+    printf("  back faces near the ground: hidden for %d eyes, shown for %d\n", low_hidden,
+           low_shown);
+    g_low_hidden += low_hidden;
+    g_low_shown += low_shown;
     CHECK(check_vertex_table(&bt, &t) == 0);
     printf("  %u views: %u tiles, %u/%u template vertices morph; conformity %d, subset %d, "
            "error %d, bound %d, morph %d failures\n",
@@ -608,6 +677,9 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
     CHECK(bad_err == 0);
     CHECK(bad_bound == 0);
     CHECK(bad_morph == 0);
+    printf("  back faces hidden in %d of %u views, %d differ from the selection's own tiles\n",
+           hidden_views, views, bad_back);
+    CHECK(bad_back == 0);
     printf("  geomorph: %u vertices mid-morph, %d with an endpoint not at its own height; "
            "%u parent-child pairs, %d without the gap\n", moving_vertices, bad_pop, gap_pairs,
            bad_gap);
@@ -689,6 +761,8 @@ int main(void)
         free(mem);
         free(t.heights_m);
     }
+    /* the near-ground eyes exercised both answers */
+    CHECK(g_low_hidden > 20 && g_low_shown > 20);
     for (int i = 0; i < g_pyr_count; ++i) free(g_pyr_storage[i]);
     return g_ft_test_failures ? 1 : 0;
 }

@@ -14,10 +14,10 @@
  * diamond c splits; its height slides from (h(e0) + h(e1)) / 2 to h(g) with
  * weight clamp(2 Q / W + 1, 0, 1), Q = K (err + chord) gain / tau - d over
  * c's box (bintree.h: d the distance from the eye to the box, gain the
- * pixels a vertical metre covers bounded over its corners, view_scale.h), W = morph_width x c's square side. A
- * parent's Q is at least its child's + W, so the endpoints of a moving
- * vertex are at their own heights: the coarse height is the drawn edge's
- * midpoint and a split never pops. Every tile that draws the vertex
+ * pixels a vertical metre covers bounded over its corners, view_scale.h),
+ * W = morph_width x c's square side. A parent's Q is at least its child's
+ * + W, so the endpoints of a moving vertex are at their own heights: the
+ * coarse height is the drawn edge's midpoint and a split never pops. Every tile that draws the vertex
  * computes the same position from the same inputs: no cracks, even
  * mid-morph.
  *

@@ -18,7 +18,8 @@ static double a_z_sq(const double f[3], const double q[3])
     return (v > 0.0) ? v : 0.0;
 }
 
-double ft_view_vertical_a(const double fwd[3], const double q[3])
+/* A of the point q (relative to the eye, in front of it: q.f > 0). */
+static double vertical_a(const double fwd[3], const double q[3])
 {
     const double z = q[0] * fwd[0] + q[1] * fwd[1] + q[2] * fwd[2];
     return sqrt(a_z_sq(fwd, q)) / z;
@@ -42,7 +43,7 @@ void ft_view_gain_frame_from_camera(const ft_camera *c, ft_view_gain_frame *g)
         const double q[3] = {c->forward[0] + x * c->right[0] + y * c->up[0],
                              c->forward[1] + x * c->right[1] + y * c->up[1],
                              c->forward[2] + x * c->right[2] + y * c->up[2]};
-        const double a = ft_view_vertical_a(g->fwd, q);
+        const double a = vertical_a(g->fwd, q);
         g->a_cap = (a > g->a_cap) ? a : g->a_cap;
     }
     if (!(g->a_cap <= g->b_cap)) {

@@ -52,9 +52,6 @@ double ft_view_corner_cos(const ft_camera *c);
 
 void ft_view_gain_frame_from_camera(const ft_camera *c, ft_view_gain_frame *g);
 
-/* A of the point q (relative to the eye, in front of it: q.f > 0). */
-double ft_view_vertical_a(const double fwd[3], const double q[3]);
-
 /* Upper bound of G = A B over the points of the axis-aligned box [lo, hi]
  * (relative to the eye, metres) that lie inside the frustum (see the top).
  * Always in [0, a_cap b_cap]. */

@@ -907,7 +907,6 @@ void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull,
     const double tv = tan(0.5 * cam->fovy_rad);
     const double th = tv * (double)cam->width_px / (double)cam->height_px;
     for (int i = 0; i < 3; ++i) {
-        v->forward[i] = cam->forward[i];
         v->plane_n[0][i] = cam->forward[i] * tv - cam->up[i];    /* top */
         v->plane_n[1][i] = cam->forward[i] * tv + cam->up[i];    /* bottom */
         v->plane_n[2][i] = cam->forward[i] * th - cam->right[i]; /* right */
@@ -1008,7 +1007,7 @@ static double box_q_m(const ft_bt_view *v, double err_m, const float *b, double 
 static int box_outside(const ft_bt_view *v, const double lo[3], const double hi[3])
 {
     for (int p = 0; p < 5; ++p) {
-        const double *nrm = (p < 4) ? v->plane_n[p] : v->forward;
+        const double *nrm = (p < 4) ? v->plane_n[p] : v->gain.fwd;
         double best = 0.0;
         for (int i = 0; i < 3; ++i) {
             double c = (nrm[i] >= 0.0) ? hi[i] : lo[i];

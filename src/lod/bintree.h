@@ -55,8 +55,8 @@
  * closure widened by M.
  * Selection and geomorph: with Q = K (err + chord) gain / tau - d (metres;
  * d the distance from the eye to the drawn box, gain the pixels a vertical
- * metre covers at distance 1 bounded over it, view_scale.h), diamond c is split iff err > 0 and Q > -W (Q > 0
- * without geomorphing), and a vertex it inserts has morph weight
+ * metre covers at distance 1 bounded over it, view_scale.h), diamond c is
+ * split iff err > 0 and Q > -W (Q > 0 without geomorphing), and a vertex it inserts has morph weight
  * clamp(2 Q / W + 1, 0, 1): it starts to move at Q = -W / 2 and is at its
  * own height from Q = 0, where the box's projected error reaches tau. A
  * parent's Q is at least its child's + W (errors saturate, boxes nest with
@@ -174,10 +174,10 @@ typedef struct ft_bintree {
 typedef struct ft_bt_view {
     double eye_m[3];       /* relative to grid sample (0,0) at height 0 */
     double cell_m[2];
-    double forward[3];
     double plane_n[4][3];  /* frustum side planes: inside iff dot(n, p - eye) >= 0 */
     double k_px;
-    ft_view_gain_frame gain; /* view_scale.h: pixels a vertical metre covers */
+    ft_view_gain_frame gain; /* view_scale.h: pixels a vertical metre covers; gain.fwd the
+                                view axis (world, unit) */
     double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
     int cull;
     int morph;

@@ -6,8 +6,16 @@
  *  - the object-space error (src/lod/pgrid.h 2): delta = max(hmax - h, h - hmin)
  *    over the box of the ground points of grid points (i +- 1, j +- 1), from
  *    the min/max atlas (levels >= 2) or the heights (levels 0, 1), passed on
- *    as v_delta_m (interpolated: a convex bound of the mesh's error).
+ *    as v_delta_m (interpolated: a convex bound of the mesh's error);
+ *    with FT_PGRID_TIGHT 1 (error_bound = residual, src/lod/pgrid.h 6) the
+ *    vertex is read from the vertex pass and delta from the quad bounds.
+ * The bound is a compile-time variant, not a uniform branch: a SIMD shader
+ * core runs both sides of a branch under a mask (llvmpipe measured: the
+ * tight draws took twice as long while the relief code rode along unused).
  * The placement is shaders/pgm_grid.glsl (shared with 'pgm'). */
+#ifndef FT_PGRID_TIGHT
+#define FT_PGRID_TIGHT 0 /* the relief bound (src/lod/method_pgrid.c picks) */
+#endif
 #include "curvature.glsl"
 #include "pgm_grid.glsl"
 #include "pgrid_rows.glsl"
@@ -20,7 +28,6 @@ uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the upper (lower) envelo
 uniform highp sampler2D u_pgrid_quad; /* tight bound: e_Q per grid quad (m), src/lod/pgrid.h 6 */
 uniform highp sampler2D u_pgrid_vtx;  /* the vertex pass: (pc.xy, height, level) */
 uniform highp sampler2D u_pgrid_slope; /* ... and (dh/dgx, dh/dgy) */
-uniform float u_pgrid_tight;     /* 1: delta from u_pgrid_quad; 0: the relief bound (2) */
 
 FT_OUT_VS float v_delta_m;
 
@@ -93,21 +100,32 @@ vec2 ft_region_minmax(vec2 a, vec2 b)
  * in double: <= 0.006 m at 2000 m). */
 #define FT_PGRID_TIGHT_EPS_M(h_m) (0.005 + 4e-6 * abs(h_m))
 
+#if FT_PGRID_TIGHT
+/* Texel ij of a float target of size n (the tight variant runs on GLES 3
+ * only; the GLSL ES 1.00 form exists so the variant validates in both). */
+vec4 ft_target_texel(highp sampler2D tex, vec2 ij, vec2 n)
+{
+#if FT_ES3
+    return texelFetch(tex, ivec2(ij), 0);
+#else
+    return texture2DLod(tex, (ij + 0.5) / n, 0.0);
+#endif
+}
+
 /* src/lod/pgrid.h 6: the largest quad bound of the <= 4 quads around ij */
 float ft_tight_delta(vec2 ij, float h_m)
 {
     float d = 0.0;
-#if FT_ES3
     vec2 last = u_pgm_grid.xy - 1.0;
     for (int y = 0; y < 2; ++y) {
         for (int x = 0; x < 2; ++x) {
             vec2 q = clamp(ij - vec2(float(x), float(y)), vec2(0.0), last);
-            d = max(d, texelFetch(u_pgrid_quad, ivec2(q), 0).r);
+            d = max(d, ft_target_texel(u_pgrid_quad, q, u_pgm_grid.xy).r);
         }
     }
-#endif
     return d + FT_PGRID_TIGHT_EPS_M(h_m);
 }
+#endif
 
 void main()
 {
@@ -115,24 +133,18 @@ void main()
     vec2 pc;
     float morph;
     vec3 s;
-    if (u_pgrid_tight > 0.5) {
-        /* the vertex as the vertex pass placed it (the quad bounds were
-         * computed for exactly these positions and heights) */
-#if FT_ES3
-        vec4 v = texelFetch(u_pgrid_vtx, ivec2(ij), 0);
-        vec4 g = texelFetch(u_pgrid_slope, ivec2(ij), 0);
-        pc = v.xy;
-        morph = v.w;
-        s = vec3(v.z, g.xy);
+#if FT_PGRID_TIGHT
+    /* the vertex as the vertex pass placed it (the quad bounds were computed
+     * for exactly these positions and heights) */
+    vec4 v = ft_target_texel(u_pgrid_vtx, ij, u_pgm_grid.xy + 1.0);
+    vec4 g = ft_target_texel(u_pgrid_slope, ij, u_pgm_grid.xy + 1.0);
+    pc = v.xy;
+    morph = v.w;
+    s = vec3(v.z, g.xy);
+    v_delta_m = ft_tight_delta(ij, s.x);
+    /* the envelopes: the mesh moved up (down) by its bound encloses H */
+    s.x += u_pgrid_envelope * v_delta_m;
 #else
-        s = ft_pgm_vertex(ij, pc, morph);
-#endif
-        v_delta_m = ft_tight_delta(ij, s.x);
-        /* the envelopes: the mesh moved up (down) by its bound encloses H */
-        s.x += u_pgrid_envelope * v_delta_m;
-        ft_pgm_emit(pc, s, morph);
-        return;
-    }
     s = ft_pgm_vertex(ij, pc, morph);
     vec2 inv_cell = 1.0 / u_cell_m;
     vec2 lo = u_origin_rel_eye_m.xy;
@@ -158,5 +170,6 @@ void main()
             s.x = min(mm.x, s.x);
         }
     }
+#endif
     ft_pgm_emit(pc, s, morph);
 }

@@ -33,7 +33,6 @@
     X(FT_PGRID_U_MM_INFO, "u_pgrid_mm_info", 1u)              \
     X(FT_PGRID_U_MM_LEVELS, "u_pgrid_mm_levels", 1u)          \
     X(FT_PGRID_U_QUAD, "u_pgrid_quad", 1u)                    \
-    X(FT_PGRID_U_TIGHT, "u_pgrid_tight", 1u)                  \
     X(FT_PGRID_U_VTX, "u_pgrid_vtx", 1u)                      \
     X(FT_PGRID_U_SLOPE, "u_pgrid_slope", 1u)                  \
     X(FT_PGRID_U_MM_LEVEL, "u_pgrid_mm_level", FT_PYRAMID_LEVELS_MAX)
@@ -97,6 +96,20 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
 }
 
 /* pgrid's grid (pgrid.grid), drawn by pgm's code */
+/* The tight bound (src/lod/pgrid.h 6) is a compile-time variant of the
+ * grid's vertex shader, chosen from the scene alone so the renderer's colour
+ * and position programs and the error pass's agree: it serves ray casting on
+ * GLES 3 (the bound it tightens decides which pixels are ray cast). */
+static int pgrid_tight(const ft_scene *s, int es3)
+{
+    return s->pgrid_residual_bound && s->pgrid_ray_casting && es3;
+}
+
+static const char *pgrid_vertex_defines(const ft_scene *s, int es3)
+{
+    return pgrid_tight(s, es3) ? "#define FT_PGRID_TIGHT 1\n" : "#define FT_PGRID_TIGHT 0\n";
+}
+
 static ft_pgm_grid_desc pgm_grid(const ft_scene *s)
 {
     const ft_pgm_grid_desc g = {s->pgrid_grid_cols, s->pgrid_grid_rows, s->height_format};
@@ -412,6 +425,7 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
     gt.pack_min_m = m->mm_fmt.pack_min;
     gt.pack_range_m = m->mm_fmt.pack_range;
     const ft_terrain_program_desc errd = {.vert_name = "pgrid.vert.glsl",
+                                          .vert_defines = pgrid_vertex_defines(s, m->es3),
                                           .frag_name = "pgrid_err.frag.glsl",
                                           .method_uniforms = &k_pgrid_uniform_list};
     st = ft_terrain_program_build(gl, t, &gt, &errd, m->err_prog, err);
@@ -436,17 +450,22 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
         gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
         m->gpu_bytes += sizeof corners;
-        /* the grid's vertex shader then reads 6 textures */
-        if (s->pgrid_residual_bound && gl->caps.has_float_color_buffer &&
-            gl->caps.has_float_textures && gl->caps.max_vertex_texture_units >= 6) {
+        if (pgrid_tight(s, m->es3)) {
+            /* the grid's vertex shader then reads 6 textures, two of them
+             * float render targets */
+            if (!gl->caps.has_float_color_buffer || !gl->caps.has_float_textures ||
+                gl->caps.max_vertex_texture_units < 6) {
+                return ft_fail(err, FT_ERR_UNSUPPORTED,
+                               "pgrid.error_bound = residual needs float render targets and 6 "
+                               "vertex texture units (this context: float targets %s, %d "
+                               "units); set pgrid.error_bound = relief",
+                               gl->caps.has_float_color_buffer ? "yes" : "no",
+                               gl->caps.max_vertex_texture_units);
+            }
             st = init_tight(m, gl, t, &gt, a, err);
             if (st != FT_OK) {
                 return st;
             }
-        } else if (s->pgrid_residual_bound) {
-            (void)fprintf(stderr, "pgrid: error_bound = residual needs float render targets "
-                                  "and 6 vertex texture units, which this context lacks: "
-                                  "using the relief bound\n");
         }
     }
     if (m->ray_casting) {
@@ -502,7 +521,6 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
     gl->Uniform1i(p->method_u[FT_PGRID_U_QUAD], 5);
     gl->Uniform1i(p->method_u[FT_PGRID_U_VTX], 4);
     gl->Uniform1i(p->method_u[FT_PGRID_U_SLOPE], 7);
-    gl->Uniform1f(p->method_u[FT_PGRID_U_TIGHT], m->tight ? 1.0f : 0.0f);
 }
 
 /* The tight bound's two passes (src/lod/pgrid.h 6), before the grid is drawn:
@@ -893,6 +911,7 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
 
 const ft_method_ops ft_pgrid_ops = {
     .vertex_shader = "pgrid.vert.glsl",
+    .vertex_defines = pgrid_vertex_defines,
     .uniforms = {k_pgrid_uniforms, sizeof k_pgrid_uniforms / sizeof k_pgrid_uniforms[0]},
     .plan = pgrid_plan,
     .init = ops_init,

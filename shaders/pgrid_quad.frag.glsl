@@ -130,21 +130,22 @@ void main()
     float n = float(FT_EXACT_CELLS);
     vec2 o = max(vec2(0.0), min(floor(bmin), hi_g - n));
     if (all(greaterThanEqual(bmin, o)) && all(lessThanEqual(bmax, o + n))) {
-        float hs[FT_EXACT_SAMPLES * FT_EXACT_SAMPLES];
-        for (int y = 0; y < FT_EXACT_SAMPLES; ++y) {
-            for (int x = 0; x < FT_EXACT_SAMPLES; ++x) {
-                hs[y * FT_EXACT_SAMPLES + x] = ft_h(min(o + vec2(float(x), float(y)), hi_g));
-            }
-        }
+        /* only the window's cells and samples the quad's box touches: a SIMD
+         * core runs a loop until its last lane is done, so loops bounded by
+         * the box, not the window, make a small quad cheap (most are 1-2
+         * cells wide); the cells and samples skipped add nothing */
+        vec2 cell_lo = max(ceil(bmin) - 1.0, o);
+        vec2 cell_hi = min(min(floor(bmax), o + n - 1.0), hi_g - 1.0);
         float ex = 0.0;
         for (int y = 0; y < FT_EXACT_CELLS; ++y) {
+            float cy = cell_lo.y + float(y);
+            if (cy > cell_hi.y) break;
             for (int x = 0; x < FT_EXACT_CELLS; ++x) {
-                vec2 cc = o + vec2(float(x), float(y));
-                if (cc.x + 1.0 > hi_g.x || cc.y + 1.0 > hi_g.y) continue;
-                if (cc.x > bmax.x || cc.x + 1.0 < bmin.x || cc.y > bmax.y || cc.y + 1.0 < bmin.y) continue;
-                float h00 = hs[y * FT_EXACT_SAMPLES + x], h10 = hs[y * FT_EXACT_SAMPLES + x + 1];
-                float h01 = hs[(y + 1) * FT_EXACT_SAMPLES + x];
-                float h11 = hs[(y + 1) * FT_EXACT_SAMPLES + x + 1];
+                float cx = cell_lo.x + float(x);
+                if (cx > cell_hi.x) break;
+                vec2 cc = vec2(cx, cy);
+                float h00 = ft_h(cc), h10 = ft_h(cc + vec2(1.0, 0.0));
+                float h01 = ft_h(cc + vec2(0.0, 1.0)), h11 = ft_h(cc + 1.0);
                 /* the 5 edges of triangles 0-1-3 and 0-3-2 (the grid's order) */
                 ex = max(ex, ft_edge_in_cell(g0, g1, c0.z, c1.z, cc, h00, h10, h01, h11));
                 ex = max(ex, ft_edge_in_cell(g1, g3, c1.z, c3.z, cc, h00, h10, h01, h11));
@@ -153,11 +154,16 @@ void main()
                 ex = max(ex, ft_edge_in_cell(g0, g3, c0.z, c3.z, cc, h00, h10, h01, h11));
             }
         }
+        vec2 smp_lo = max(ceil(bmin), o);
+        vec2 smp_hi = min(min(floor(bmax), o + n), hi_g);
         for (int y = 0; y < FT_EXACT_SAMPLES; ++y) {
+            float sy = smp_lo.y + float(y);
+            if (sy > smp_hi.y) break;
             for (int x = 0; x < FT_EXACT_SAMPLES; ++x) {
-                vec2 sp = o + vec2(float(x), float(y));
-                if (sp.x > hi_g.x || sp.y > hi_g.y || any(lessThan(sp, bmin)) || any(greaterThan(sp, bmax))) continue;
-                float h = hs[y * FT_EXACT_SAMPLES + x];
+                float sx = smp_lo.x + float(x);
+                if (sx > smp_hi.x) break;
+                vec2 sp = vec2(sx, sy);
+                float h = ft_h(sp);
                 ex = max(ex, ft_sample_in_tri(sp, h, g0, g1, g3, c0.z, c1.z, c3.z));
                 ex = max(ex, ft_sample_in_tri(sp, h, g0, g3, g2, c0.z, c3.z, c2.z));
             }

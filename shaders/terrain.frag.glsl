@@ -8,6 +8,17 @@ precision mediump float;
 
 #include "frag_out.glsl"
 
+/* pgrid's picture pass also writes its error buffer (a second colour
+ * attachment, GLES 3): one draw of the grid instead of two */
+#ifndef FT_PGRID_ERR_OUT
+#define FT_PGRID_ERR_OUT 0
+#endif
+#if FT_PGRID_ERR_OUT && FT_ES3
+#include "pgrid_err_code.glsl"
+layout(location = 1) out vec4 o_pgrid_err;
+FT_IN_FS float v_delta_m;
+#endif
+
 #include "shade_relative.glsl"
 #include "shade_grid.glsl"
 #include "shade_haze.glsl"
@@ -20,4 +31,7 @@ FT_IN_FS float v_height_m;
 void main()
 {
     FT_FRAG_COLOR = ft_colour(v_height_m, v_normal, v_pos_rel_eye_m);
+#if FT_PGRID_ERR_OUT && FT_ES3
+    o_pgrid_err = ft_pgrid_err_texel(v_pos_rel_eye_m, v_delta_m);
+#endif
 }

@@ -319,11 +319,18 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
     const int es3 = gl->api == FT_GL_API_ES3;
     const ft_method_ops *ops = ft_method_ops_of(s->method);
     char frag_buf[FT_SHADE_DEFINES_MAX];
+    char colour_defines[FT_SHADE_DEFINES_MAX + FT_METHOD_COLOUR_DEFINES_MAX];
+    const int n = snprintf(colour_defines, sizeof colour_defines, "%s%s",
+                           ft_program_shade_defines(s, t, frag_buf),
+                           ft_method_colour_defines(s, es3));
+    if (n < 0 || (size_t)n >= sizeof colour_defines) {
+        return ft_fail(err, FT_ERR_ARG, "the colour shader's defines do not fit (%d bytes)", n);
+    }
     ft_terrain_program_desc d = {
         .vert_name = ft_method_vertex_shader(s->method),
         .vert_defines = ft_method_vertex_defines(s, es3),
         .frag_name = "terrain.frag.glsl",
-        .frag_defines = ft_program_shade_defines(s, t, frag_buf),
+        .frag_defines = colour_defines,
         .method_uniforms = ops != NULL ? &ops->uniforms : NULL,
     };
     const char *coarse_defines = ft_method_vertex_defines_coarse(s, es3);

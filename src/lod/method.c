@@ -62,6 +62,12 @@ const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3)
                                                            : NULL;
 }
 
+const char *ft_method_colour_defines(const ft_scene *s, int es3)
+{
+    const ft_method_ops *o = ft_method_ops_of(s->method);
+    return (o != NULL && o->colour_defines != NULL) ? o->colour_defines(s, es3) : "";
+}
+
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     const ft_method_ops *o = ft_method_ops_of(s->method);

@@ -105,7 +105,11 @@ typedef struct ft_pgrid_method {
     GLuint err_tex, err_depth, err_fbo, rc_prog, quad_vbo;
     ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
     int err_prog_built;
-    GLint u_err_k_gamma, u_err_fwd, u_err_envelope; /* err_prog's own uniforms */
+    /* GLES 3: the picture pass writes the error buffer as its second colour
+     * attachment and the envelopes (a program of their own, env_prog_built)
+     * test against the picture's depth; err_fbo and err_prog then serve a
+     * position pass of a view the picture did not see */
+    int mrt, env_prog_built;
     /* the tight bound (src/lod/pgrid.h 6; GLES 3 with ray casting): residual
      * atlas (levels >= FT_PGRID_RES_L0), the vertex pass's and quad-bound
      * pass's targets (grid-sized RGBA32F) and programs */
@@ -210,12 +214,14 @@ typedef struct ft_method_worst {
 /* One method's code behind the name the scene selects (FT_METHOD_LIST): a
  * table of entry points each method file defines. NULL entries: select
  * (nothing to select per frame), set_lod_scale (no LOD knob),
- * vertex_defines (one shader variant), vertex_defines_coarse (one program). */
+ * vertex_defines (one shader variant), vertex_defines_coarse (one program),
+ * colour_defines (the colour fragment shader as it is). */
 typedef struct ft_method_ops {
     const char *vertex_shader; /* embedded name */
     ft_uniform_list uniforms;  /* its own uniforms: ft_terrain_program.method_u */
     const char *(*vertex_defines)(const ft_scene *s, int es3);
     const char *(*vertex_defines_coarse)(const ft_scene *s, int es3);
+    const char *(*colour_defines)(const ft_scene *s, int es3);
     void (*plan)(const ft_scene *s, const ft_terrain *t, ft_arena *a);
     ft_status (*init)(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                       ft_arena *a, ft_error *err);
@@ -249,6 +255,11 @@ const char *ft_method_vertex_defines(const ft_scene *s, int es3);
  * draws those with a program of their own (bintree, GLES 3, sub-sample
  * levels and the vertex table), else NULL. */
 const char *ft_method_vertex_defines_coarse(const ft_scene *s, int es3);
+/* Lines placed before the colour pass's fragment shader (after the colour
+ * parts): what the method adds to the picture (pgrid: its error buffer as a
+ * second output), "" for nothing. */
+const char *ft_method_colour_defines(const ft_scene *s, int es3);
+#define FT_METHOD_COLOUR_DEFINES_MAX 64u
 
 /* CPU pool needs (FT_POOL_METHOD) of the scene's method. */
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);

@@ -35,6 +35,9 @@
     X(FT_PGRID_U_QUAD, "u_pgrid_quad", 1u)                    \
     X(FT_PGRID_U_VTX, "u_pgrid_vtx", 1u)                      \
     X(FT_PGRID_U_SLOPE, "u_pgrid_slope", 1u)                  \
+    X(FT_PGRID_U_ERR, "u_pgrid_err", 1u)                      \
+    X(FT_PGRID_U_FWD, "u_pgrid_fwd", 1u)                      \
+    X(FT_PGRID_U_ENVELOPE, "u_pgrid_envelope", 1u)            \
     X(FT_PGRID_U_MM_LEVEL, "u_pgrid_mm_level", FT_PYRAMID_LEVELS_MAX)
 enum { FT_PGRID_U_BEFORE_ = FT_PGM_U_COUNT - 1, FT_PGRID_UNIFORMS(FT_UNIFORM_ENUM) FT_PGRID_U_COUNT };
 static const ft_uniform_name k_pgrid_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)
@@ -56,12 +59,19 @@ typedef struct pgrid_rc_locs {
 
 typedef struct pgrid_programs {
     ft_terrain_program err; /* first: m->err_prog == &block->err */
+    /* the envelopes into the picture's framebuffer (its colour attachment 1) */
+    ft_terrain_program env;
     pgrid_rc_locs rc;
 } pgrid_programs;
 
 static pgrid_rc_locs *rc_locs(const ft_pgrid_method *m)
 {
     return &((pgrid_programs *)(void *)m->err_prog)->rc;
+}
+
+static ft_terrain_program *env_prog(const ft_pgrid_method *m)
+{
+    return &((pgrid_programs *)(void *)m->err_prog)->env;
 }
 
 static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
@@ -108,6 +118,16 @@ static int pgrid_tight(const ft_scene *s, int es3)
 static const char *pgrid_vertex_defines(const ft_scene *s, int es3)
 {
     return pgrid_tight(s, es3) ? "#define FT_PGRID_TIGHT 1\n" : "#define FT_PGRID_TIGHT 0\n";
+}
+
+/* On GLES 3 the picture pass writes the error buffer too (a second colour
+ * attachment, terrain.frag.glsl's FT_PGRID_ERR_OUT): the grid goes through
+ * the pipeline once for both, and the envelopes test against the picture's
+ * own depth. */
+static const char *pgrid_colour_defines(const ft_scene *s, int es3)
+{
+    (void)s;
+    return es3 ? "#define FT_PGRID_ERR_OUT 1\n" : "";
 }
 
 static ft_pgm_grid_desc pgm_grid(const ft_scene *s)
@@ -433,9 +453,19 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
         return st;
     }
     m->err_prog_built = 1;
-    m->u_err_k_gamma = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_err");
-    m->u_err_fwd = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_fwd");
-    m->u_err_envelope = gl->GetUniformLocation(m->err_prog->program, "u_pgrid_envelope");
+    m->mrt = m->es3;
+    if (m->mrt && m->ray_casting) {
+        const ft_terrain_program_desc envd = {.vert_name = "pgrid.vert.glsl",
+                                              .vert_defines = pgrid_vertex_defines(s, m->es3),
+                                              .frag_name = "pgrid_err.frag.glsl",
+                                              .frag_defines = "#define FT_PGRID_ERR_LOCATION 1\n",
+                                              .method_uniforms = &k_pgrid_uniform_list};
+        st = ft_terrain_program_build(gl, t, &gt, &envd, env_prog(m), err);
+        if (st != FT_OK) {
+            return st;
+        }
+        m->env_prog_built = 1;
+    }
     char frag_buf[FT_SHADE_DEFINES_MAX];
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
@@ -735,6 +765,52 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     gl->DepthFunc(GL_LESS);
 }
 
+/* The viewing camera's transform on program e (a pass pgrid draws with a
+ * program of its own). */
+static void set_pass_uniforms(const ft_gl *gl, const ft_terrain_program *e, const ft_terrain *t,
+                              const ft_camera *cam)
+{
+    gl->UniformMatrix4fv(e->u_view_proj, 1, GL_FALSE, cam->view_proj);
+    gl->Uniform3f(e->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
+                  (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
+}
+
+/* The error texel's inputs (shaders/pgrid_err_code.glsl) on program e. */
+static void set_error_uniforms(const ft_pgrid_method *m, const ft_gl *gl,
+                               const ft_terrain_program *e, const ft_camera *cam)
+{
+    gl->Uniform2f(e->method_u[FT_PGRID_U_ERR], (float)cam->px_per_rad_k, (float)m->gamma_px);
+    gl->Uniform3f(e->method_u[FT_PGRID_U_FWD], (float)cam->forward[0], (float)cam->forward[1],
+                  (float)cam->forward[2]);
+    gl->Uniform1f(e->method_u[FT_PGRID_U_ENVELOPE], 0.0f);
+}
+
+/* The upper and lower envelopes (src/lod/pgrid.h 3) with program e (in use,
+ * its uniforms set), into the bound framebuffer whose depth holds the mesh:
+ * where one lies in front of the mesh, the pixel may show a ridge the mesh's
+ * skyline missed (or, from under the ground, a surface the mesh leaves out):
+ * the pixel takes the larger code (GLES 3 MAX blending); depth writes off,
+ * the mesh's depth decides. */
+static void draw_envelopes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *e,
+                           const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    const GLint env = e->method_u[FT_PGRID_U_ENVELOPE];
+    gl->DepthMask(GL_FALSE);
+    gl->Enable(GL_BLEND);
+    gl->BlendEquation(GL_MAX);
+    for (int side = 0; side < 2; ++side) {
+        gl->Uniform1f(env, side == 0 ? 1.0f : -1.0f);
+        ft_method_draw_stats dummy;
+        memset(&dummy, 0, sizeof dummy);
+        ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
+        st->draw_calls += dummy.draw_calls;
+    }
+    gl->Disable(GL_BLEND);
+    gl->BlendEquation(GL_FUNC_ADD);
+    gl->DepthMask(GL_TRUE);
+    gl->Uniform1f(env, 0.0f);
+}
+
 static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
@@ -746,56 +822,67 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
         gl->UseProgram(p->program);
         st->draw_calls += 2u;
     }
+    const int pos_pass = (p->shade.ramp_h < 0);
+    /* the picture writes the error buffer too, into the framebuffer the
+     * caller drew into (the window's own has no second attachment) */
+    const int mrt = m->mrt && !pos_pass && fb != 0;
     /* 1. the mesh, with the pass's program (already in use) */
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
     gl->ActiveTexture(GL_TEXTURE0);
     set_grid_uniforms(m, gl, p);
+    if (mrt) {
+        set_error_uniforms(m, gl, p, cam);
+        static const GLenum errors_only[2] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+        static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, m->err_tex,
+                                 0);
+        gl->DrawBuffers(2, errors_only);
+        gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        gl->Clear(GL_COLOR_BUFFER_BIT); /* the picture was cleared by the caller */
+        gl->DrawBuffers(2, both);
+    }
     ft_pgm_method_draw(&m->pgm, gl, p, t, cam, st);
-    const int pos_pass = (p->shade.ramp_h < 0);
-    /* 2. the error buffer (the position pass reuses the colour pass's) */
-    {
+    if (mrt) {
+        /* 2. the envelopes into attachment 1 against the picture's depth */
+        if (m->ray_casting) {
+            static const GLenum errors_only[2] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+            const ft_terrain_program *e = env_prog(m);
+            gl->DrawBuffers(2, errors_only);
+            gl->UseProgram(e->program);
+            set_pass_uniforms(gl, e, t, cam);
+            set_grid_uniforms(m, gl, e);
+            set_error_uniforms(m, gl, e, cam);
+            draw_envelopes(m, gl, e, t, cam, st);
+        }
+        static const GLenum picture[1] = {GL_COLOR_ATTACHMENT0};
+        gl->DrawBuffers(1, picture);
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, 0u, 0);
+        /* 3. the decision, from the error buffer's own framebuffer */
+        gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
+        decide(m, gl, cam);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    } else if (!pos_pass || !same_decision_view(m, cam)) {
+        /* 2. the error buffer drawn on its own (GLES 2, a window's own
+         * framebuffer, a position pass of a view the picture did not see);
+         * a position pass of the picture's view reuses the picture's */
         const ft_terrain_program *e = m->err_prog;
         gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
         gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
         gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         gl->UseProgram(e->program);
-        gl->UniformMatrix4fv(e->u_view_proj, 1, GL_FALSE, cam->view_proj);
-        gl->Uniform3f(e->u_origin_rel_eye_m, (float)(t->origin_world_x_m - cam->eye_m[0]),
-                      (float)(t->origin_world_y_m - cam->eye_m[1]), (float)(0.0 - cam->eye_m[2]));
-        gl->Uniform2f(m->u_err_k_gamma, (float)cam->px_per_rad_k, (float)m->gamma_px);
-        gl->Uniform3f(m->u_err_fwd, (float)cam->forward[0], (float)cam->forward[1],
-                      (float)cam->forward[2]);
+        set_pass_uniforms(gl, e, t, cam);
         set_grid_uniforms(m, gl, e);
+        set_error_uniforms(m, gl, e, cam);
         ft_method_draw_stats dummy;
         memset(&dummy, 0, sizeof dummy);
         ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
         st->draw_calls += dummy.draw_calls;
         if (m->ray_casting) {
-            /* 2b. the upper and lower envelopes (src/lod/pgrid.h 3): where one
-             * lies in front of the mesh, the pixel may show a ridge the
-             * mesh's skyline missed (or, from under the ground, a surface
-             * the mesh leaves out): the pixel takes the larger code (GLES 3
-             * MAX blending); depth writes off, the mesh's depth decides */
-            const GLint env = m->u_err_envelope;
-            gl->DepthMask(GL_FALSE);
-            gl->Enable(GL_BLEND);
-            gl->BlendEquation(GL_MAX);
-            for (int side = 0; side < 2; ++side) {
-                gl->Uniform1f(env, side == 0 ? 1.0f : -1.0f);
-                memset(&dummy, 0, sizeof dummy);
-                ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
-                st->draw_calls += dummy.draw_calls;
-            }
-            gl->Disable(GL_BLEND);
-            gl->BlendEquation(GL_FUNC_ADD);
-            gl->DepthMask(GL_TRUE);
-            gl->Uniform1f(env, 0.0f);
+            draw_envelopes(m, gl, e, t, cam, st);
         }
-        /* 3. the decision (colour pass, or a view the colour pass did not see) */
-        if (!pos_pass || !same_decision_view(m, cam)) {
-            decide(m, gl, cam);
-        }
+        /* 3. the decision */
+        decide(m, gl, cam);
         gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
     }
     /* 4. ray casting */
@@ -825,6 +912,7 @@ static void pgrid_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     m->pack_pbo[0] = m->pack_pbo[1] = 0u;
     m->pbo_full[0] = m->pbo_full[1] = 0;
     m->late = 0;
+    if (m->env_prog_built && env_prog(m)->program) gl->DeleteProgram(env_prog(m)->program);
     if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
     if (m->vtx_prog_built && m->vtx_prog->program) gl->DeleteProgram(m->vtx_prog->program);
     if (m->quad_prog) gl->DeleteProgram(m->quad_prog);
@@ -839,7 +927,8 @@ static void pgrid_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     m->vtx_prog_built = 0;
     m->tight = 0;
     m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;
-    m->err_prog_built = 0;
+    m->err_prog_built = m->env_prog_built = 0;
+    m->mrt = 0;
 }
 
 /* ---- the method table ---------------------------------------------------------- */
@@ -871,36 +960,40 @@ static uint64_t ops_gpu_bytes(const ft_method *m)
     return m->u.pgrid.gpu_bytes + m->u.pgrid.pgm.gpu_bytes;
 }
 
-/* The grid goes through the pipeline once for the picture, once into the
- * error buffer and, with ray casting, twice more as the envelopes. With the
- * late decision a frame's ray-cast count is set from the previous frame's
- * buffer, so the first frame and one frame after an abrupt view change may
- * ray cast every pixel over gamma: the worst case is the whole image. */
+/* The grid goes through the pipeline once for the picture and the error
+ * buffer (GLES 3: one draw writes both; GLES 2: two draws) and, with ray
+ * casting, twice more as the envelopes. With the late decision a frame's
+ * ray-cast count is set from the previous frame's buffer, so the first frame
+ * and one frame after an abrupt view change may ray cast every pixel over
+ * gamma: the worst case is the whole image. */
 static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
 {
     (void)t;
     const ft_pgrid_method *g = &m->u.pgrid;
     const uint64_t grid = 2ull * (g->pgm.cols - 1u) * (g->pgm.rows - 1u);
     const uint64_t image = (uint64_t)g->w_px * g->h_px;
-    const uint64_t passes = g->ray_casting ? 4u : 2u;
+    const uint64_t picture = g->mrt ? 1u : 2u;
+    const uint64_t passes = picture + (g->ray_casting ? 2u : 0u);
+    const char *what = g->mrt ? "picture with its error buffer" : "picture, error buffer";
     /* plus 2 triangles a full-target pass: the tight bound's 2, ray casting */
     w->triangles = grid * passes + (g->tight ? 4u : 0u) + (g->ray_casting ? 2u : 0u);
     if (!g->ray_casting) {
         w->raycast_px = 0u;
-        (void)snprintf(w->rule, sizeof w->rule,
-                       "the grid drawn twice (picture, error buffer); no ray casting");
+        (void)snprintf(w->rule, sizeof w->rule, "the grid drawn %llu time(s) (%s); no ray casting",
+                       (unsigned long long)passes, what);
     } else if (g->late) {
         w->raycast_px = image;
         (void)snprintf(w->rule, sizeof w->rule,
-                       "the grid drawn 4 times (picture, error buffer, 2 envelopes); ray casting "
-                       "within pgrid.raycast_max_px = %llu but the whole image on a first or "
+                       "the grid drawn %llu times (%s, 2 envelopes); ray casting within "
+                       "pgrid.raycast_max_px = %llu but the whole image on a first or "
                        "abruptly changed view (the count is a frame late)",
-                       (unsigned long long)g->raycast_max_px);
+                       (unsigned long long)passes, what, (unsigned long long)g->raycast_max_px);
     } else {
         w->raycast_px = g->raycast_max_px < image ? g->raycast_max_px : image;
         (void)snprintf(w->rule, sizeof w->rule,
-                       "the grid drawn 4 times (picture, error buffer, 2 envelopes); ray casting "
-                       "within pgrid.raycast_max_px");
+                       "the grid drawn %llu times (%s, 2 envelopes); ray casting within "
+                       "pgrid.raycast_max_px",
+                       (unsigned long long)passes, what);
     }
 }
 
@@ -912,6 +1005,7 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
 const ft_method_ops ft_pgrid_ops = {
     .vertex_shader = "pgrid.vert.glsl",
     .vertex_defines = pgrid_vertex_defines,
+    .colour_defines = pgrid_colour_defines,
     .uniforms = {k_pgrid_uniforms, sizeof k_pgrid_uniforms / sizeof k_pgrid_uniforms[0]},
     .plan = pgrid_plan,
     .init = ops_init,

@@ -36,7 +36,8 @@
  *    perspective image stretches angles by up to 1 / cos^2 theta (radially),
  *    15x at 75 degrees off axis, so wide views (FOV 150) need the factor.
  *
- * 3. Error buffer (RGBA8, drawn with the grid): R = 1 - gamma / rho where
+ * 3. Error buffer (RGBA8, drawn with the grid; on GLES 3 the picture pass
+ *    writes it as a second colour attachment): R = 1 - gamma / rho where
  *    rho > gamma, else 0 (the normalised error), G = code(rho), an 8-bit
  *    log code rounded UP: code(rho) = ceil((log2(rho) + 8) * 255 / 16) clamped
  *    to [1, 255] for terrain, 0 for sky (clear). rho > g implies code(rho) >=

@@ -3,6 +3,11 @@ if(TARGET fixterrain)
                             ${CMAKE_BINARY_DIR}/test-out ${FT_SHARED_DATA_DIR})
   set_tests_properties(cli PROPERTIES TIMEOUT 300)
 
+  # The shipped scenes that say so set every key of the schema.
+  add_test(NAME scene_keys COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_scene_keys.sh
+                                   $<TARGET_FILE:fixterrain> ${CMAKE_SOURCE_DIR})
+  set_tests_properties(scene_keys PROPERTIES TIMEOUT 60)
+
   # The display runtime carries no tool (GDAL, bench, plotter, heap use).
   add_test(NAME runtime_split
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_runtime_split.sh $<TARGET_FILE:fixterrain>

@@ -98,6 +98,79 @@ vec3 ft_level_sample(float level, vec2 g)
     return vec3(mix(lo, up, f.y), dx, dy);
 }
 
+#ifdef FT_PGM_CLIP
+/* pgm.heights = clipmap (method_pgm.c): the levels are the clipmap cache's,
+ * every level a side x side block of the atlas u_pgm_atlas, level L at block
+ * (L mod cols, L / cols); level-L sample (a, b) is at texel (a mod side,
+ * b mod side) of its block. Coordinates stay near the eye: per level, base
+ * is the level-L sample at or below the eye, and
+ *   u_pgm_level[L] = (base mod side (xy), eye - base 2^L in level-0 samples (zw))
+ *   u_pcm_box[L]   = the resident samples, relative to base, inclusive
+ *                    (x0, y0, x1, y1); empty: x1 < x0
+ * so a point g0 level-0 samples from the eye is u = (g0 + zw) / 2^L level-L
+ * samples from base. */
+uniform vec4 u_pcm_box[FT_PGM_LEVELS];
+uniform vec4 u_pcm_clamp; /* what is drawn (data and the coarsest level), m from the eye */
+uniform vec4 u_pcm_misc;  /* (side, transition samples, levels, atlas columns) */
+
+float ft_pcm_texel(float level, vec2 i)
+{
+    vec4 lv = u_pgm_level[int(level)];
+    float side = u_pcm_misc.x;
+    vec2 block = vec2(mod(level, u_pcm_misc.w), floor(level / u_pcm_misc.w));
+    vec2 t = block * side + mod(lv.xy + i, side);
+#if FT_ES3
+    return ft_decode(texelFetch(u_pgm_atlas, ivec2(t), 0), u_pgm_atlas_pack);
+#else
+    return ft_decode(texture2DLod(u_pgm_atlas, (t + 0.5) / u_pgm_atlas_size, 0.0),
+                     u_pgm_atlas_pack);
+#endif
+}
+
+/* Level L bilinear at g0 (level-0 samples from the eye), inside its resident
+ * samples: (height, dh/dgx, dh/dgy) per level-0 sample. */
+vec3 ft_pcm_sample(float level, vec2 g0)
+{
+    float scale = exp2(level);
+    vec4 b = u_pcm_box[int(level)];
+    vec2 u = clamp((g0 + u_pgm_level[int(level)].zw) / scale, b.xy, b.zw);
+    vec2 i0 = min(floor(u), b.zw - 1.0);
+    vec2 f = u - i0;
+    float h00 = ft_pcm_texel(level, i0);
+    float h10 = ft_pcm_texel(level, i0 + vec2(1.0, 0.0));
+    float h01 = ft_pcm_texel(level, i0 + vec2(0.0, 1.0));
+    float h11 = ft_pcm_texel(level, i0 + vec2(1.0, 1.0));
+    float lo = mix(h00, h10, f.x);
+    float up = mix(h01, h11, f.x);
+    float dx = mix(h10 - h00, h11 - h01, f.y) / scale;
+    float dy = mix(h01 - h00, h11 - h10, f.x) / scale;
+    return vec3(mix(lo, up, f.y), dx, dy);
+}
+
+/* The finest level whose resident samples hold g0 one sample in from their
+ * edge, and how far into its transition band (the last transition samples
+ * before that edge) g0 is: L + t, t in [0, 1], blends to level L + 1 at the
+ * edge, so a level ends without a step; the top level when none holds it. */
+float ft_pcm_resident(vec2 g0)
+{
+    float top = u_pcm_misc.z - 1.0;
+    for (int k = 0; k < FT_PGM_LEVELS; ++k) {
+        float level = float(k);
+        if (level >= top) {
+            break;
+        }
+        vec4 b = u_pcm_box[k];
+        vec2 u = (g0 + u_pgm_level[k].zw) / exp2(level);
+        vec2 d2 = min(u - b.xy, b.zw - u) - 1.0;
+        float d = min(d2.x, d2.y);
+        if (b.z >= b.x && b.w >= b.y && d >= 0.0) {
+            return level + clamp(1.0 - d / u_pcm_misc.y, 0.0, 1.0);
+        }
+    }
+    return top;
+}
+#endif
+
 /* Image-plane height of the row at t = j / (rows - 1), whose uniform
  * placement is y: defined by the including body (pgm: y itself). */
 float ft_row_y(float t, float y);
@@ -128,6 +201,23 @@ vec3 ft_pgm_vertex(vec2 ij, out vec2 pc, out float morph)
 
     float level = 0.0;
     float w = 0.0;
+#ifdef FT_PGM_CLIP
+    /* the footprint's continuous level, raised to what is resident there */
+    vec2 pcl = clamp(p, u_pcm_clamp.xy, u_pcm_clamp.zw);
+    vec2 g0 = pcl * inv_cell;
+    float lc = (r > 1.0) ? log2(r) : 0.0;
+    lc = max(lc, ft_pcm_resident(g0));
+    float ctop = u_pcm_misc.z - 1.0;
+    level = min(floor(lc), ctop);
+    w = (level >= ctop) ? 0.0 : clamp(lc - level, 0.0, 1.0);
+    pc = pcl;
+    vec3 cs = ft_pcm_sample(level, g0);
+    if (w > 0.0) {
+        cs = mix(cs, ft_pcm_sample(level + 1.0, g0), w);
+    }
+    morph = level + w;
+    return cs;
+#else
     if (r > 1.0) {
         level = floor(log2(r));
         float span = exp2(level);
@@ -158,6 +248,7 @@ vec3 ft_pgm_vertex(vec2 ij, out vec2 pc, out float morph)
     }
     morph = level + w;
     return s;
+#endif
 }
 
 #ifndef FT_PGM_GRID_NO_IO

@@ -24,4 +24,9 @@ if(TARGET ft_app AND TARGET ft_tools AND FIXTERRAIN_WITH_METHOD_CLIPMAP
    AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_REFERENCE)
   ft_add_test(test_clip_flight SOURCES test_clip_flight.c ARGS 250 1200 LIBS ft_tools ft_app m)
   set_tests_properties(test_clip_flight PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+  # the same flight with pgm reading its heights through the cache
+  if(FIXTERRAIN_WITH_METHOD_PGM)
+    add_test(NAME test_clip_flight_pgm COMMAND test_clip_flight 250 1200 pgm)
+    set_tests_properties(test_clip_flight_pgm PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+  endif()
 endif()

@@ -30,7 +30,13 @@
  * Printed (for the README and the closing note): upload samples and bytes
  * per tick, cache time per tick, ticks behind, error of the drawn frames.
  *
- * usage: test_clip_flight [SPEED_MPS [RENDER_EVERY]] */
+ * METHOD is clipmap (geometry clipmaps) or pgm (the persistent grid with
+ * pgm.heights = clipmap: the same cache, read per vertex from an atlas);
+ * both are held to the same requirements. pgm's "coarser" rule is its own:
+ * level 0's resident samples do not hold the eye one sample in from their
+ * edge (the frame stats' cache_coarser).
+ *
+ * usage: test_clip_flight [SPEED_MPS [RENDER_EVERY [METHOD]]] */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
@@ -119,24 +125,38 @@ static uint64_t truth_vs_cache(const ft_ref_window *w, const ft_clip_cache *c, u
     return n;
 }
 
+/* pgm's rule: level 0 does not hold the eye one sample in from its
+ * resident edge. */
+static int eye_coarser(const ft_clip_levels *cl, const ft_terrain *t, const double eye_m[3])
+{
+    double ei = 0.0, ej = 0.0;
+    ft_clip_levels_eye(cl, t, eye_m, &ei, &ej);
+    const ft_clip_box *v = &cl->cache.level[0].valid;
+    return !(v->i1 > v->i0 && ei - (double)v->i0 >= 1.0 && (double)(v->i1 - 1) - ei >= 1.0 &&
+             ej - (double)v->j0 >= 1.0 && (double)(v->j1 - 1) - ej >= 1.0);
+}
+
 int main(int argc, char **argv)
 {
     const double speed_mps = argc >= 2 ? atof(argv[1]) : 250.0;
     const uint32_t render_every = argc >= 3 ? (uint32_t)atoi(argv[2]) : 1200u;
-    REQUIRE(speed_mps > 0.0 && render_every > 0u);
+    const char *method = argc >= 4 ? argv[3] : "clipmap";
+    const int pgm = strcmp(method, "pgm") == 0;
+    REQUIRE(speed_mps > 0.0 && render_every > 0u && (pgm || strcmp(method, "clipmap") == 0));
     if (!ft_test_have_data(FT_SHARED_DATA_DIR "/N41E001.hgt") ||
         !ft_test_have_data(FT_SHARED_DATA_DIR "/N42E001.hgt") || !ft_test_have_data(k_etopo)) {
         return FT_TEST_SKIP;
     }
     char db_path[512];
-    (void)snprintf(db_path, sizeof db_path, "%s/clip_flight.ftd", FT_TEST_OUT_DIR);
+    (void)snprintf(db_path, sizeof db_path, "%s/clip_flight_%s.ftd", FT_TEST_OUT_DIR, method);
     REQUIRE(build_db(db_path));
 
     (void)snprintf(g_scene, sizeof g_scene,
-                   "[scene]\nmethod = clipmap\nbackend = egl-gles3\n"
+                   "[scene]\nmethod = %s\nbackend = egl-gles3\n"
                    "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 50\n"
                    "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 2801\n"
                    "db_centre_lat_deg = 42.1\ndb_centre_lon_deg = 2.1\n"
+                   "[pgm]\nheights = clipmap\n"
                    "[clipmap]\nside = 128\nlevels = 8\nupdate_samples_max = 8192\n"
                    "updates_per_frame = 0\ntile_slots = 16\n"
                    "[gpu]\ntexture_bytes = 160M\n"
@@ -145,15 +165,19 @@ int main(int argc, char **argv)
                    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 136M\n"
                    "metric_bytes = 1M\ngpu_staging_bytes = 16M\nmethod_bytes = 4M\n"
                    "clip_bytes = 8M\n",
-                   db_path);
-    ft_test_app_init(&g_app, g_scene, "clipmap flight");
+                   method, db_path);
+    char what[64];
+    (void)snprintf(what, sizeof what, "%s flight", method);
+    ft_test_app_init(&g_app, g_scene, what);
     ft_terrain *t = &g_app.terrain;
     REQUIRE(t->db != NULL);
     ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
-    const uint64_t gpu_bytes = cm->gpu_bytes;
+    ft_clip_levels *cl = pgm ? &g_app.renderer.method.u.pgm.cl : &cm->cl;
+    REQUIRE(!pgm || g_app.renderer.method.u.pgm.clip);
+    const uint64_t gpu_bytes = cl->gpu_bytes;
     printf("cache: %u levels of %u^2 samples, %llu bytes of GPU textures; database window "
            "%u^2 samples (the scene's window)\n",
-           cm->levels, cm->side, (unsigned long long)gpu_bytes, t->width);
+           cl->levels, cl->side, (unsigned long long)gpu_bytes, t->width);
     CHECK(gpu_bytes <= GPU_CACHE_MAX_BYTES);
 
     const double deg_m = FT_EARTH_RADIUS_M * FT_RAD_PER_DEG;
@@ -177,10 +201,10 @@ int main(int argc, char **argv)
         ft_camera cam0;
         REQUIRE(ft_renderer_camera(&g_app.renderer, &p0, &cam0, &err) == FT_OK);
         ft_method_select(&g_app.renderer.method, t, &cam0);
-        REQUIRE(cm->cache.stats.levels_behind == 0u);
+        REQUIRE(cl->cache.stats.levels_behind == 0u);
         /* the high-water marks from here on are the flight's */
-        cm->cache.stats.levels_behind_max = 0u;
-        cm->cache.stats.samples_outstanding_max = 0u;
+        cl->cache.stats.levels_behind_max = 0u;
+        cl->cache.stats.samples_outstanding_max = 0u;
         /* the truth follows the eye through the database: here it overlaps
          * the scene's window, which read the same samples by the same rule */
         const ft_terrain *truth = NULL;
@@ -193,7 +217,7 @@ int main(int argc, char **argv)
                (unsigned long long)n, (unsigned long long)differ);
         CHECK(n > 0u && differ == 0u);
     }
-    uint64_t behind = 0u, coarser = 0u, samples0 = cm->cache.stats.samples_uploaded;
+    uint64_t behind = 0u, coarser = 0u, samples0 = cl->cache.stats.samples_uploaded;
     uint64_t rendered = 0u;
     uint64_t samples_max = 0u, holes = 0u, east_frames = 0u, unmeasured_frames = 0u;
     double err_max = 0.0;
@@ -207,23 +231,25 @@ int main(int argc, char **argv)
         const ft_pose p = ft_test_pose(lat, lon, ground_m + 1500.0, heading_deg, -20.0, 0.0);
         ft_camera cam;
         REQUIRE(ft_renderer_camera(&g_app.renderer, &p, &cam, &err) == FT_OK);
-        const uint64_t before = cm->cache.stats.samples_uploaded;
+        const uint64_t before = cl->cache.stats.samples_uploaded;
         const uint64_t t0 = ft_plat_monotonic_ns();
         ft_method_select(&g_app.renderer.method, t, &cam);
         ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns, t0 + SPARE_NS);
         g_tick_ms[k] = (double)(ft_plat_monotonic_ns() - t0) * 1e-6;
-        const uint64_t n = cm->cache.stats.samples_uploaded - before;
+        const uint64_t n = cl->cache.stats.samples_uploaded - before;
         samples_max = n > samples_max ? n : samples_max;
-        behind += ft_clip_finest_current(&cm->cache) > 0u;
-        {
+        behind += ft_clip_finest_current(&cl->cache) > 0u;
+        if (pgm) {
+            coarser += eye_coarser(cl, t, cam.eye_m);
+        } else {
             ft_clip_box valid[FT_CLIP_LEVELS_MAX];
-            for (uint32_t l = 0u; l < cm->levels; ++l) {
-                valid[l] = cm->cache.level[l].valid;
+            for (uint32_t l = 0u; l < cl->levels; ++l) {
+                valid[l] = cl->cache.level[l].valid;
             }
-            const int64_t lo[2] = {cm->src.data_i_lo, cm->src.data_j_lo};
-            const int64_t hi[2] = {cm->src.data_i_hi, cm->src.data_j_hi};
+            const int64_t lo[2] = {cl->src.data_i_lo, cl->src.data_j_lo};
+            const int64_t hi[2] = {cl->src.data_i_hi, cl->src.data_j_hi};
             ft_cm_layout lay;
-            ft_cm_layout_make(&lay, cm->levels, valid, lo, hi, cm->transition_samples);
+            ft_cm_layout_make(&lay, cl->levels, valid, lo, hi, cm->transition_samples);
             coarser += lay.drawn_count == 0u || lay.finest > 0u;
         }
         if (k % render_every != 0u && k != ticks) {
@@ -246,13 +272,13 @@ int main(int argc, char **argv)
                "unmeasured %llu px  levels behind %u\n",
                k, lat, lon, lon > 2.0 ? "ETOPO5" : "SRTM3 ", es.max_px, es.p999_px,
                es.only_method_px, es.only_ref_px, ref_px, (unsigned long long)fs.unmeasured_px,
-               cm->cache.stats.levels_behind);
+               cl->cache.stats.levels_behind);
     }
     qsort(g_tick_ms + 1, ticks, sizeof g_tick_ms[0], cmp_double);
     const double p50 = g_tick_ms[1u + ticks / 2u];
     const double p999 = g_tick_ms[1u + (size_t)((double)(ticks - 1u) * 0.999)];
     const double tmax = g_tick_ms[ticks];
-    const uint64_t samples = cm->cache.stats.samples_uploaded - samples0;
+    const uint64_t samples = cl->cache.stats.samples_uploaded - samples0;
     const double per_tick = (double)samples / (double)ticks;
     printf("%.1f km at %.0f m/s: %u ticks at 60 Hz, %llu frames drawn and measured\n",
            length_m / 1000.0, speed_mps, ticks, (unsigned long long)rendered);
@@ -264,8 +290,8 @@ int main(int argc, char **argv)
            "at most %llu\n",
            (unsigned long long)coarser, 100.0 * (double)coarser / (double)ticks,
            (unsigned long long)behind, 100.0 * (double)behind / (double)ticks,
-           cm->cache.stats.levels_behind_max,
-           (unsigned long long)cm->cache.stats.samples_outstanding_max);
+           cl->cache.stats.levels_behind_max,
+           (unsigned long long)cl->cache.stats.samples_outstanding_max);
     printf("drawn frames: max error %.2f px (no bound: reported), %llu over ETOPO5-only "
            "terrain, %llu with unmeasured pixels, %llu with a hole\n",
            err_max, (unsigned long long)east_frames, (unsigned long long)unmeasured_frames,
@@ -278,7 +304,7 @@ int main(int argc, char **argv)
         const double eye_j = (g_last_eye[1] - g_app.truth.t.origin_world_y_m) / t->cell_y_m;
         const double side = (double)g_app.truth.t.width;
         uint64_t differ = 0u;
-        const uint64_t n = truth_vs_cache(&g_app.truth, &cm->cache, &differ);
+        const uint64_t n = truth_vs_cache(&g_app.truth, &cl->cache, &differ);
         printf("truth at the end: %llu window reads, eye at sample (%.0f, %.0f) of %.0f^2, "
                "%llu level-0 samples shared with the cache, %llu differ\n",
                (unsigned long long)g_app.truth.loads, eye_i, eye_j, side,
@@ -286,7 +312,7 @@ int main(int argc, char **argv)
         CHECK(g_app.truth.loads > 1u);
         CHECK(eye_i >= 0.37 * side && eye_i <= 0.63 * side && eye_j >= 0.37 * side &&
               eye_j <= 0.63 * side);
-        CHECK(n >= (uint64_t)cm->side * cm->side / 2u && differ == 0u);
+        CHECK(n >= (uint64_t)cl->side * cl->side / 2u && differ == 0u);
         /* an eye far past every lattice: the truth is the floor, marked
          * missing, and it comes back; a non-finite eye is refused */
         const double far_eye[3] = {1.0e9, -1.0e9, 5000.0};
@@ -294,7 +320,7 @@ int main(int argc, char **argv)
         CHECK(ft_ref_window_follow(&g_app.truth, far_eye, &moved, &err) == FT_OK && moved);
         CHECK(g_app.truth.counts.missing_samples == side * side);
         CHECK(ft_ref_window_follow(&g_app.truth, g_last_eye, &moved, &err) == FT_OK && moved);
-        CHECK(truth_vs_cache(&g_app.truth, &cm->cache, &differ) == n && differ == 0u);
+        CHECK(truth_vs_cache(&g_app.truth, &cl->cache, &differ) == n && differ == 0u);
         const double nan_eye[3] = {NAN, 0.0, 0.0};
         CHECK(ft_ref_window_follow(&g_app.truth, nan_eye, &moved, &err) != FT_OK && !moved);
         printf("truth far past the lattice: %llu samples at the floor; back at the end: the "
@@ -312,7 +338,7 @@ int main(int argc, char **argv)
         ft_camera cj;
         REQUIRE(ft_renderer_camera(&g_app.renderer, &pj, &cj, &err) == FT_OK);
         ft_method_select(&g_app.renderer.method, t, &cj);
-        REQUIRE(cm->cache.stats.levels_behind > 0u && cm->update_ns_max > 0u);
+        REQUIRE(cl->cache.stats.levels_behind > 0u && cl->update_ns_max > 0u);
         /* a frame drawn now says how far behind the cache is */
         ft_frame_stats fj;
         ft_test_frame(&g_app, &pj, &cj, &fj);
@@ -321,33 +347,33 @@ int main(int argc, char **argv)
                "level first\n",
                fj.cache_levels_behind, (unsigned long long)fj.cache_samples_outstanding,
                fj.cache_coarser, fj.cache_forced_updates);
-        CHECK(ft_clip_level_current(&cm->cache, cm->levels - 1u));
-        CHECK(fj.cache_levels_behind == cm->cache.stats.levels_behind &&
+        CHECK(ft_clip_level_current(&cl->cache, cl->levels - 1u));
+        CHECK(fj.cache_levels_behind == cl->cache.stats.levels_behind &&
               fj.cache_levels_behind > 0u);
-        CHECK(fj.cache_samples_outstanding == cm->cache.stats.samples_outstanding &&
+        CHECK(fj.cache_samples_outstanding == cl->cache.stats.samples_outstanding &&
               fj.cache_samples_outstanding > 0u);
         CHECK(fj.cache_coarser == 1);
-        const uint64_t before = cm->spare_updates;
+        const uint64_t before = cl->spare_updates;
         ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns, ft_plat_monotonic_ns());
-        CHECK(cm->spare_updates == before);
+        CHECK(cl->spare_updates == before);
         /* The declared cost is the slowest update seen, which a busy
          * machine can make many times a typical one (2.7 ms against 0.1 ms
          * measured): declared here as 1 ms, the budget 1.5 ms runs updates
          * while their declared cost fits, some 0.5 ms of them, far from the
          * 94,656 samples outstanding; the loop raises the declaration again
          * if one of them is slower. */
-        cm->update_ns_max = 1000000u;
+        cl->update_ns_max = 1000000u;
         const uint64_t budget_ns = 1500000u;
         const uint64_t t0 = ft_plat_monotonic_ns();
         ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns, t0 + budget_ns);
         const uint64_t spent_ns = ft_plat_monotonic_ns() - t0;
         printf("spare time after a jump: %llu updates in %.3f ms of %.3f ms given (declared "
                "cost %.3f ms an update), %u levels still behind\n",
-               (unsigned long long)(cm->spare_updates - before), (double)spent_ns * 1e-6,
-               (double)budget_ns * 1e-6, (double)cm->update_ns_max * 1e-6,
-               cm->cache.stats.levels_behind);
-        CHECK(cm->spare_updates > before);
-        CHECK(cm->cache.stats.levels_behind > 0u); /* the rest waits for later frames */
+               (unsigned long long)(cl->spare_updates - before), (double)spent_ns * 1e-6,
+               (double)budget_ns * 1e-6, (double)cl->update_ns_max * 1e-6,
+               cl->cache.stats.levels_behind);
+        CHECK(cl->spare_updates > before);
+        CHECK(cl->cache.stats.levels_behind > 0u); /* the rest waits for later frames */
     }
     CHECK(holes == 0u);
     CHECK(p999 <= CACHE_P999_MAX_MS);
@@ -355,5 +381,5 @@ int main(int argc, char **argv)
     CHECK(east_frames > 0u && unmeasured_frames > 0u);
     CHECK(rendered >= 10u);
     ft_app_shutdown(&g_app);
-    return ft_test_result("clipmap flight");
+    return ft_test_result(what);
 }

@@ -52,6 +52,7 @@ static const char k_scene_fmt[] =
     "[terrain]\ndem = %s\n"
     "[gpu]\nheight_format = %s\ntexture_bytes = 64M\n[metric]\nenabled = 0\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
+    "[pgm]\nheights = clipmap\n"
     "[clipmap]\nside = %u\nlevels = %u\nupdate_samples_max = 4096\nupdates_per_frame = %u\n"
     "transition_samples = 12\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
@@ -102,6 +103,14 @@ static int near_edge(const uint8_t *m, int x, int y, int r)
     return 0;
 }
 
+/* The cache of the method under test: clipmap's, or pgm's (pgm.heights =
+ * clipmap reads the same cache, per vertex, from an atlas). */
+static const ft_clip_levels *levels_of(const char *method)
+{
+    const ft_method *m = &g_app.renderer.method;
+    return strcmp(method, "pgm") == 0 ? &m->u.pgm.cl : &m->u.clipmap.cl;
+}
+
 static void render(const ft_pose *p)
 {
     ft_camera cam;
@@ -121,10 +130,11 @@ static void brute_masks(const char *backend, const char *dem)
     ft_app_shutdown(&g_app);
 }
 
-static void coverage(const char *backend, const char *dem, const char *format)
+static void coverage(const char *method, const char *backend, const char *dem,
+                     const char *format)
 {
     static uint8_t mask[W_PX * H_PX];
-    app_init("clipmap", backend, dem, format, 256u, 5u, 8u);
+    app_init(method, backend, dem, format, 256u, 5u, 8u);
     for (uint32_t v = 0; v < VIEWS; ++v) {
         const ft_pose p = view_of(v);
         /* twice: the first frame after a jump fills every level */
@@ -141,9 +151,9 @@ static void coverage(const char *backend, const char *dem, const char *format)
                 off += !near_edge(g_brute_mask[v], x, y, SILHOUETTE_PX);
             }
         }
-        printf("%s %s view %u: brute terrain %u px, clipmap differs on %u px, %u of them "
+        printf("%s %s %s view %u: brute terrain %u px, differs on %u px, %u of them "
                "off brute's silhouette (+-%d px)\n",
-               backend, format, v, terrain, diff, off, SILHOUETTE_PX);
+               method, backend, format, v, terrain, diff, off, SILHOUETTE_PX);
         CHECK(off <= OFF_SILHOUETTE_MAX);
         if (v < FT_TEST_COVERED_VIEWS) CHECK(ft_test_clear_pixels(&g_app) == 0u);
     }
@@ -152,9 +162,9 @@ static void coverage(const char *backend, const char *dem, const char *format)
 
 /* The eye flies across the tile looking down at 50 deg: the terrain covers
  * every frame; few updates a frame make the levels lag. */
-static void fly(const char *backend, const char *dem, const char *format)
+static void fly(const char *method, const char *backend, const char *dem, const char *format)
 {
-    app_init("clipmap", backend, dem, format, 128u, 5u, 2u);
+    app_init(method, backend, dem, format, 128u, 5u, 2u);
     uint32_t cracked_frames = 0, worst = 0;
     const uint32_t frames = 60u;
     for (uint32_t f = 0; f < frames; ++f) {
@@ -166,10 +176,10 @@ static void fly(const char *backend, const char *dem, const char *format)
         cracked_frames += (c > 0u);
         worst = (c > worst) ? c : worst;
     }
-    const ft_clip_stats *cs = &g_app.renderer.method.u.clipmap.cache.stats;
-    printf("%s %s flight: %u frames, %u with magenta (worst %u px); cache: %llu recentres "
+    const ft_clip_stats *cs = &levels_of(method)->cache.stats;
+    printf("%s %s %s flight: %u frames, %u with magenta (worst %u px); cache: %llu recentres "
            "moved, %llu updates, levels behind at most %u, %llu samples outstanding at most\n",
-           backend, format, frames, cracked_frames, worst,
+           method, backend, format, frames, cracked_frames, worst,
            (unsigned long long)cs->recentres_moved, (unsigned long long)cs->updates,
            cs->levels_behind_max, (unsigned long long)cs->samples_outstanding_max);
     CHECK(cracked_frames == 0u);
@@ -183,8 +193,8 @@ static void fly(const char *backend, const char *dem, const char *format)
         render(&last);
         CHECK(ft_test_clear_pixels(&g_app) == 0u);
     }
-    printf("%s %s hover: current after %u frames (levels behind %u)\n", backend, format, hover,
-           cs->levels_behind);
+    printf("%s %s %s hover: current after %u frames (levels behind %u)\n", method, backend,
+           format, hover, cs->levels_behind);
     CHECK(cs->samples_outstanding == 0u && cs->levels_behind == 0u);
 
     /* the counter works: a view above the horizon shows the clear colour */
@@ -195,29 +205,29 @@ static void fly(const char *backend, const char *dem, const char *format)
 }
 
 /* A jump past every level's box: nothing resident is near the new eye. */
-static void jump(const char *backend, const char *dem, const char *format)
+static void jump(const char *method, const char *backend, const char *dem, const char *format)
 {
-    app_init("clipmap", backend, dem, format, 128u, 3u, 0u);
-    const ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
+    app_init(method, backend, dem, format, 128u, 3u, 0u);
+    const ft_clip_levels *cl = levels_of(method);
     const ft_pose a = ft_test_pose(42.10, 1.20, 4200.0, 35.0, -50.0, 0.0);
     const ft_pose b = ft_test_pose(42.70, 1.65, 4000.0, 75.0, -50.0, 0.0);
     render(&a);
     render(&a);
     CHECK(ft_test_clear_pixels(&g_app) == 0u);
-    const int64_t span = (int64_t)cm->side << (cm->levels - 1u); /* level-0 samples */
-    const int64_t before_j0 = cm->cache.level[cm->levels - 1u].want.j0 * ((int64_t)1 << (cm->levels - 1u));
+    const int64_t span = (int64_t)cl->side << (cl->levels - 1u); /* level-0 samples */
+    const int64_t before_j0 = cl->cache.level[cl->levels - 1u].want.j0 * ((int64_t)1 << (cl->levels - 1u));
     ft_camera cam;
     ft_frame_stats fs;
     ft_test_frame(&g_app, &b, &cam, &fs);
-    const int64_t after_j0 = cm->cache.level[cm->levels - 1u].want.j0 * ((int64_t)1 << (cm->levels - 1u));
+    const int64_t after_j0 = cl->cache.level[cl->levels - 1u].want.j0 * ((int64_t)1 << (cl->levels - 1u));
     const uint32_t clear = ft_test_clear_pixels(&g_app);
-    printf("%s %s jump of %lld samples north (the coarsest box spans %lld): the frame ran %u "
+    printf("%s %s %s jump of %lld samples north (the coarsest box spans %lld): the frame ran %u "
            "updates to complete the coarsest level, %u levels behind, %u clear pixels\n",
-           backend, format, (long long)(after_j0 - before_j0), (long long)span,
+           method, backend, format, (long long)(after_j0 - before_j0), (long long)span,
            fs.cache_forced_updates, fs.cache_levels_behind, clear);
     CHECK(after_j0 - before_j0 >= span);      /* past every level's box */
     CHECK(fs.cache_forced_updates > 0u);
-    CHECK(ft_clip_level_current(&cm->cache, cm->levels - 1u));
+    CHECK(ft_clip_level_current(&cl->cache, cl->levels - 1u));
     CHECK(fs.cache_levels_behind >= 1u);      /* the finer levels wait for their turn */
     CHECK(clear == 0u);
     ft_app_shutdown(&g_app);
@@ -342,20 +352,20 @@ static void capture_and_check(uint32_t *pairs, uint32_t *bad)
     gl->Enable(GL_RASTERIZER_DISCARD);
     g_ncap = 0;
     const ft_cm_layout *lay = &m->layout;
-    for (uint32_t l = 0; l < m->levels; ++l) {
+    for (uint32_t l = 0; l < m->cl.levels; ++l) {
         if (!lay->level[l].drawn) continue;
         ft_cm_draw any = {l, FT_CM_BLOCK, {0, 0}, {1, 0}, {0, 1}, {0, 0, 0, 0}, 0u};
         ft_cm_uniforms cu;
         ft_cm_uniforms_of(lay, &any, &cu);
         gl->ActiveTexture(GL_TEXTURE1);
-        gl->BindTexture(GL_TEXTURE_2D, m->tex[l]);
+        gl->BindTexture(GL_TEXTURE_2D, m->cl.tex[l]);
         gl->ActiveTexture(GL_TEXTURE2);
-        gl->BindTexture(GL_TEXTURE_2D, m->tex[(l + 1u < m->levels) ? l + 1u : l]);
+        gl->BindTexture(GL_TEXTURE_2D, m->cl.tex[(l + 1u < m->cl.levels) ? l + 1u : l]);
         gl->ActiveTexture(GL_TEXTURE0);
         const GLint *u = p->method_u;
         gl->Uniform4f(u[FT_CM_U_DATA], cu.data[0], cu.data[1], cu.data[2], cu.data[3]);
         gl->Uniform4f(u[FT_CM_U_MBOX], cu.mbox[0], cu.mbox[1], cu.mbox[2], cu.mbox[3]);
-        gl->Uniform4f(u[FT_CM_U_LEVEL], cu.level[0], cu.level[1], cu.level[2], (float)m->side);
+        gl->Uniform4f(u[FT_CM_U_LEVEL], cu.level[0], cu.level[1], cu.level[2], (float)m->cl.side);
         (void)ft_cm_level_draws(lay, l, capture_draw, &c);
     }
     gl->Disable(GL_RASTERIZER_DISCARD);
@@ -428,15 +438,19 @@ int main(int argc, char **argv)
     const int es3 = strcmp(argv[1], "es3") == 0;
     const char *backend = es3 ? "egl-gles3" : "egl-gles2";
     brute_masks(backend, argv[2]);
-    coverage(backend, argv[2], "float");
-    fly(backend, argv[2], "float");
-    jump(backend, argv[2], "float");
+    static const char *const k_methods[] = {"clipmap", "pgm"};
+    for (uint32_t k = 0; k < 2u; ++k) {
+        coverage(k_methods[k], backend, argv[2], "float");
+        fly(k_methods[k], backend, argv[2], "float");
+        jump(k_methods[k], backend, argv[2], "float");
+        if (!es3) {
+            coverage(k_methods[k], backend, argv[2], "packed");
+            fly(k_methods[k], backend, argv[2], "packed");
+            jump(k_methods[k], backend, argv[2], "packed");
+        }
+    }
     if (es3) {
         tf_check(argv[2]);
-    } else {
-        coverage(backend, argv[2], "packed");
-        fly(backend, argv[2], "packed");
-        jump(backend, argv[2], "packed");
     }
     return ft_test_result(es3 ? "test_clipmap_gl es3" : "test_clipmap_gl es2");
 }

@@ -475,7 +475,7 @@ int main(int argc, char **argv)
            WINDOW_MIN, ms_last, full - WINDOW_MIN, full);
 
     if (db != NULL) {
-        const ft_clip_stats *cs = &g_app.renderer.method.u.clipmap.cache.stats;
+        const ft_clip_stats *cs = &g_app.renderer.method.u.clipmap.cl.cache.stats;
         printf("clipmap cache: %llu updates, %llu samples uploaded, at most %u levels behind\n",
                (unsigned long long)cs->updates, (unsigned long long)cs->samples_uploaded,
                cs->levels_behind_max);

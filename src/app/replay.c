@@ -234,10 +234,9 @@ ft_status ft_app_replay(ft_app *app, const ft_replay_desc *d, ft_pose_feed *feed
         r->frames_cache_forced += (uint32_t)(fr.stats.cache_forced_updates > 0u);
         r->frames_pos_predicted += (uint32_t)(v.pos_predicted != 0);
         r->frames_velocity_stale += (uint32_t)((v.stale_mask & FT_QTY_VELOCITY_MASK) != 0u);
-        /* the clipmap over a .ftd draws the database past the window: no
-         * position over the database is off its terrain */
-        const int terrain_goes_on =
-            app->terrain.db != NULL && app->scene.method == FT_METHOD_CLIPMAP;
+        /* a method reading the clip cache over a .ftd draws the database
+         * past the window: no position over the database is off its terrain */
+        const int terrain_goes_on = app->terrain.db != NULL && ft_method_reads_cache(&app->scene);
         if ((v.stale_mask & FT_QTY_POSITION_MASK) == 0u && !terrain_goes_on &&
             !ft_pose_over_terrain(&app->terrain, &v.pose)) {
             r->frames_off_terrain += 1u;

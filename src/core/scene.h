@@ -129,6 +129,7 @@ typedef struct ft_scene {
     int bintree_cull_back_faces;       /* bintree.cull_back_faces */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
+    int pgm_heights_clipmap;     /* pgm.heights: 0 pyramid, 1 clipmap */
     uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */
     uint32_t pgrid_grid_rows;    /* pgrid.grid_rows */
     int pgrid_view_distribution; /* pgrid.distribution: 0 uniform, 1 view */
@@ -255,6 +256,9 @@ typedef struct ft_scene {
       "persistent grid: vertices across the view")                                               \
     X(pgm, grid_rows, U32, pgm_grid_rows, 2, 8192, NULL, "430", "vertices",                      \
       "persistent grid: vertices from near to far")                                              \
+    X(pgm, heights, ENUM, pgm_heights_clipmap, 0, 0, "pyramid|clipmap|", "pyramid", "",          \
+      "where the grid reads heights: the window's avg pyramid, or the clipmap cache around the " \
+      "eye (clipmap.* keys; over a .ftd it reads on past the window)")                           \
     X(pgrid, grid_cols, U32, pgrid_grid_cols, 2, 8192, NULL, "200", "vertices",                  \
       "error-bounded projective grid: vertices across the view")                                 \
     X(pgrid, grid_rows, U32, pgrid_grid_rows, 2, 8192, NULL, "800", "vertices",                  \

@@ -68,6 +68,12 @@ const char *ft_method_colour_defines(const ft_scene *s, int es3)
     return (o != NULL && o->colour_defines != NULL) ? o->colour_defines(s, es3) : "";
 }
 
+int ft_method_reads_cache(const ft_scene *s)
+{
+    return s->method == FT_METHOD_CLIPMAP ||
+           (s->method == FT_METHOD_PGM && s->pgm_heights_clipmap);
+}
+
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     const ft_method_ops *o = ft_method_ops_of(s->method);

@@ -13,6 +13,7 @@
 #include "gpu/gpu_texture.h"
 #include "gpu/program.h"
 #include "lod/bintree.h"
+#include "lod/clip_levels.h"
 #include "lod/clipmap.h"
 #include "lod/pgm.h"
 #include "lod/pgrid.h"
@@ -90,6 +91,16 @@ typedef struct ft_pgm_method {
     /* the last sampling set-up and the view it was made for */
     ft_view_key sel_view;
     ft_pgm_sampling sampling;
+    /* pgm.heights = clipmap: the levels are the clip cache's, all in one
+     * atlas on unit 1 (cl.tex[0]); level_px then holds per level (base mod
+     * side, eye - base 2^L), pcm_box the resident samples relative to base
+     * (shaders/pgm_grid.glsl), pcm_clamp what is drawn (m from the eye) */
+    int clip;
+    ft_clip_levels cl;
+    ft_clip_world cl_world;   /* the lattice's world frame (clip_max_in) */
+    float pcm_box[FT_CLIP_LEVELS_MAX][4];
+    float pcm_clamp[4];
+    double transition_samples;
 } ft_pgm_method;
 
 /* Error-bounded projective grid (src/lod/pgrid.h): the pgm grid (reused: its
@@ -148,35 +159,16 @@ typedef struct ft_pgrid_method {
 } ft_pgrid_method;
 
 /* Geometry clipmaps (src/lod/clipmap.h, shaders/clipmap.vert.glsl): the
- * clip cache (its source over the terrain), one height texture per level,
- * the block + stitch-strip template. */
+ * clip cache with one height texture per level (lod/clip_levels.h), the
+ * block + stitch-strip template. */
 typedef struct ft_clipmap_method {
-    ft_clip_cache cache;
-    ft_clip_source src;
-    ft_clip_db_source db_src;      /* the source's state over a .ftd (terrain.db) */
+    ft_clip_levels cl;
     ft_cm_layout layout;           /* the last draw's */
-    const ft_gl *gl;               /* select uploads the cache's updates */
-    GLuint tex[FT_CLIP_LEVELS_MAX];
-    GLenum tex_format, tex_type;
     GLuint vbo, ibo;
     uint32_t block_indices, strip_indices;
-    uint32_t side, levels, updates_per_frame;
     double transition_samples;
-    ft_scalar_format fmt;
-    uint8_t *packed;               /* update_samples_max * 4 (FT_POOL_METHOD) */
-    int fill_whole;                /* the first select fills every level */
-    uint32_t updates_last;         /* updates run by the last select */
-    uint32_t forced_last;          /* of those, run to keep the coarsest level whole */
-    uint64_t forced_updates;       /* all such updates since init */
-    uint64_t forced_frames;        /* selects that ran some */
-    /* spare time: each update's cost is declared as the slowest seen so far
-     * (init's whole fill measures it first) */
-    uint64_t update_ns_max;
-    uint64_t spare_updates;        /* updates run in spare time */
-    uint64_t spare_deferred;       /* spare calls that left work for later */
-    uint64_t read_errors;          /* source reads that failed (retried) */
     ft_view_key sel_view;
-    uint64_t gpu_bytes;
+    uint64_t gpu_bytes;            /* the template's (the cache's: cl.gpu_bytes) */
 } ft_clipmap_method;
 
 /* clipmap's uniforms (shaders/clipmap.vert.glsl) */
@@ -286,6 +278,10 @@ void ft_method_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
  * 0 when the scene grid's range stands. */
 int ft_method_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
                         double corner_cos);
+/* 1 when the scene's method reads its heights through the clipmap cache
+ * (clipmap; pgm with pgm.heights = clipmap): over a .ftd it draws the
+ * database on past the window. */
+int ft_method_reads_cache(const ft_scene *s);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
 void ft_method_worst_case(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);
@@ -313,11 +309,18 @@ extern const ft_method_ops ft_clipmap_ops;
     X(FT_PGM_U_EYE, "u_pgm_eye", 1u)                             \
     X(FT_PGM_U_LEVEL, "u_pgm_level", FT_PYRAMID_LEVELS_MAX)
 enum ft_pgm_uniform { FT_PGM_UNIFORMS(FT_UNIFORM_ENUM) FT_PGM_U_COUNT };
+/* pgm.heights = clipmap adds these to pgm's list (pgrid has none of them) */
+#define FT_PCM_UNIFORMS(X)                                        \
+    X(FT_PCM_U_BOX, "u_pcm_box", FT_CLIP_LEVELS_MAX)             \
+    X(FT_PCM_U_CLAMP, "u_pcm_clamp", 1u)                         \
+    X(FT_PCM_U_MISC, "u_pcm_misc", 1u)
+enum { FT_PCM_U_BEFORE_ = FT_PGM_U_COUNT - 1, FT_PCM_UNIFORMS(FT_UNIFORM_ENUM) FT_PCM_U_COUNT };
 
 /* The grid pgm draws: from pgm's keys, or pgrid's (pgrid.grid). */
 typedef struct ft_pgm_grid_desc {
     uint32_t cols, rows;            /* grid vertices */
     ft_height_format height_format; /* gpu.height_format: the avg atlas's too */
+    int clip;                       /* heights from the clip cache: no avg atlas */
 } ft_pgm_grid_desc;
 
 void ft_pgm_method_plan(const ft_pgm_grid_desc *g, const ft_terrain *t, ft_arena *a);

@@ -71,8 +71,9 @@ void ft_pgm_method_plan(const ft_pgm_grid_desc *g, const ft_terrain *t, ft_arena
     pgm_shape sh;
     shape_of(g, t, &sh);
     /* Init scratch, used one after the other and given back in between: the
-     * atlas floats, then the band's vertices, then its indices. */
-    size_t need = (size_t)sh.atlas_w * sh.atlas_h * sizeof(float);
+     * atlas floats (none when the heights come from the clip cache), then
+     * the band's vertices, then its indices. */
+    size_t need = g->clip ? 0u : (size_t)sh.atlas_w * sh.atlas_h * sizeof(float);
     need = (vbo_bytes(g, &sh) > need) ? vbo_bytes(g, &sh) : need;
     need = (ibo_bytes(g, &sh) > need) ? ibo_bytes(g, &sh) : need;
     ft_arena_plan(a, FT_POOL_METHOD, need);
@@ -190,13 +191,14 @@ ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_gri
                        FT_PGM_GRID_SIDE_MAX);
     }
     const ft_pyramid *p = &t->pyr;
-    if (p->avg_levels < 1u || p->avg_levels > FT_PYRAMID_LEVELS_MAX || p->minmax_levels < 1u) {
+    if (!g->clip &&
+        (p->avg_levels < 1u || p->avg_levels > FT_PYRAMID_LEVELS_MAX || p->minmax_levels < 1u)) {
         return ft_fail(err, FT_ERR_ARG,
                        "pgm needs the terrain's avg pyramid (levels: %u) and max pyramid "
                        "(levels: %u) in memory; the terrain was loaded without them",
                        p->avg_levels, p->minmax_levels);
     }
-    for (uint32_t l = 1; l < p->avg_levels; ++l) {
+    for (uint32_t l = 1; !g->clip && l < p->avg_levels; ++l) {
         if (p->avg[l].avg_m == NULL) {
             return ft_fail(err, FT_ERR_ARG, "pgm: avg pyramid level %u is missing", l);
         }
@@ -214,7 +216,7 @@ ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_gri
     m->band_rows = sh.band_rows;
     m->band_count = sh.band_count;
     m->levels = p->avg_levels;
-    ft_status st = upload_atlas(m, gl, g, t, a, err);
+    ft_status st = g->clip ? FT_OK : upload_atlas(m, gl, g, t, a, err);
     if (st == FT_OK) {
         st = upload_band(m, gl, g, &sh, a, err);
     }
@@ -233,9 +235,104 @@ uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b)
     return (total - first < m->band_rows) ? total - first : m->band_rows;
 }
 
+/* ---- heights from the clip cache (pgm.heights = clipmap) ----------------------- */
+
+static double clip_max_in(const void *ctx, double x0_m, double y0_m, double x1_m, double y1_m)
+{
+    const ft_pgm_method *m = ctx;
+    return ft_clip_max_height_in(&m->cl.cache, &m->cl_world, x0_m, y0_m, x1_m, y1_m);
+}
+
+/* Per level: base (the level-L sample at or below the eye), the resident box
+ * relative to it; what is drawn: the data inside the coarsest level's
+ * resident box, in metres from the eye (shaders/pgm_grid.glsl). */
+static void clip_place(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    const ft_clip_levels *c = &m->cl;
+    double ei = 0.0, ej = 0.0;
+    ft_clip_levels_eye(c, t, cam->eye_m, &ei, &ej);
+    const int64_t side = (int64_t)c->side;
+    for (uint32_t l = 0; l < c->levels; ++l) {
+        const double scale = ldexp(1.0, (int)l);
+        const int64_t bi = (int64_t)floor(ei / scale), bj = (int64_t)floor(ej / scale);
+        m->level_px[l][0] = (float)(((bi % side) + side) % side);
+        m->level_px[l][1] = (float)(((bj % side) + side) % side);
+        m->level_px[l][2] = (float)(ei - (double)bi * scale);
+        m->level_px[l][3] = (float)(ej - (double)bj * scale);
+        const ft_clip_box *v = &c->cache.level[l].valid;
+        if (v->i1 <= v->i0 || v->j1 <= v->j0) {
+            m->pcm_box[l][0] = m->pcm_box[l][1] = 1.0f; /* empty: x1 < x0 */
+            m->pcm_box[l][2] = m->pcm_box[l][3] = 0.0f;
+            continue;
+        }
+        m->pcm_box[l][0] = (float)(v->i0 - bi);
+        m->pcm_box[l][1] = (float)(v->j0 - bj);
+        m->pcm_box[l][2] = (float)(v->i1 - 1 - bi);
+        m->pcm_box[l][3] = (float)(v->j1 - 1 - bj);
+    }
+    /* the coarsest level is kept whole (clip_levels.h), so its box is there */
+    const uint32_t top = c->levels - 1u;
+    const int64_t s = (int64_t)1 << top;
+    const ft_clip_box *v = &c->cache.level[top].valid;
+    const double i0 = fmax((double)(v->i0 * s), (double)c->src.data_i_lo);
+    const double i1 = fmin((double)((v->i1 - 1) * s), (double)c->src.data_i_hi);
+    const double j0 = fmax((double)(v->j0 * s), (double)c->src.data_j_lo);
+    const double j1 = fmin((double)((v->j1 - 1) * s), (double)c->src.data_j_hi);
+    m->pcm_clamp[0] = (float)((i0 - ei) * t->cell_x_m);
+    m->pcm_clamp[1] = (float)((j0 - ej) * t->cell_y_m);
+    m->pcm_clamp[2] = (float)((i1 - ei) * t->cell_x_m);
+    m->pcm_clamp[3] = (float)((j1 - ej) * t->cell_y_m);
+}
+
+/* What the grid is laid over: the drawn box; its heights from the resident
+ * blocks' bounds over a database (the cache keeps them there), else from
+ * the terrain's (every cached height is one of its samples). */
+static ft_pgm_surface clip_surface(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    ft_pgm_surface g = ft_pgm_surface_of_terrain(t);
+    g.x0_m = cam->eye_m[0] + m->pcm_clamp[0];
+    g.y0_m = cam->eye_m[1] + m->pcm_clamp[1];
+    g.x1_m = cam->eye_m[0] + m->pcm_clamp[2];
+    g.y1_m = cam->eye_m[1] + m->pcm_clamp[3];
+    double closest = 0.0, zmin = 0.0, zmax = 0.0, bmin[2], bmax[2];
+    m->cl_world = ft_clip_levels_world(t);
+    if (ft_clip_clearance_m(&m->cl.cache, &m->cl_world, cam->eye_m, t->curv_drop_per_m2,
+                            &closest, bmin, bmax, &zmin, &zmax)) {
+        g.zmin_m = zmin;
+        g.zmax_m = zmax;
+        g.max_in = clip_max_in;
+        g.ctx = m;
+    }
+    return g;
+}
+
+/* Every frame, the view changed or not: a level that lags catches up while
+ * the eye hovers, and the sampling follows what is resident. */
+static void clip_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    ft_clip_levels_select(&m->cl, t, cam);
+    clip_place(m, t, cam);
+    const ft_pgm_surface g = clip_surface(m, t, cam);
+    ft_pgm_setup_over(&m->sampling, cam, &g);
+    ft_view_key_take(&m->sel_view, cam);
+}
+
+/* The eye's own ground drawn from a level past 0: level 0 does not hold the
+ * eye one sample in from its resident edge. */
+static int clip_eye_coarser(const ft_pgm_method *m)
+{
+    const float *b = m->pcm_box[0], *o = m->level_px[0];
+    return !(b[2] >= b[0] && o[2] - b[0] >= 1.0f && b[2] - o[2] >= 1.0f &&
+             o[3] - b[1] >= 1.0f && b[3] - o[3] >= 1.0f);
+}
+
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     if (ft_view_key_matches(&m->sel_view, cam)) {
+        return;
+    }
+    if (m->clip) {
+        clip_select(m, t, cam);
         return;
     }
     ft_pgm_setup(&m->sampling, cam, t);
@@ -246,14 +343,30 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
                         const struct ft_terrain_program *p)
 {
     const ft_pgm_sampling *s = &m->sampling;
+    const ft_scalar_format *f = m->clip ? &m->cl.fmt : &m->atlas_fmt;
     gl->ActiveTexture(GL_TEXTURE1);
-    gl->BindTexture(GL_TEXTURE_2D, m->atlas_tex);
+    gl->BindTexture(GL_TEXTURE_2D, m->clip ? m->cl.tex[0] : m->atlas_tex);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->Uniform1i(p->method_u[FT_PGM_U_ATLAS], 1);
-    gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_SIZE], (float)m->atlas_w, (float)m->atlas_h);
-    gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_PACK], m->atlas_fmt.pack_min,
-                  m->atlas_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->atlas_fmt.pack_range
-                                                                 : 0.0f);
+    gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_SIZE],
+                  (float)(m->clip ? m->cl.tex_w : m->atlas_w),
+                  (float)(m->clip ? m->cl.tex_h : m->atlas_h));
+    gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_PACK], f->pack_min,
+                  f->format == FT_HEIGHT_FORMAT_PACKED ? f->pack_range : 0.0f);
+    if (m->clip) {
+        for (uint32_t l = 0; l < m->levels; ++l) {
+            gl->Uniform4f(p->method_u[FT_PCM_U_BOX + l], m->pcm_box[l][0], m->pcm_box[l][1],
+                          m->pcm_box[l][2], m->pcm_box[l][3]);
+        }
+        gl->Uniform4f(p->method_u[FT_PCM_U_CLAMP], m->pcm_clamp[0], m->pcm_clamp[1],
+                      m->pcm_clamp[2], m->pcm_clamp[3]);
+        uint32_t cols = 1u;
+        while (m->cl.tex_w > cols * m->cl.side) {
+            ++cols;
+        }
+        gl->Uniform4f(p->method_u[FT_PCM_U_MISC], (float)m->cl.side,
+                      (float)m->transition_samples, (float)m->levels, (float)cols);
+    }
     for (uint32_t l = 0; l < m->levels; ++l) {
         gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], m->level_px[l][0], m->level_px[l][1],
                       m->level_px[l][2], m->level_px[l][3]);
@@ -288,6 +401,12 @@ void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terra
         st->draw_calls += 1u;
     }
     st->triangles = 2ull * (m->cols - 1u) * (m->rows - 1u);
+    if (m->clip) {
+        st->cache_levels_behind = m->cl.cache.stats.levels_behind;
+        st->cache_samples_outstanding = m->cl.cache.stats.samples_outstanding;
+        st->cache_coarser = clip_eye_coarser(m);
+        st->cache_forced_updates = m->cl.forced_last;
+    }
 }
 
 void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
@@ -296,6 +415,9 @@ void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
     if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
     if (m->atlas_tex) gl->DeleteTextures(1, &m->atlas_tex);
     m->vbo = m->ibo = m->atlas_tex = 0u;
+    if (m->clip) {
+        ft_clip_levels_shutdown(&m->cl, gl);
+    }
 }
 
 /* ---- the method table ---------------------------------------------------------- */
@@ -303,7 +425,8 @@ void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
 /* pgm's own keys (pgrid draws the same grid from its own) */
 static ft_pgm_grid_desc grid_of(const ft_scene *s)
 {
-    const ft_pgm_grid_desc g = {s->pgm_grid_cols, s->pgm_grid_rows, s->height_format};
+    const ft_pgm_grid_desc g = {s->pgm_grid_cols, s->pgm_grid_rows, s->height_format,
+                                s->pgm_heights_clipmap};
     return g;
 }
 
@@ -311,18 +434,57 @@ static void ops_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     const ft_pgm_grid_desc g = grid_of(s);
     ft_pgm_method_plan(&g, t, a);
+    if (g.clip) {
+        ft_clip_levels_plan(s, t, a);
+    }
 }
 
 static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,
                           ft_arena *a, ft_error *err)
 {
     const ft_pgm_grid_desc g = grid_of(s);
-    return ft_pgm_method_init(&m->u.pgm, gl, &g, t, a, err);
+    ft_pgm_method *pm = &m->u.pgm;
+    ft_status st = ft_pgm_method_init(pm, gl, &g, t, a, err);
+    if (st != FT_OK || !g.clip) {
+        return st;
+    }
+    st = ft_clip_levels_init(&pm->cl, gl, s, t, FT_CLIP_TEX_ATLAS, GL_TEXTURE1, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    pm->clip = 1;
+    pm->levels = pm->cl.levels;
+    pm->transition_samples = s->clipmap_transition_samples;
+    return FT_OK;
 }
 
 static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
 {
-    ft_pgm_method_select(&m->u.pgm, t, cam);
+    ft_pgm_method *pm = &m->u.pgm;
+    if (pm->clip) {
+        clip_select(pm, t, cam); /* every frame: the cache moves on its own */
+        return;
+    }
+    ft_pgm_method_select(pm, t, cam);
+}
+
+static const char *ops_vertex_defines(const ft_scene *s, int es3)
+{
+    (void)es3;
+    return s->pgm_heights_clipmap ? "#define FT_PGM_CLIP 1\n" : "";
+}
+
+static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    if (m->u.pgm.clip) {
+        ft_clip_levels_spare(&m->u.pgm.cl, now, deadline_ns);
+    }
+}
+
+static int ops_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
+                         double corner_cos)
+{
+    return m->u.pgm.clip ? ft_clip_levels_fit_depth(&m->u.pgm.cl, t, cam, corner_cos) : 0;
 }
 
 static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
@@ -333,7 +495,7 @@ static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_prog
 
 static uint64_t ops_gpu_bytes(const ft_method *m)
 {
-    return m->u.pgm.gpu_bytes;
+    return m->u.pgm.gpu_bytes + m->u.pgm.cl.gpu_bytes;
 }
 
 static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
@@ -348,16 +510,20 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
     ft_pgm_method_shutdown(&m->u.pgm, gl);
 }
 
-static const ft_uniform_name k_pgm_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)};
-_Static_assert(FT_PGM_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgm's uniforms fit the program's table");
+static const ft_uniform_name k_pgm_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)
+                                                     FT_PCM_UNIFORMS(FT_UNIFORM_ROW)};
+_Static_assert(FT_PCM_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgm's uniforms fit the program's table");
 
 const ft_method_ops ft_pgm_ops = {
     .vertex_shader = "pgm.vert.glsl",
     .uniforms = {k_pgm_uniforms, sizeof k_pgm_uniforms / sizeof k_pgm_uniforms[0]},
     .plan = ops_plan,
     .init = ops_init,
+    .vertex_defines = ops_vertex_defines,
     .select = ops_select,
     .draw = ops_draw,
+    .spare = ops_spare,
+    .fit_depth = ops_fit_depth,
     .gpu_bytes = ops_gpu_bytes,
     .worst = ops_worst,
     .shutdown = ops_shutdown,

@@ -132,7 +132,7 @@ static const char *pgrid_colour_defines(const ft_scene *s, int es3)
 
 static ft_pgm_grid_desc pgm_grid(const ft_scene *s)
 {
-    const ft_pgm_grid_desc g = {s->pgrid_grid_cols, s->pgrid_grid_rows, s->height_format};
+    const ft_pgm_grid_desc g = {s->pgrid_grid_cols, s->pgrid_grid_rows, s->height_format, 0};
     return g;
 }
 

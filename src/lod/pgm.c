@@ -235,17 +235,43 @@ static double columns_for_view(double tx_cov, double dep_v, double dep_s, double
     return tx_cov;
 }
 
+static double terrain_max_in(const void *ctx, double x0_m, double y0_m, double x1_m,
+                             double y1_m)
+{
+    return ft_pgm_max_height(ctx, x0_m, y0_m, x1_m, y1_m);
+}
+
+ft_pgm_surface ft_pgm_surface_of_terrain(const ft_terrain *t)
+{
+    const ft_pgm_surface g = {
+        t->origin_world_x_m,
+        t->origin_world_y_m,
+        t->origin_world_x_m + (double)(t->width - 1u) * t->cell_x_m,
+        t->origin_world_y_m + (double)(t->height - 1u) * t->cell_y_m,
+        (double)t->min_height_m,
+        (double)t->max_height_m,
+        terrain_max_in,
+        t,
+        t->curv_drop_per_m2,
+    };
+    return g;
+}
+
 void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
+{
+    const ft_pgm_surface g = ft_pgm_surface_of_terrain(t);
+    ft_pgm_setup_over(s, c, &g);
+}
+
+void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surface *t)
 {
     memset(s, 0, sizeof *s);
     memcpy(s->eye_m, c->eye_m, sizeof s->eye_m);
     /* the farthest grid corner bounds how far any sampled ground lies */
     double far2 = 1.0;
     for (int k = 0; k < 4; ++k) {
-        const double gx = (k & 1) ? (double)(t->width - 1u) : 0.0;
-        const double gy = (k & 2) ? (double)(t->height - 1u) : 0.0;
-        const double dx = t->origin_world_x_m + gx * t->cell_x_m - c->eye_m[0];
-        const double dy = t->origin_world_y_m + gy * t->cell_y_m - c->eye_m[1];
+        const double dx = ((k & 1) ? t->x1_m : t->x0_m) - c->eye_m[0];
+        const double dy = ((k & 2) ? t->y1_m : t->y0_m) - c->eye_m[1];
         far2 = (dx * dx + dy * dy > far2) ? dx * dx + dy * dy : far2;
     }
     s->far_m = sqrt(far2);
@@ -254,7 +280,7 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
      * plane through the undropped minimum would leave dropped terrain at the
      * view's edges (a nadir view from 100 km, FOV 150 from 3 km) outside the
      * grid. */
-    s->base_z_m = (double)t->min_height_m - t->curv_drop_per_m2 * far2;
+    s->base_z_m = t->zmin_m - t->curv_drop_per_m2 * far2;
     /* Under the base plane only rising rays can meet the terrain (it is all
      * above the plane), and a ray rising at elevation e meets the plane where
      * the mirrored ray falling at depression e does: mirror the eye and the
@@ -323,7 +349,7 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
         tx_cov = (wide > tx_cov) ? wide : tx_cov;
     }
     tx_cov = columns_for_view(tx_cov, dep_v, dep, s->eps_rad, s->half_x_tan, s->half_y_tan,
-                              s->height_m, t->max_height_m - s->base_z_m, s->far_m);
+                              s->height_m, t->zmax_m - s->base_z_m, s->far_m);
     tx_cov = (tx_cov < tmax) ? tx_cov : tmax;
     /* -d_z is smallest on the top edge: -d_z = sin(dep) - y1 cos(dep) > 0 */
     s->min_neg_dz = 0.5 * (sd - y1 * cd);
@@ -388,8 +414,8 @@ void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t)
                 by0 = (py < by0) ? py : by0;
                 by1 = (py > by1) ? py : by1;
             }
-            const double mx = ft_pgm_max_height(t, c->eye_m[0] + bx0, c->eye_m[1] + by0,
-                                                c->eye_m[0] + bx1, c->eye_m[1] + by1);
+            const double mx = t->max_in(t->ctx, c->eye_m[0] + bx0, c->eye_m[1] + by0,
+                                        c->eye_m[0] + bx1, c->eye_m[1] + by1);
             const double m = isfinite(mx) ? mx - s->base_z_m : 0.0;
             /* per column: the issue's formula with this piece's peak m and the
              * view's bottom ray at depression beta_v (r = h / tan beta_v): the

@@ -178,8 +178,28 @@ double ft_pgm_level_height(const ft_terrain *t, uint32_t level, double gx, doubl
 double ft_pgm_max_height(const ft_terrain *t, double x0_m, double y0_m, double x1_m,
                          double y1_m);
 
+/* What the grid is laid over: the world box its points are clamped into,
+ * the height range of everything drawn, and the highest drawn height in a
+ * world box (-INFINITY: none there). Over the terrain: its grid, its range
+ * and ft_pgm_max_height; over the clipmap cache: the coarsest level's box
+ * and the resident blocks' bounds. */
+typedef double (*ft_pgm_max_fn)(const void *ctx, double x0_m, double y0_m, double x1_m,
+                                double y1_m);
+typedef struct ft_pgm_surface {
+    double x0_m, y0_m, x1_m, y1_m;
+    double zmin_m, zmax_m;
+    ft_pgm_max_fn max_in;
+    const void *ctx;
+    double curv_drop_per_m2; /* the terrain's (terrain.h) */
+} ft_pgm_surface;
+
+/* The terrain t as ground (ctx = t). */
+ft_pgm_surface ft_pgm_surface_of_terrain(const ft_terrain *t);
+
 /* The sampling camera for viewing camera c over t (per frame; O(levels)). */
 void ft_pgm_setup(ft_pgm_sampling *s, const ft_camera *c, const ft_terrain *t);
+/* The same over any ground. */
+void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surface *g);
 
 /* Ray of grid point (i, j) (real numbers: neighbours may lie outside). */
 void ft_pgm_ray(const ft_pgm_sampling *s, uint32_t cols, uint32_t rows, double i, double j,

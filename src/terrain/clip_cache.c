@@ -403,13 +403,17 @@ static int block_pieces(int64_t t0, int64_t w0, int64_t v0, int64_t v1, uint32_t
     return k;
 }
 
-int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const double eye_m[3],
-                        double curv_k_per_m, double *clearance_m, double box_min_m[2],
-                        double box_max_m[2], double *zmin_m, double *zmax_m)
+/* Calls fn for every resident piece of every level's blocks: its world box
+ * (one sample past the piece: the triangles reach it) and its block's
+ * height range. Returns the pieces visited. */
+typedef void (*piece_fn)(void *ctx, double x0, double x1, double y0, double y1, double lo,
+                         double hi);
+
+static uint64_t for_each_piece(const ft_clip_cache *c, const ft_clip_world *w, piece_fn fn,
+                               void *ctx)
 {
     const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
-    int any = 0;
-    double best = INFINITY;
+    uint64_t count = 0u;
     for (uint32_t l = 0u; c->desc.keep_bounds && l < c->desc.levels; ++l) {
         const ft_clip_box *v = &c->level[l].valid, *wb = &c->level[l].want;
         if (box_empty(v)) {
@@ -427,7 +431,6 @@ int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const do
                 const double lo = c->block_lo_m[l][(size_t)by * n + bx];
                 const double hi = c->block_hi_m[l][(size_t)by * n + bx];
                 for (int qy = 0; qy < ky; ++qy) {
-                    /* one sample past the piece: the triangles reach it */
                     const double y0 = w->origin_y_m +
                                       ((double)py[qy][0] * s - (double)c->src.lattice_j0) * w->cell_y_m;
                     const double y1 = w->origin_y_m +
@@ -437,29 +440,82 @@ int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const do
                                                            (double)c->src.lattice_i0) * w->cell_x_m;
                         const double x1 = w->origin_x_m + ((double)px[qx][1] * s -
                                                            (double)c->src.lattice_i0) * w->cell_x_m;
-                        const double d =
-                            ft_camera_box_distance_m(eye_m, x0, x1, y0, y1, lo, hi, curv_k_per_m);
-                        best = d < best ? d : best;
-                        if (!any) {
-                            box_min_m[0] = x0;
-                            box_max_m[0] = x1;
-                            box_min_m[1] = y0;
-                            box_max_m[1] = y1;
-                            *zmin_m = lo;
-                            *zmax_m = hi;
-                            any = 1;
-                        }
-                        box_min_m[0] = fmin(box_min_m[0], x0);
-                        box_max_m[0] = fmax(box_max_m[0], x1);
-                        box_min_m[1] = fmin(box_min_m[1], y0);
-                        box_max_m[1] = fmax(box_max_m[1], y1);
-                        *zmin_m = fmin(*zmin_m, lo);
-                        *zmax_m = fmax(*zmax_m, hi);
+                        fn(ctx, x0, x1, y0, y1, lo, hi);
+                        ++count;
                     }
                 }
             }
         }
     }
-    *clearance_m = best;
-    return any;
+    return count;
+}
+
+typedef struct clearance_ctx {
+    const double *eye_m;
+    double curv_k_per_m, best;
+    int any;
+    double box_min[2], box_max[2], zmin, zmax;
+} clearance_ctx;
+
+static void clearance_piece(void *ctx, double x0, double x1, double y0, double y1, double lo,
+                            double hi)
+{
+    clearance_ctx *k = ctx;
+    const double d = ft_camera_box_distance_m(k->eye_m, x0, x1, y0, y1, lo, hi, k->curv_k_per_m);
+    k->best = d < k->best ? d : k->best;
+    if (!k->any) {
+        k->box_min[0] = x0;
+        k->box_max[0] = x1;
+        k->box_min[1] = y0;
+        k->box_max[1] = y1;
+        k->zmin = lo;
+        k->zmax = hi;
+        k->any = 1;
+    }
+    k->box_min[0] = fmin(k->box_min[0], x0);
+    k->box_max[0] = fmax(k->box_max[0], x1);
+    k->box_min[1] = fmin(k->box_min[1], y0);
+    k->box_max[1] = fmax(k->box_max[1], y1);
+    k->zmin = fmin(k->zmin, lo);
+    k->zmax = fmax(k->zmax, hi);
+}
+
+int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const double eye_m[3],
+                        double curv_k_per_m, double *clearance_m, double box_min_m[2],
+                        double box_max_m[2], double *zmin_m, double *zmax_m)
+{
+    clearance_ctx k = {eye_m, curv_k_per_m, INFINITY, 0, {0.0, 0.0}, {0.0, 0.0}, 0.0, 0.0};
+    (void)for_each_piece(c, w, clearance_piece, &k);
+    *clearance_m = k.best;
+    if (k.any) {
+        box_min_m[0] = k.box_min[0];
+        box_min_m[1] = k.box_min[1];
+        box_max_m[0] = k.box_max[0];
+        box_max_m[1] = k.box_max[1];
+        *zmin_m = k.zmin;
+        *zmax_m = k.zmax;
+    }
+    return k.any;
+}
+
+typedef struct max_ctx {
+    double x0, y0, x1, y1, best;
+} max_ctx;
+
+static void max_piece(void *ctx, double x0, double x1, double y0, double y1, double lo,
+                      double hi)
+{
+    max_ctx *k = ctx;
+    (void)lo;
+    if (x1 >= k->x0 && x0 <= k->x1 && y1 >= k->y0 && y0 <= k->y1) {
+        k->best = hi > k->best ? hi : k->best;
+    }
+}
+
+double ft_clip_max_height_in(const ft_clip_cache *c, const ft_clip_world *w, double x0_m,
+                             double y0_m, double x1_m, double y1_m)
+{
+    max_ctx k = {x0_m, y0_m, x1_m, y1_m, -INFINITY};
+    (void)for_each_piece(c, w, max_piece, &k);
+    return k.best;
 }

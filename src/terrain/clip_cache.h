@@ -181,6 +181,12 @@ int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const do
                         double curv_k_per_m, double *clearance_m, double box_min_m[2],
                         double box_max_m[2], double *zmin_m, double *zmax_m);
 
+/* keep_bounds: the highest height of any resident block piece that meets
+ * the world box [x0, x1] x [y0, y1] (every level's: a surface drawn there
+ * from any of them stays under it); -INFINITY when none does. */
+double ft_clip_max_height_in(const ft_clip_cache *c, const ft_clip_world *w, double x0_m,
+                             double y0_m, double x1_m, double y1_m);
+
 /* 1 when level l's valid box equals its wanted box (and it has one). */
 int ft_clip_level_current(const ft_clip_cache *c, uint32_t l);
 

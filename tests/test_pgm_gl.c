@@ -21,6 +21,10 @@
  *    the terrain covers completely must show none of it, for both grid
  *    shapes and a coarse 64 x 48 grid; a view above the horizon must (the
  *    counter works).
+ * 1b. The same with pgm.heights = clipmap (ft_pgm_clip_vertex_at), after
+ *    frames that leave finer levels lagging: L + w within 1e-3, position
+ *    within FT_MIRROR_PX, and every vertex drawn from a level whose resident
+ *    samples hold it.
  * 4. The error against the reference (foundation metric) along a path, pgm
  *    (both grids) beside brute force: printed, not a bound (pgm has none).
  * es2 mode (run with MESA_GLES_VERSION_OVERRIDE=2.0): a true ES 2.0 context;
@@ -48,10 +52,15 @@ static const char k_scene_fmt[] =
     "[terrain]\ndem = %s\n"
     "[gpu]\nheight_format = %s\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
-    "[pgm]\ngrid_cols = %u\ngrid_rows = %u\n"
+    "[pgm]\ngrid_cols = %u\ngrid_rows = %u\nheights = %s\n"
+    "[clipmap]\nside = 128\nlevels = 5\nupdate_samples_max = 4096\nupdates_per_frame = 2\n"
+    "transition_samples = 12\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
-    "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\n";
+    "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\nclip_bytes = 64K\n";
+
+/* pgm.heights of the next app_init (the clip-cache mirror sets it) */
+static const char *g_heights = "pyramid";
 
 typedef struct setup {
     const char *method, *backend, *dem, *format;
@@ -63,8 +72,8 @@ static void app_init(const setup *c)
 {
     char what[64];
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, c->w, c->h, c->dem,
-                   c->format, c->metric, c->cols, c->rows);
-    (void)snprintf(what, sizeof what, "%s %ux%u", c->method, c->cols, c->rows);
+                   c->format, c->metric, c->cols, c->rows, g_heights);
+    (void)snprintf(what, sizeof what, "%s %ux%u (%s)", c->method, c->cols, c->rows, g_heights);
     ft_test_app_init(&g_app, g_text, what);
 }
 
@@ -258,6 +267,126 @@ static void test_mirror(const char *dem)
         free(cap);
         ft_app_shutdown(&g_app);
     }
+}
+
+/* ---- 1b. shader = mirror with the heights from the clip cache --------------------- */
+
+/* The cached height of level-L sample (a, b), read through the cache's own
+ * source: what was uploaded (the source gives the same value every time). */
+static double cache_texel(const void *ctx, uint32_t level, int64_t a, int64_t b)
+{
+    const ft_clip_source *src = ctx;
+    float h = 0.0f;
+    ft_error err;
+    REQUIRE(src->read(src->ctx, level, a, b, 1u, 1u, &h, NULL, &err) == FT_OK);
+    return (double)h;
+}
+
+/* After real frames (the eye jumping between views, 2 cache updates a frame,
+ * so finer levels lag and are refilled), every grid vertex as the shader
+ * places it equals ft_pgm_clip_vertex_at (screen position within
+ * FT_MIRROR_PX, L + w within 1e-3), and the level it drew from holds its
+ * point among its resident samples (so nothing is drawn from texels that
+ * are not there). Vertices whose level was raised to what is resident are
+ * counted: the lagging case must occur. */
+static void test_clip_mirror(const char *dem)
+{
+    static const struct {
+        uint32_t cols, rows;
+        const char *format;
+    } grids[] = {{200, 800, "auto"}, {430, 430, "packed"}};
+    const ft_pose views[] = {
+        ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
+        ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
+        ft_test_pose(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
+        ft_test_pose(42.20, 1.10, 2400.0, 60.0, 3.0, -20.0),
+        ft_test_pose(42.70, 1.65, 1500.0, 75.0, -30.0, 0.0),
+        ft_test_pose(42.60, 1.40, 30000.0, 300.0, -30.0, 0.0),
+    };
+    g_heights = "clipmap";
+    for (size_t g = 0; g < sizeof grids / sizeof grids[0]; ++g) {
+        setup c = {"pgm", "egl-gles3", dem, grids[g].format, 320, 240, grids[g].cols,
+                   grids[g].rows, 0};
+        app_init(&c);
+        ft_error err;
+        REQUIRE(ft_renderer_enable_capture(&g_app.renderer, &err) == FT_OK);
+        ft_pgm_method *m = &g_app.renderer.method.u.pgm;
+        REQUIRE(m->clip);
+        const size_t n = (size_t)grids[g].cols * grids[g].rows;
+        float *cap = malloc(n * FT_CAPTURE_FLOATS_PER_VERTEX * sizeof(float));
+        REQUIRE(cap != NULL);
+        double worst_px = 0.0, worst_level = 0.0;
+        uint64_t compared = 0u, raised = 0u, unresident = 0u, bad = 0u, captured = 0u;
+        for (size_t v = 0; v < sizeof views / sizeof views[0]; ++v) {
+            ft_camera cam;
+            ft_frame_stats fs;
+            camera_for(&views[v], 60.0, &cam);
+            draw(&cam, &fs);
+            capture(cap);
+            bad += count_nonfinite(cap, n);
+            ft_pgm_clip_view cv = m->clip_view;
+            cv.texel = cache_texel;
+            cv.ctx = &m->cl.src;
+            const float *vp = cam.view_proj;
+            const ft_terrain *t = &g_app.terrain;
+            for (uint32_t j = 0; j < m->rows; ++j) {
+                for (uint32_t i = 0; i < m->cols; ++i) {
+                    const float *o = cap + ((size_t)j * m->cols + i) * FT_CAPTURE_FLOATS_PER_VERTEX;
+                    ft_pgm_vertex x;
+                    ft_pgm_clip_vertex_at(&m->sampling, &cv, t->cell_x_m, t->cell_y_m,
+                                          t->curv_drop_per_m2, m->cols, m->rows, i, j, &x);
+                    const double dl = fabs(o[4] - (x.level + x.parent_w));
+                    worst_level = dl > worst_level ? dl : worst_level;
+                    ++captured;
+                    raised += (x.r_cells > 1.0 ? log2(x.r_cells) : 0.0) + 0.5 <
+                              ft_pgm_clip_resident(&cv, x.grid[0], x.grid[1]);
+                    /* the GPU's level holds the point among its resident samples */
+                    const uint32_t l = (uint32_t)floor(o[4] + 1e-4);
+                    if (l < cv.levels) {
+                        const double sc = ldexp(1.0, (int)l);
+                        const double ux = (x.grid[0] + cv.off[l][0]) / sc;
+                        const double uy = (x.grid[1] + cv.off[l][1]) / sc;
+                        const double *b = cv.box[l];
+                        unresident += !(ux >= b[0] && ux <= b[2] && uy >= b[1] && uy <= b[3]);
+                    }
+                    double clip[4];
+                    for (int r = 0; r < 4; ++r) {
+                        clip[r] = vp[r] * x.pos_rel_eye_m[0] + vp[4 + r] * x.pos_rel_eye_m[1] +
+                                  vp[8 + r] * x.pos_rel_eye_m[2] + vp[12 + r];
+                    }
+                    if (!(clip[3] > 10.0 && fabs(clip[0]) < 1.2 * clip[3] &&
+                          fabs(clip[1]) < 1.2 * clip[3])) {
+                        continue;
+                    }
+                    const double dx = (o[0] / o[3] - clip[0] / clip[3]) * 0.5 * cam.width_px;
+                    const double dy = (o[1] / o[3] - clip[1] / clip[3]) * 0.5 * cam.height_px;
+                    const double d = sqrt(dx * dx + dy * dy);
+                    if (d > worst_px && d > FT_MIRROR_PX) {
+                        fprintf(stderr, "clip vertex (%u, %u) view %zu: GPU and mirror %.4f px "
+                                "apart (level %u w %.3f)\n", i, j, v, d, x.level, x.parent_w);
+                    }
+                    worst_px = d > worst_px ? d : worst_px;
+                    ++compared;
+                }
+            }
+        }
+        printf("clip-cache mirror %ux%u (%s texels): of %llu vertices captured, %llu drawn "
+               "from a level raised to what is resident, %llu from a level that does not hold "
+               "them; %llu on screen compared, GPU vs CPU mirror: worst %.4f px, worst L + w "
+               "%.2g\n",
+               grids[g].cols, grids[g].rows, grids[g].format, (unsigned long long)captured,
+               (unsigned long long)raised, (unsigned long long)unresident,
+               (unsigned long long)compared, worst_px, worst_level);
+        CHECK(bad == 0u);
+        CHECK(compared > n);
+        CHECK(raised > 0u);
+        CHECK(unresident == 0u);
+        CHECK(worst_px <= FT_MIRROR_PX);
+        CHECK(worst_level <= 1e-3);
+        free(cap);
+        ft_app_shutdown(&g_app);
+    }
+    g_heights = "pyramid";
 }
 
 /* ---- 2. sweep ------------------------------------------------------------------------ */
@@ -515,6 +644,7 @@ int main(int argc, char **argv)
         return ft_test_result("test_pgm_gl es2");
     }
     test_mirror(dem);
+    test_clip_mirror(dem);
     test_sweep("egl-gles3", dem);
     test_cracks("egl-gles3", dem);
     test_error(dem);

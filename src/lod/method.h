@@ -92,14 +92,13 @@ typedef struct ft_pgm_method {
     ft_view_key sel_view;
     ft_pgm_sampling sampling;
     /* pgm.heights = clipmap: the levels are the clip cache's, all in one
-     * atlas on unit 1 (cl.tex[0]); level_px then holds per level (base mod
-     * side, eye - base 2^L), pcm_box the resident samples relative to base
-     * (shaders/pgm_grid.glsl), pcm_clamp what is drawn (m from the eye) */
+     * atlas on unit 1 (cl.tex[0]); clip_view is what the shader is given
+     * for the last selection (pgm.h; u_pgm_level then holds per level base
+     * mod side and the eye's offset from base, shaders/pgm_grid.glsl) */
     int clip;
     ft_clip_levels cl;
     ft_clip_world cl_world;   /* the lattice's world frame (clip_max_in) */
-    float pcm_box[FT_CLIP_LEVELS_MAX][4];
-    float pcm_clamp[4];
+    ft_pgm_clip_view clip_view;
     double transition_samples;
 } ft_pgm_method;
 

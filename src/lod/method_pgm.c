@@ -30,6 +30,7 @@
  * vertex rows of the widest grid. */
 _Static_assert(FT_PGM_BAND_VERTICES_MAX <= 65536u, "band indices are 16-bit");
 _Static_assert(FT_PGM_BAND_VERTICES_MAX / FT_PGM_GRID_SIDE_MAX >= 8u, "bands of 8 rows or more");
+_Static_assert(FT_PGM_CLIP_LEVELS_MAX >= FT_CLIP_LEVELS_MAX, "the clip view holds every level");
 
 typedef struct pgm_shape {
     uint32_t vrows;      /* vertex rows in the template band */
@@ -245,30 +246,32 @@ static double clip_max_in(const void *ctx, double x0_m, double y0_m, double x1_m
 
 /* Per level: base (the level-L sample at or below the eye), the resident box
  * relative to it; what is drawn: the data inside the coarsest level's
- * resident box, in metres from the eye (shaders/pgm_grid.glsl). */
+ * resident box, in metres from the eye (pgm.h, ft_pgm_clip_view). */
 static void clip_place(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     const ft_clip_levels *c = &m->cl;
+    ft_pgm_clip_view *cv = &m->clip_view;
     double ei = 0.0, ej = 0.0;
     ft_clip_levels_eye(c, t, cam->eye_m, &ei, &ej);
-    const int64_t side = (int64_t)c->side;
+    cv->levels = c->levels;
+    cv->transition_samples = m->transition_samples;
     for (uint32_t l = 0; l < c->levels; ++l) {
         const double scale = ldexp(1.0, (int)l);
         const int64_t bi = (int64_t)floor(ei / scale), bj = (int64_t)floor(ej / scale);
-        m->level_px[l][0] = (float)(((bi % side) + side) % side);
-        m->level_px[l][1] = (float)(((bj % side) + side) % side);
-        m->level_px[l][2] = (float)(ei - (double)bi * scale);
-        m->level_px[l][3] = (float)(ej - (double)bj * scale);
+        cv->base[l][0] = bi;
+        cv->base[l][1] = bj;
+        cv->off[l][0] = ei - (double)bi * scale;
+        cv->off[l][1] = ej - (double)bj * scale;
         const ft_clip_box *v = &c->cache.level[l].valid;
         if (v->i1 <= v->i0 || v->j1 <= v->j0) {
-            m->pcm_box[l][0] = m->pcm_box[l][1] = 1.0f; /* empty: x1 < x0 */
-            m->pcm_box[l][2] = m->pcm_box[l][3] = 0.0f;
+            cv->box[l][0] = cv->box[l][1] = 1.0; /* empty: x1 < x0 */
+            cv->box[l][2] = cv->box[l][3] = 0.0;
             continue;
         }
-        m->pcm_box[l][0] = (float)(v->i0 - bi);
-        m->pcm_box[l][1] = (float)(v->j0 - bj);
-        m->pcm_box[l][2] = (float)(v->i1 - 1 - bi);
-        m->pcm_box[l][3] = (float)(v->j1 - 1 - bj);
+        cv->box[l][0] = (double)(v->i0 - bi);
+        cv->box[l][1] = (double)(v->j0 - bj);
+        cv->box[l][2] = (double)(v->i1 - 1 - bi);
+        cv->box[l][3] = (double)(v->j1 - 1 - bj);
     }
     /* the coarsest level is kept whole (clip_levels.h), so its box is there */
     const uint32_t top = c->levels - 1u;
@@ -278,10 +281,10 @@ static void clip_place(ft_pgm_method *m, const ft_terrain *t, const ft_camera *c
     const double i1 = fmin((double)((v->i1 - 1) * s), (double)c->src.data_i_hi);
     const double j0 = fmax((double)(v->j0 * s), (double)c->src.data_j_lo);
     const double j1 = fmin((double)((v->j1 - 1) * s), (double)c->src.data_j_hi);
-    m->pcm_clamp[0] = (float)((i0 - ei) * t->cell_x_m);
-    m->pcm_clamp[1] = (float)((j0 - ej) * t->cell_y_m);
-    m->pcm_clamp[2] = (float)((i1 - ei) * t->cell_x_m);
-    m->pcm_clamp[3] = (float)((j1 - ej) * t->cell_y_m);
+    cv->clamp_m[0] = (i0 - ei) * t->cell_x_m;
+    cv->clamp_m[1] = (j0 - ej) * t->cell_y_m;
+    cv->clamp_m[2] = (i1 - ei) * t->cell_x_m;
+    cv->clamp_m[3] = (j1 - ej) * t->cell_y_m;
 }
 
 /* What the grid is laid over: the drawn box; its heights from the resident
@@ -290,10 +293,11 @@ static void clip_place(ft_pgm_method *m, const ft_terrain *t, const ft_camera *c
 static ft_pgm_surface clip_surface(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     ft_pgm_surface g = ft_pgm_surface_of_terrain(t);
-    g.x0_m = cam->eye_m[0] + m->pcm_clamp[0];
-    g.y0_m = cam->eye_m[1] + m->pcm_clamp[1];
-    g.x1_m = cam->eye_m[0] + m->pcm_clamp[2];
-    g.y1_m = cam->eye_m[1] + m->pcm_clamp[3];
+    const double *cb = m->clip_view.clamp_m;
+    g.x0_m = cam->eye_m[0] + cb[0];
+    g.y0_m = cam->eye_m[1] + cb[1];
+    g.x1_m = cam->eye_m[0] + cb[2];
+    g.y1_m = cam->eye_m[1] + cb[3];
     double closest = 0.0, zmin = 0.0, zmax = 0.0, bmin[2], bmax[2];
     m->cl_world = ft_clip_levels_world(t);
     if (ft_clip_clearance_m(&m->cl.cache, &m->cl_world, cam->eye_m, t->curv_drop_per_m2,
@@ -321,9 +325,9 @@ static void clip_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *
  * eye one sample in from its resident edge. */
 static int clip_eye_coarser(const ft_pgm_method *m)
 {
-    const float *b = m->pcm_box[0], *o = m->level_px[0];
-    return !(b[2] >= b[0] && o[2] - b[0] >= 1.0f && b[2] - o[2] >= 1.0f &&
-             o[3] - b[1] >= 1.0f && b[3] - o[3] >= 1.0f);
+    const double *b = m->clip_view.box[0], *o = m->clip_view.off[0];
+    return !(b[2] >= b[0] && o[0] - b[0] >= 1.0 && b[2] - o[0] >= 1.0 && o[1] - b[1] >= 1.0 &&
+             b[3] - o[1] >= 1.0);
 }
 
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
@@ -354,22 +358,30 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
     gl->Uniform2f(p->method_u[FT_PGM_U_ATLAS_PACK], f->pack_min,
                   f->format == FT_HEIGHT_FORMAT_PACKED ? f->pack_range : 0.0f);
     if (m->clip) {
+        /* from the doubles near the eye: every value here is small */
+        const ft_pgm_clip_view *cv = &m->clip_view;
+        const int64_t side = (int64_t)m->cl.side;
         for (uint32_t l = 0; l < m->levels; ++l) {
-            gl->Uniform4f(p->method_u[FT_PCM_U_BOX + l], m->pcm_box[l][0], m->pcm_box[l][1],
-                          m->pcm_box[l][2], m->pcm_box[l][3]);
+            const int64_t mx = ((cv->base[l][0] % side) + side) % side;
+            const int64_t my = ((cv->base[l][1] % side) + side) % side;
+            gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], (float)mx, (float)my,
+                          (float)cv->off[l][0], (float)cv->off[l][1]);
+            gl->Uniform4f(p->method_u[FT_PCM_U_BOX + l], (float)cv->box[l][0],
+                          (float)cv->box[l][1], (float)cv->box[l][2], (float)cv->box[l][3]);
         }
-        gl->Uniform4f(p->method_u[FT_PCM_U_CLAMP], m->pcm_clamp[0], m->pcm_clamp[1],
-                      m->pcm_clamp[2], m->pcm_clamp[3]);
+        gl->Uniform4f(p->method_u[FT_PCM_U_CLAMP], (float)cv->clamp_m[0], (float)cv->clamp_m[1],
+                      (float)cv->clamp_m[2], (float)cv->clamp_m[3]);
         uint32_t cols = 1u;
         while (m->cl.tex_w > cols * m->cl.side) {
             ++cols;
         }
         gl->Uniform4f(p->method_u[FT_PCM_U_MISC], (float)m->cl.side,
                       (float)m->transition_samples, (float)m->levels, (float)cols);
-    }
-    for (uint32_t l = 0; l < m->levels; ++l) {
-        gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], m->level_px[l][0], m->level_px[l][1],
-                      m->level_px[l][2], m->level_px[l][3]);
+    } else {
+        for (uint32_t l = 0; l < m->levels; ++l) {
+            gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], m->level_px[l][0], m->level_px[l][1],
+                          m->level_px[l][2], m->level_px[l][3]);
+        }
     }
     gl->Uniform3f(p->method_u[FT_PGM_U_FWD], (float)s->forward[0], (float)s->forward[1],
                   (float)s->forward[2]);

@@ -549,6 +549,87 @@ void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t co
     out->pos_rel_eye_m[2] = hgt - s->eye_m[2] - t->curv_drop_per_m2 * (px * px + py * py);
 }
 
+/* ---- heights from the clip cache (the shader's FT_PGM_CLIP part) ---------------- */
+
+/* Level L bilinear at g0 inside its resident box: height, and its gradient
+ * per level-0 sample when grad is not NULL. */
+static double clip_sample(const ft_pgm_clip_view *v, uint32_t level, double g0x, double g0y,
+                          double grad[2])
+{
+    const double scale = ldexp(1.0, (int)level);
+    const double *b = v->box[level];
+    const double ux = clampd((g0x + v->off[level][0]) / scale, b[0], b[2]);
+    const double uy = clampd((g0y + v->off[level][1]) / scale, b[1], b[3]);
+    const double ix = fmin(floor(ux), b[2] - 1.0), iy = fmin(floor(uy), b[3] - 1.0);
+    const double fx = ux - ix, fy = uy - iy;
+    const int64_t a = v->base[level][0] + (int64_t)ix, c = v->base[level][1] + (int64_t)iy;
+    const double h00 = v->texel(v->ctx, level, a, c), h10 = v->texel(v->ctx, level, a + 1, c);
+    const double h01 = v->texel(v->ctx, level, a, c + 1);
+    const double h11 = v->texel(v->ctx, level, a + 1, c + 1);
+    if (grad != NULL) {
+        grad[0] = ((h10 - h00) * (1.0 - fy) + (h11 - h01) * fy) / scale;
+        grad[1] = ((h01 - h00) * (1.0 - fx) + (h11 - h10) * fx) / scale;
+    }
+    const double lo = h00 + (h10 - h00) * fx, hi = h01 + (h11 - h01) * fx;
+    return lo + (hi - lo) * fy;
+}
+
+double ft_pgm_clip_resident(const ft_pgm_clip_view *v, double g0x, double g0y)
+{
+    const uint32_t top = v->levels - 1u;
+    for (uint32_t l = 0; l < top && l < FT_PGM_CLIP_LEVELS_MAX; ++l) {
+        const double *b = v->box[l];
+        const double scale = ldexp(1.0, (int)l);
+        const double ux = (g0x + v->off[l][0]) / scale, uy = (g0y + v->off[l][1]) / scale;
+        const double d = fmin(fmin(ux - b[0], b[2] - ux), fmin(uy - b[1], b[3] - uy)) - 1.0;
+        if (b[2] >= b[0] && b[3] >= b[1] && d >= 0.0) {
+            return (double)l + clampd(1.0 - d / v->transition_samples, 0.0, 1.0);
+        }
+    }
+    return (double)top;
+}
+
+void ft_pgm_clip_vertex_at(const ft_pgm_sampling *s, const ft_pgm_clip_view *v,
+                           double cell_x_m, double cell_y_m, double curv_drop_per_m2,
+                           uint32_t cols, uint32_t rows, uint32_t i, uint32_t j,
+                           ft_pgm_vertex *out)
+{
+    static const double nb[4][2] = {{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}};
+    memset(out, 0, sizeof *out);
+    double p[2];
+    ft_pgm_ground(s, cols, rows, (double)i, (double)j, p);
+    double r2 = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        double q[2];
+        ft_pgm_ground(s, cols, rows, (double)i + nb[k][0], (double)j + nb[k][1], q);
+        const double dx = (q[0] - p[0]) / cell_x_m, dy = (q[1] - p[1]) / cell_y_m;
+        r2 = (dx * dx + dy * dy > r2) ? dx * dx + dy * dy : r2;
+    }
+    out->ground_rel_m[0] = p[0];
+    out->ground_rel_m[1] = p[1];
+    out->r_cells = sqrt(r2);
+    const double px = clampd(p[0], v->clamp_m[0], v->clamp_m[2]);
+    const double py = clampd(p[1], v->clamp_m[1], v->clamp_m[3]);
+    const double g0x = px / cell_x_m, g0y = py / cell_y_m;
+    double lc = (out->r_cells > 1.0) ? log2(out->r_cells) : 0.0;
+    lc = fmax(lc, ft_pgm_clip_resident(v, g0x, g0y));
+    const double top = (double)(v->levels - 1u);
+    const double level = fmin(floor(lc), top);
+    const double w = (level >= top) ? 0.0 : clampd(lc - level, 0.0, 1.0);
+    out->level = (uint32_t)level;
+    out->parent_w = w;
+    out->grid[0] = g0x;
+    out->grid[1] = g0y;
+    double hgt = clip_sample(v, out->level, g0x, g0y, NULL);
+    if (w > 0.0) {
+        hgt += (clip_sample(v, out->level + 1u, g0x, g0y, NULL) - hgt) * w;
+    }
+    out->height_m = hgt;
+    out->pos_rel_eye_m[0] = px;
+    out->pos_rel_eye_m[1] = py;
+    out->pos_rel_eye_m[2] = hgt - s->eye_m[2] - curv_drop_per_m2 * (px * px + py * py);
+}
+
 int ft_pgm_atlas_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
                         uint32_t *height_px)
 {

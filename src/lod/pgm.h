@@ -153,6 +153,39 @@ typedef struct ft_pgm_vertex {
     double pos_rel_eye_m[3]; /* as drawn: lowered by the curvature drop (terrain.h) */
 } ft_pgm_vertex;
 
+/* pgm.heights = clipmap: what the vertex shader is given per frame
+ * (shaders/pgm_grid.glsl, FT_PGM_CLIP), in double. Per level L: base, the
+ * level-L sample at or below the eye; off, the eye less base 2^L (level-0
+ * samples); box, the resident level-L samples relative to base, inclusive
+ * (x0, y0, x1, y1; x1 < x0: none). clamp_m: what is drawn, metres from the
+ * eye. texel(ctx, L, a, b): the cached height of level-L sample (a, b). */
+#define FT_PGM_CLIP_LEVELS_MAX 16u
+typedef double (*ft_pgm_texel_fn)(const void *ctx, uint32_t level, int64_t a, int64_t b);
+typedef struct ft_pgm_clip_view {
+    uint32_t levels;
+    double transition_samples;
+    int64_t base[FT_PGM_CLIP_LEVELS_MAX][2];
+    double off[FT_PGM_CLIP_LEVELS_MAX][2];
+    double box[FT_PGM_CLIP_LEVELS_MAX][4];
+    double clamp_m[4];
+    ft_pgm_texel_fn texel;
+    const void *ctx;
+} ft_pgm_clip_view;
+
+/* The finest level whose resident box holds g0 (level-0 samples from the
+ * eye) one sample in from its edge, plus how far into the last
+ * transition_samples before that edge g0 is (0..1); the top level when none. */
+double ft_pgm_clip_resident(const ft_pgm_clip_view *v, double g0x, double g0y);
+
+/* Grid vertex (i, j) over the clip cache: the shader's arithmetic (level =
+ * max(log2 r, resident) split into L + w, bilinear in L and L + 1 inside
+ * their resident boxes), cell_* and curv_drop_per_m2 the terrain's. grid[]
+ * holds g0; level and parent_w as drawn. */
+void ft_pgm_clip_vertex_at(const ft_pgm_sampling *s, const ft_pgm_clip_view *v,
+                           double cell_x_m, double cell_y_m, double curv_drop_per_m2,
+                           uint32_t cols, uint32_t rows, uint32_t i, uint32_t j,
+                           ft_pgm_vertex *out);
+
 /* dep_s from dep_v, the half angle a and eps (closed form, see the top). */
 double ft_pgm_sampling_depression(double view_depression_rad, double half_angle_rad,
                                   double eps_rad);

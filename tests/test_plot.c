@@ -407,7 +407,7 @@ static void test_chart(void)
 
 /* ---- bench output checker ------------------------------------------------------------ */
 
-#define CSV_COLS_MAX 32
+#define CSV_COLS_MAX 40
 #define CSV_ROWS_MAX 64
 
 static int col(char *const head[], int n, const char *name)
@@ -459,7 +459,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "occlusion_mismatch_mean_px", "occlusion_err_max_px", "raycast_fraction_mean",
         "raycast_fraction_max", "oracle_median_ms", "x_oracle", "tau_achieved_max_px",
         "bound_short_frames", "raycast_fraction_max_measured",
-        "raycast_fraction_max_measured_view", "raycast_small_terrain_frames"};
+        "raycast_fraction_max_measured_view", "raycast_small_terrain_frames",
+        "cache_coarser_frames", "cache_behind_frames", "err_max_fine_px"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);
@@ -475,7 +476,9 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
               c_occ_e = col(H, nh, "occlusion_err_max_px"),
               c_rc_mean = col(H, nh, "raycast_fraction_mean"),
               c_rc_max = col(H, nh, "raycast_fraction_max"),
-              c_or = col(H, nh, "oracle_median_ms"), c_xo = col(H, nh, "x_oracle");
+              c_or = col(H, nh, "oracle_median_ms"), c_xo = col(H, nh, "x_oracle"),
+              c_coarse = col(H, nh, "cache_coarser_frames"),
+              c_fine = col(H, nh, "err_max_fine_px");
     CHECK(nl - 1 == nrows);
     for (int r = 0; r < nrows; ++r) {
         char want_method[64];
@@ -514,6 +517,12 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
          * one-pixel widening adds sky pixels); only pgrid ray casts */
         CHECK(num(c[c_rc_mean]) >= 0.0 && num(c[c_rc_mean]) <= num(c[c_rc_max]));
         if (strcmp(want_method, "pgrid") != 0) CHECK(num(c[c_rc_max]) == 0.0);
+        /* only a method reading the clipmap cache draws from coarser data;
+         * the max without such frames is inside the max */
+        CHECK(num(c[c_coarse]) >= 0.0 && num(c[c_coarse]) <= frames);
+        if (strcmp(want_method, "clipmap") != 0) CHECK(num(c[c_coarse]) == 0.0);
+        CHECK(num(c[c_fine]) >= 0.0 && num(c[c_fine]) <= emax);
+        if (num(c[c_coarse]) == 0.0) CHECK(num(c[c_fine]) == emax);
         if (strcmp(want_method, "brute") == 0) CHECK_NEAR(num(c[c_ratio]), 1.0, 1e-9);
         else CHECK(num(c[c_ratio]) > 0.0);
         /* the oracle (bintree rows only): its median frame time and the row's

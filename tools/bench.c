@@ -140,6 +140,12 @@ typedef struct bench_row {
      * measured frames show less terrain than that */
     double rc_frac_max_measured, rc_frac_max_view;
     int rc_small_frames;
+    /* methods reading the clipmap cache: frames whose eye surroundings were
+     * drawn from a level past 0 (the cache behind), frames with a level
+     * behind, and the largest error of the measured frames not on coarser
+     * data */
+    int coarser_frames, behind_frames;
+    double err_max_fine_px;
     double path_t_med_ms[BENCH_PATHS_MAX], path_err_max_px[BENCH_PATHS_MAX];
     double path_err_p999_px[BENCH_PATHS_MAX];
     /* bintree: the oracle's frames (bench_oracle.h), their median time; NAN
@@ -764,6 +770,8 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
                 ++row->oracle_frames;
             }
             ++timed;
+            row->coarser_frames += st.cache_coarser != 0;
+            row->behind_frames += st.cache_levels_behind > 0u;
             tri += (double)st.triangles;
             row->budget_hits += st.budget_hit != 0;
             row->tau_achieved_max_px = fmax(row->tau_achieved_max_px, st.tau_achieved_px);
@@ -793,6 +801,9 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
             if (measure(p, i / o->every, &cam, &es, &err) != FT_OK) {
                 ok = 0;
                 break;
+            }
+            if (!st.cache_coarser) {
+                row->err_max_fine_px = fmax(row->err_max_fine_px, es.max_px);
             }
             if (row->measured == 0 || es.max_px > row->err_max_px) {
                 row->err_max_px = es.max_px;
@@ -891,7 +902,8 @@ static int write_csv(const char *path)
           "init_ms,occlusion_mismatch_px,occlusion_mismatch_mean_px,occlusion_err_max_px,"
           "raycast_fraction_mean,raycast_fraction_max,oracle_median_ms,x_oracle,"
           "tau_achieved_max_px,bound_short_frames,raycast_fraction_max_measured,"
-          "raycast_fraction_max_measured_view,raycast_small_terrain_frames\n",
+          "raycast_fraction_max_measured_view,raycast_small_terrain_frames,"
+          "cache_coarser_frames,cache_behind_frames,err_max_fine_px\n",
           f);
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
@@ -926,6 +938,8 @@ static int write_csv(const char *path)
         csv_num(f, w->rc_frac_max_measured, 4);
         csv_num(f, w->rc_frac_max_view, 4);
         fprintf(f, ",%d", w->rc_small_frames);
+        fprintf(f, ",%d,%d", w->coarser_frames, w->behind_frames);
+        csv_num(f, w->err_max_fine_px, 4);
         fputc('\n', f);
     }
     int ok = fclose(f) == 0;
@@ -1050,6 +1064,10 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
                "shader and the same fragment shader, target and readback: the floor for that "
                "triangle set; `oracle ms (x)` = its median frame time (draw + readback) and the "
                "row's median over it\n");
+    fprintf(f, "- coarser frames (methods reading the clipmap cache): frames whose eye "
+               "surroundings came from a level past 0 because the cache was behind (the bench "
+               "gives it no spare time, and its frames are far apart on a path); the max error "
+               "of the measured frames without them beside it\n");
     fprintf(f, "- frame time = LOD selection + draw + readback (until the GPU is done); "
                "error = worst measured frame (max, p99.9), mean of the frames' means; coverage "
                "= pixels terrain in one image and sky in the other (worst frame); occlusion = pixels "
@@ -1064,8 +1082,8 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
     }
     fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | oracle ms (x) | "
                "max px | p99.9 px | mean px | coverage px | occlusion px | triangles | ray cast "
-               "%% mean / max | worst frame |\n"
-               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+               "%% mean / max | coarser frames (max px without) | worst frame |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
         if (!w->ok) continue;
@@ -1076,11 +1094,12 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
         }
         fprintf(f,
                 "| %s | %s | %.2f | %.2f | %.2f | %.2f | %s | %.3f | %.3f | %.4f | %u | %u | %.0f "
-                "| %.1f / %.1f | %s |\n",
+                "| %.1f / %.1f | %d (%.3f) | %s |\n",
                 w->method, w->setting.label, w->t_med_ms, w->t_p99_ms, w->t_max_ms,
                 bm > 0.0 ? w->t_med_ms / bm : NAN, oracle, w->err_max_px, w->err_p999_px,
                 w->err_mean_px, w->cov_max_px, w->occl_max_px, w->tri_mean,
-                100.0 * w->rc_frac_mean, 100.0 * w->rc_frac_max, w->err_max_where);
+                100.0 * w->rc_frac_mean, 100.0 * w->rc_frac_max, w->coarser_frames,
+                w->err_max_fine_px, w->err_max_where);
     }
     if (g_path_count > 1) {
         fprintf(f, "\nPer path: median frame time ms / max error px / p99.9 px\n\n"

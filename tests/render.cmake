@@ -95,6 +95,19 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
                ${CMAKE_BINARY_DIR}/test-out/no_heap_clipmap_ftd.png egl-gles3 clipmap replay
                ${_nh_db})
       set_tests_properties(no_heap_clipmap_ftd PROPERTIES FIXTURES_REQUIRED no_heap_ftd)
+      # pgm reading the same cache (pgm.heights = clipmap), on GLES 3 and 2
+      if(FIXTERRAIN_WITH_METHOD_PGM)
+        add_test(NAME no_heap_pgm_cache_ftd COMMAND test_no_heap
+                 ${CMAKE_BINARY_DIR}/test-out/no_heap_pgm_cache_ftd.png egl-gles3 pgm-cache
+                 replay ${_nh_db})
+        add_test(NAME no_heap_pgm_cache_ftd_gles2 COMMAND test_no_heap
+                 ${CMAKE_BINARY_DIR}/test-out/no_heap_pgm_cache_ftd_es2.png egl-gles2 pgm-cache
+                 replay ${_nh_db})
+        set_tests_properties(no_heap_pgm_cache_ftd no_heap_pgm_cache_ftd_gles2 PROPERTIES
+                             FIXTURES_REQUIRED no_heap_ftd)
+        set_tests_properties(no_heap_pgm_cache_ftd_gles2 PROPERTIES
+                             ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+      endif()
     endif()
   endif()
   if(FIXTERRAIN_WITH_OSMESA)

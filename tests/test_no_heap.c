@@ -13,7 +13,8 @@
  * then runs init, then 120 frames along a moving path plus a position pass
  * and a PNG write with counting on, and requires zero calls.
  * Usage: test_no_heap OUT.png [BACKEND [METHOD [replay]]] (METHOD as in
- * scene.method: brute, bintree, pgm, ...; the path changes the view every
+ * scene.method: brute, bintree, pgm, ..., or pgm-cache: pgm with pgm.heights =
+ * clipmap; the path changes the view every
  * frame, so a LOD method selects anew each frame). With
  * "replay", a candump log with a stall is then replayed too (decoder, pose
  * feed, annunciation overlay, pose CSV, one PNG per frame), counting on. */
@@ -175,7 +176,10 @@ int main(int argc, char **argv)
     if (argc >= 3) {
         REQUIRE(ft_backend_from_name(argv[2], &s.backend));
     }
-    if (argc >= 4) {
+    if (argc >= 4 && strcmp(argv[3], "pgm-cache") == 0) {
+        s.method = FT_METHOD_PGM; /* pgm reading its heights through the clip cache */
+        s.pgm_heights_clipmap = 1;
+    } else if (argc >= 4) {
         REQUIRE(ft_method_from_name(argv[3], &s.method));
     }
     ft_status st = ft_app_init(&g_app, &s, &err);

@@ -58,6 +58,17 @@ FT_OUT_VS float v_morph; /* the continuous level L + w (captured by the tests) *
 
 #include "decode.glsl"
 
+/* Texel t (integer valued) of the atlas u_pgm_atlas. */
+float ft_atlas_texel(vec2 t)
+{
+#if FT_ES3
+    return ft_decode(texelFetch(u_pgm_atlas, ivec2(t), 0), u_pgm_atlas_pack);
+#else
+    return ft_decode(texture2DLod(u_pgm_atlas, (t + 0.5) / u_pgm_atlas_size, 0.0),
+                     u_pgm_atlas_pack);
+#endif
+}
+
 /* Texel ij (integer valued, inside the level) of avg level `level`. */
 float ft_texel(float level, vec2 ij)
 {
@@ -68,13 +79,18 @@ float ft_texel(float level, vec2 ij)
         return ft_decode(texture2DLod(u_heights, (ij + 0.5) / u_grid_size, 0.0), u_pack);
 #endif
     }
-    vec2 a = u_pgm_level[int(level)].xy + ij;
-#if FT_ES3
-    return ft_decode(texelFetch(u_pgm_atlas, ivec2(a), 0), u_pgm_atlas_pack);
-#else
-    return ft_decode(texture2DLod(u_pgm_atlas, (a + 0.5) / u_pgm_atlas_size, 0.0),
-                     u_pgm_atlas_pack);
-#endif
+    return ft_atlas_texel(u_pgm_level[int(level)].xy + ij);
+}
+
+/* Bilinear in the cell whose corner heights are h00 .. h11 at fraction f, of
+ * side `scale` level-0 samples: (height, dh/dgx, dh/dgy) per level-0 sample. */
+vec3 ft_bilerp(float h00, float h10, float h01, float h11, vec2 f, float scale)
+{
+    float lo = mix(h00, h10, f.x);
+    float up = mix(h01, h11, f.x);
+    float dx = mix(h10 - h00, h11 - h01, f.y) / scale;
+    float dy = mix(h01 - h00, h11 - h10, f.x) / scale;
+    return vec3(mix(lo, up, f.y), dx, dy);
 }
 
 /* Avg level `level` bilinear at grid coordinate g: (height, dh/dgx, dh/dgy). */
@@ -91,11 +107,7 @@ vec3 ft_level_sample(float level, vec2 g)
     float h10 = ft_texel(level, vec2(b.x, a.y));
     float h01 = ft_texel(level, vec2(a.x, b.y));
     float h11 = ft_texel(level, b);
-    float lo = mix(h00, h10, f.x);
-    float up = mix(h01, h11, f.x);
-    float dx = mix(h10 - h00, h11 - h01, f.y) / scale;
-    float dy = mix(h01 - h00, h11 - h10, f.x) / scale;
-    return vec3(mix(lo, up, f.y), dx, dy);
+    return ft_bilerp(h00, h10, h01, h11, f, scale);
 }
 
 #ifdef FT_PGM_CLIP
@@ -118,13 +130,7 @@ float ft_pcm_texel(float level, vec2 i)
     vec4 lv = u_pgm_level[int(level)];
     float side = u_pcm_misc.x;
     vec2 block = vec2(mod(level, u_pcm_misc.w), floor(level / u_pcm_misc.w));
-    vec2 t = block * side + mod(lv.xy + i, side);
-#if FT_ES3
-    return ft_decode(texelFetch(u_pgm_atlas, ivec2(t), 0), u_pgm_atlas_pack);
-#else
-    return ft_decode(texture2DLod(u_pgm_atlas, (t + 0.5) / u_pgm_atlas_size, 0.0),
-                     u_pgm_atlas_pack);
-#endif
+    return ft_atlas_texel(block * side + mod(lv.xy + i, side));
 }
 
 /* Level L bilinear at g0 (level-0 samples from the eye), inside its resident
@@ -140,11 +146,7 @@ vec3 ft_pcm_sample(float level, vec2 g0)
     float h10 = ft_pcm_texel(level, i0 + vec2(1.0, 0.0));
     float h01 = ft_pcm_texel(level, i0 + vec2(0.0, 1.0));
     float h11 = ft_pcm_texel(level, i0 + vec2(1.0, 1.0));
-    float lo = mix(h00, h10, f.x);
-    float up = mix(h01, h11, f.x);
-    float dx = mix(h10 - h00, h11 - h01, f.y) / scale;
-    float dy = mix(h01 - h00, h11 - h10, f.x) / scale;
-    return vec3(mix(lo, up, f.y), dx, dy);
+    return ft_bilerp(h00, h10, h01, h11, f, scale);
 }
 
 /* The finest level whose resident samples hold g0 one sample in from their

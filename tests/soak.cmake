@@ -54,4 +54,15 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_EGL AND FIXTERRAIN_WITH_METHOD_CLIPMAP
     set_tests_properties(soak_clipmap PROPERTIES
       ENVIRONMENT_MODIFICATION "${_soak_asan}")
   endif()
+  # and pgm reading the same cache (pgm.heights = clipmap)
+  if(FIXTERRAIN_WITH_METHOD_PGM)
+    file(MAKE_DIRECTORY ${_soak_dir}/pgm)
+    add_test(NAME soak_pgm_cache
+             COMMAND test_soak ${_soak_dir}/raw.log ${_soak_dir}/pgm 50 10 ${_soak_dir}/mosaic.ftd pgm)
+    set_tests_properties(soak_pgm_cache PROPERTIES FIXTURES_REQUIRED soak_clipmap LABELS "soak"
+                         TIMEOUT 900)
+    if(FIXTERRAIN_SANITIZE)
+      set_tests_properties(soak_pgm_cache PROPERTIES ENVIRONMENT_MODIFICATION "${_soak_asan}")
+    endif()
+  endif()
 endif()

@@ -179,6 +179,14 @@ int main(int argc, char **argv)
            "%u^2 samples (the scene's window)\n",
            cl->levels, cl->side, (unsigned long long)gpu_bytes, t->width);
     CHECK(gpu_bytes <= GPU_CACHE_MAX_BYTES);
+    /* packed texels would hold the database's whole range, not the window's
+     * (which would clamp the terrain past the window) */
+    printf("cache texels: %s over [%.1f, %.1f] m; database [%.1f, %.1f] m, window [%.1f, %.1f] m\n",
+           cl->fmt.format == FT_HEIGHT_FORMAT_FLOAT ? "float" : "packed", cl->fmt.pack_min,
+           cl->fmt.pack_min + cl->fmt.pack_range, t->db->hdr.min_height_m,
+           t->db->hdr.max_height_m, t->min_height_m, t->max_height_m);
+    CHECK(cl->fmt.pack_min <= t->db->hdr.min_height_m &&
+          cl->fmt.pack_min + cl->fmt.pack_range >= t->db->hdr.max_height_m);
 
     const double deg_m = FT_EARTH_RADIUS_M * FT_RAD_PER_DEG;
     const double mid_lat = 0.5 * (k_from[0] + k_to[0]) * FT_RAD_PER_DEG;

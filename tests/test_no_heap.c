@@ -19,10 +19,12 @@
  * "replay", a candump log with a stall is then replayed too (decoder, pose
  * feed, annunciation overlay, pose CSV, one PNG per frame), counting on. */
 #define _GNU_SOURCE
+#include <errno.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 
 #include "app/app.h"
 #include "app/replay.h"
@@ -215,15 +217,17 @@ int main(int argc, char **argv)
     int replay = argc >= 5 && strcmp(argv[4], "replay") == 0;
     ft_status rs = FT_OK;
     if (replay) {
+        /* beside the PNG, named after it: the no-heap tests run in
+         * parallel and must not share the log, the CSV or the frames */
         char log[FT_PATH_MAX], csv[FT_PATH_MAX], dir[FT_PATH_MAX];
-        const char *slash = strrchr(png_path, '/');
-        int n = slash ? (int)(slash - png_path) : 1;
-        const char *base = slash ? png_path : ".";
-        (void)snprintf(log, sizeof log, "%.*s/no_heap_replay.log", n, base);
-        (void)snprintf(csv, sizeof csv, "%.*s/no_heap_replay.csv", n, base);
-        (void)snprintf(dir, sizeof dir, "%.*s", n, base);
+        const size_t len = strlen(png_path);
+        const int n = (int)((len > 4u && strcmp(png_path + len - 4u, ".png") == 0) ? len - 4u : len);
+        (void)snprintf(log, sizeof log, "%.*s.replay.log", n, png_path);
+        (void)snprintf(csv, sizeof csv, "%.*s.replay.csv", n, png_path);
+        (void)snprintf(dir, sizeof dir, "%.*s.frames", n, png_path);
         g_counting = 0;
         write_log(log); /* test set-up, not the renderer */
+        REQUIRE(mkdir(dir, 0755) == 0 || errno == EEXIST);
         g_counting = 1;
         ft_replay_desc d = {log, dir, csv, 0};
         rs = ft_app_replay(&g_app, &d, &g_feed, &g_replay_io, &g_res, &err);

@@ -11,7 +11,10 @@
  * replay: tests/soak.cmake runs it for 10 minutes over N42E001 on an orbit
  * of 8 km radius at 250 m/s (one revolution inside the warm-up).
  *
- * usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES [DB.ftd]]]
+ * With METHOD pgm after DB.ftd, the scene is pgm reading its heights
+ * through the same cache (pgm.heights = clipmap, a 64 x 128 grid).
+ *
+ * usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES [DB.ftd [METHOD]]]]
  *   RAW.log  a fixterrain-flightgen log (tests/soak.cmake makes it: orbit,
  *            1860 s, with flightgen's own single faults: --gps-jump,
  *            --nan-at, --bad-dlc-at, --duplicate-at, --drop-every)
@@ -90,13 +93,14 @@ static const char k_scene_fmt[] =
     "[frame]\nperiod_ms = %g\nbudget_ms = %g\ndegrade = 0\n";
 
 static const char k_scene_db_fmt[] =
-    "[scene]\nname = soak-clipmap\nmethod = clipmap\nbackend = egl-gles3\n"
+    "[scene]\nname = soak-cache\nmethod = %s\nbackend = egl-gles3\n"
     "[view]\nwidth_px = 64\nheight_px = 48\nfovy_deg = 60\n"
     "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 1201\n"
     "db_centre_lat_deg = 42.5\ndb_centre_lon_deg = 1.5\n"
     "[gpu]\ntexture_bytes = 16M\n[metric]\nenabled = 0\n"
     "[clipmap]\nside = 64\nlevels = 5\nupdate_samples_max = 1024\nupdates_per_frame = 4\n"
     "tile_slots = 8\n"
+    "[pgm]\ngrid_cols = 64\ngrid_rows = 128\nheights = clipmap\n"
     "[budget]\nclip_bytes = 4M\n"
     "[frame]\nperiod_ms = %g\nbudget_ms = %g\ndegrade = 0\n";
 
@@ -306,7 +310,7 @@ static soak_state g_soak;
 int main(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES [DB.ftd]]]\n");
+        fprintf(stderr, "usage: test_soak RAW.log OUT_DIR [PERIOD_MS [MINUTES [DB.ftd [METHOD]]]]\n");
         return 2;
     }
     const double period_ms = argc >= 4 ? atof(argv[3]) : 50.0;
@@ -327,6 +331,9 @@ int main(int argc, char **argv)
           fc.duplicated >= per_min && fc.gps >= per_min && fc.dropped_lines > 0u);
 
     const char *db = argc >= 6 ? argv[5] : NULL;
+    const char *method = argc >= 7 ? argv[6] : "clipmap";
+    const int pgm = strcmp(method, "pgm") == 0;
+    REQUIRE(pgm || strcmp(method, "clipmap") == 0);
     if (db != NULL) {
         /* The clipmap's geometry changes from frame to frame (rings, stitch
          * strips, levels behind), and the driver's (llvmpipe's) per-frame
@@ -345,7 +352,7 @@ int main(int argc, char **argv)
     }
     char scene[2048];
     if (db != NULL) {
-        (void)snprintf(scene, sizeof scene, k_scene_db_fmt, db, period_ms, period_ms);
+        (void)snprintf(scene, sizeof scene, k_scene_db_fmt, method, db, period_ms, period_ms);
     } else {
         (void)snprintf(scene, sizeof scene, k_scene_fmt, period_ms, period_ms);
     }
@@ -475,9 +482,10 @@ int main(int argc, char **argv)
            WINDOW_MIN, ms_last, full - WINDOW_MIN, full);
 
     if (db != NULL) {
-        const ft_clip_stats *cs = &g_app.renderer.method.u.clipmap.cl.cache.stats;
-        printf("clipmap cache: %llu updates, %llu samples uploaded, at most %u levels behind\n",
-               (unsigned long long)cs->updates, (unsigned long long)cs->samples_uploaded,
+        const ft_method *m = &g_app.renderer.method;
+        const ft_clip_stats *cs = pgm ? &m->u.pgm.cl.cache.stats : &m->u.clipmap.cl.cache.stats;
+        printf("%s's clipmap cache: %llu updates, %llu samples uploaded, at most %u levels behind\n",
+               method, (unsigned long long)cs->updates, (unsigned long long)cs->samples_uploaded,
                cs->levels_behind_max);
         CHECK(cs->updates > 100u); /* the cache moved with the eye all along */
     }

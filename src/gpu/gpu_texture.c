@@ -65,6 +65,22 @@ static void pack_values(const float *v, size_t n, float min_m, float range_m, ui
     }
 }
 
+ft_scalar_format ft_gpu_height_format(const ft_gl *gl, ft_height_format format, float min_m,
+                                      float max_m)
+{
+    ft_scalar_format f;
+    f.format = format;
+    if (f.format == FT_HEIGHT_FORMAT_AUTO) {
+        f.format = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
+    }
+    f.pack_min = min_m;
+    f.pack_range = max_m - min_m;
+    if (!(f.pack_range > 0.0f)) {
+        f.pack_range = 1.0f;
+    }
+    return f;
+}
+
 ft_status ft_gpu_upload_scalar(const ft_gl *gl, const ft_scalar_format *f, const float *data,
                                uint32_t w_px, uint32_t h_px, GLenum unit, ft_arena *a,
                                GLuint *tex, uint64_t *bytes, ft_error *err)

@@ -52,6 +52,13 @@ typedef struct ft_scalar_format {
     float pack_min, pack_range;
 } ft_scalar_format;
 
+/* The renderer's rule for heights read in a vertex shader: `format` as the
+ * scene gives it, auto = float when the context has float textures, else
+ * packed, over [min_m, max_m] (a range of 1 for flat terrain: any range
+ * decodes it exactly). */
+ft_scalar_format ft_gpu_height_format(const ft_gl *gl, ft_height_format format, float min_m,
+                                      float max_m);
+
 /* Uploads data (w x h floats) on texture unit `unit`; adds w*h*4 to *bytes. */
 ft_status ft_gpu_upload_scalar(const ft_gl *gl, const ft_scalar_format *f, const float *data,
                                uint32_t w, uint32_t h, GLenum unit, ft_arena *a, GLuint *tex,

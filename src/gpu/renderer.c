@@ -116,21 +116,16 @@ static ft_status upload_terrain(ft_renderer *r, const ft_scene *s, ft_arena *a, 
     const ft_gl *gl = r->gl;
     const ft_terrain *t = r->terrain;
     ft_gpu_terrain *gt = &r->gt;
-    ft_height_format f = s->height_format;
-    if (f == FT_HEIGHT_FORMAT_AUTO) {
-        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
-    }
-    if (f == FT_HEIGHT_FORMAT_FLOAT && !gl->caps.has_float_textures) {
+    const ft_scalar_format f =
+        ft_gpu_height_format(gl, s->height_format, t->min_height_m, t->max_height_m);
+    if (f.format == FT_HEIGHT_FORMAT_FLOAT && !gl->caps.has_float_textures) {
         return ft_fail(err, FT_ERR_UNSUPPORTED,
                        "gpu.height_format = float, but this context has no float textures "
                        "(use auto or packed)");
     }
-    gt->format = f;
-    gt->pack_min_m = t->min_height_m;
-    gt->pack_range_m = t->max_height_m - t->min_height_m;
-    if (!(gt->pack_range_m > 0.0f)) {
-        gt->pack_range_m = 1.0f; /* flat terrain: any range decodes exactly */
-    }
+    gt->format = f.format;
+    gt->pack_min_m = f.pack_min;
+    gt->pack_range_m = f.pack_range;
     ft_status st = upload_array(r, a, t->heights_m, t->width, t->height, &gt->heights_tex, err);
     if (st != FT_OK || !s->pyramid_textures) {
         return st;

@@ -1,6 +1,7 @@
 /* clip_levels.c - the clipmap cache on the GPU (clip_levels.h). */
 #include "lod/clip_levels.h"
 
+#include <math.h>
 #include <string.h>
 
 /* Over a database the levels reach past the scene's grid, whose bounds no
@@ -72,22 +73,6 @@ static ft_status check_desc(const ft_scene *s, const ft_gl *gl, ft_clip_tex_layo
     return FT_OK;
 }
 
-/* The renderer's rule: float texels when the context samples them in the
- * vertex stage, else 24-bit fixed point over the terrain's height range. */
-static void pick_format(ft_clip_levels *c, const ft_gl *gl, const ft_scene *s,
-                        const ft_terrain *t)
-{
-    ft_height_format f = s->height_format;
-    if (f == FT_HEIGHT_FORMAT_AUTO) {
-        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
-    }
-    c->fmt.format = f;
-    c->fmt.pack_min = t->min_height_m;
-    c->fmt.pack_range = t->max_height_m - t->min_height_m;
-    if (!(c->fmt.pack_range > 0.0f)) {
-        c->fmt.pack_range = 1.0f;
-    }
-}
 
 static void make_textures(ft_clip_levels *c, const ft_gl *gl)
 {
@@ -238,7 +223,15 @@ ft_status ft_clip_levels_init(ft_clip_levels *c, const ft_gl *gl, const ft_scene
     c->side = d.side;
     c->levels = c->cache.desc.levels;
     c->updates_per_frame = s->clipmap_updates_per_frame;
-    pick_format(c, gl, s, t);
+    /* packed texels hold the range of everything the cache can read: over
+     * a database its whole range (the window's would clamp the terrain
+     * past it), widened by the window's (its floor fill) */
+    float lo_m = t->min_height_m, hi_m = t->max_height_m;
+    if (t->db != NULL) {
+        lo_m = fminf(lo_m, t->db->hdr.min_height_m);
+        hi_m = fmaxf(hi_m, t->db->hdr.max_height_m);
+    }
+    c->fmt = ft_gpu_height_format(gl, s->height_format, lo_m, hi_m);
     make_textures(c, gl);
     /* the first frame is complete: every level filled around the terrain's
      * middle now, and again around the first eye by the first select */

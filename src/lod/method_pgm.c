@@ -99,16 +99,7 @@ static ft_status upload_atlas(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_gr
                        "pgm: the avg-pyramid atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", w, h,
                        gl->caps.max_texture_size);
     }
-    ft_height_format f = g->height_format;
-    if (f == FT_HEIGHT_FORMAT_AUTO) { /* the renderer's rule for the heights */
-        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
-    }
-    m->atlas_fmt.format = f;
-    m->atlas_fmt.pack_min = t->min_height_m;
-    m->atlas_fmt.pack_range = t->max_height_m - t->min_height_m;
-    if (!(m->atlas_fmt.pack_range > 0.0f)) {
-        m->atlas_fmt.pack_range = 1.0f;
-    }
+    m->atlas_fmt = ft_gpu_height_format(gl, g->height_format, t->min_height_m, t->max_height_m);
     const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
     float *img = NULL;
     ft_status st = ft_arena_take(a, FT_POOL_METHOD, (size_t)w * h * sizeof(float),

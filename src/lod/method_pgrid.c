@@ -317,16 +317,7 @@ static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
                        "pgrid: the min/max atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d", 2u * hw, h,
                        gl->caps.max_texture_size);
     }
-    ft_height_format f = s->height_format;
-    if (f == FT_HEIGHT_FORMAT_AUTO) {
-        f = gl->caps.has_float_textures ? FT_HEIGHT_FORMAT_FLOAT : FT_HEIGHT_FORMAT_PACKED;
-    }
-    m->mm_fmt.format = f;
-    m->mm_fmt.pack_min = t->min_height_m;
-    m->mm_fmt.pack_range = t->max_height_m - t->min_height_m;
-    if (!(m->mm_fmt.pack_range > 0.0f)) {
-        m->mm_fmt.pack_range = 1.0f;
-    }
+    m->mm_fmt = ft_gpu_height_format(gl, s->height_format, t->min_height_m, t->max_height_m);
     const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
     float *img = NULL;
     const size_t n = (size_t)hw * 2u * h;

@@ -511,8 +511,10 @@ void ft_pgm_ground(const ft_pgm_sampling *s, uint32_t cols, uint32_t rows, doubl
               s->rect[1] + (s->rect[3] - s->rect[1]) * v, rel_xy_m);
 }
 
-void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t cols,
-                      uint32_t rows, uint32_t i, uint32_t j, ft_pgm_vertex *out)
+/* Vertex (i, j)'s ground point p and footprint: the ground distance in
+ * cells to the farthest of its 4 grid neighbours' points. */
+static void footprint(const ft_pgm_sampling *s, uint32_t cols, uint32_t rows, uint32_t i,
+                      uint32_t j, double cell_x_m, double cell_y_m, ft_pgm_vertex *out)
 {
     static const double nb[4][2] = {{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}};
     memset(out, 0, sizeof *out);
@@ -522,12 +524,19 @@ void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t co
     for (int k = 0; k < 4; ++k) {
         double q[2];
         ft_pgm_ground(s, cols, rows, (double)i + nb[k][0], (double)j + nb[k][1], q);
-        const double dx = (q[0] - p[0]) / t->cell_x_m, dy = (q[1] - p[1]) / t->cell_y_m;
+        const double dx = (q[0] - p[0]) / cell_x_m, dy = (q[1] - p[1]) / cell_y_m;
         r2 = (dx * dx + dy * dy > r2) ? dx * dx + dy * dy : r2;
     }
     out->ground_rel_m[0] = p[0];
     out->ground_rel_m[1] = p[1];
     out->r_cells = sqrt(r2);
+}
+
+void ft_pgm_vertex_at(const ft_pgm_sampling *s, const ft_terrain *t, uint32_t cols,
+                      uint32_t rows, uint32_t i, uint32_t j, ft_pgm_vertex *out)
+{
+    footprint(s, cols, rows, i, j, t->cell_x_m, t->cell_y_m, out);
+    const double p[2] = {out->ground_rel_m[0], out->ground_rel_m[1]};
     ft_pgm_lod(out->r_cells, t->pyr.avg_levels, &out->level, &out->parent_w);
     const double ox = t->origin_world_x_m - s->eye_m[0], oy = t->origin_world_y_m - s->eye_m[1];
     /* clamped into the grid, xy relative to the eye: near the eye this never
@@ -594,22 +603,9 @@ void ft_pgm_clip_vertex_at(const ft_pgm_sampling *s, const ft_pgm_clip_view *v,
                            uint32_t cols, uint32_t rows, uint32_t i, uint32_t j,
                            ft_pgm_vertex *out)
 {
-    static const double nb[4][2] = {{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}};
-    memset(out, 0, sizeof *out);
-    double p[2];
-    ft_pgm_ground(s, cols, rows, (double)i, (double)j, p);
-    double r2 = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        double q[2];
-        ft_pgm_ground(s, cols, rows, (double)i + nb[k][0], (double)j + nb[k][1], q);
-        const double dx = (q[0] - p[0]) / cell_x_m, dy = (q[1] - p[1]) / cell_y_m;
-        r2 = (dx * dx + dy * dy > r2) ? dx * dx + dy * dy : r2;
-    }
-    out->ground_rel_m[0] = p[0];
-    out->ground_rel_m[1] = p[1];
-    out->r_cells = sqrt(r2);
-    const double px = clampd(p[0], v->clamp_m[0], v->clamp_m[2]);
-    const double py = clampd(p[1], v->clamp_m[1], v->clamp_m[3]);
+    footprint(s, cols, rows, i, j, cell_x_m, cell_y_m, out);
+    const double px = clampd(out->ground_rel_m[0], v->clamp_m[0], v->clamp_m[2]);
+    const double py = clampd(out->ground_rel_m[1], v->clamp_m[1], v->clamp_m[3]);
     const double g0x = px / cell_x_m, g0y = py / cell_y_m;
     double lc = (out->r_cells > 1.0) ? log2(out->r_cells) : 0.0;
     lc = fmax(lc, ft_pgm_clip_resident(v, g0x, g0y));

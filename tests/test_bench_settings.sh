@@ -53,5 +53,40 @@ else
   fail "tiny bench run with --no-oracle: $(cat "$out/n.log")"
 fi
 
+# A method reading the clipmap cache: the bench runs its cache between the
+# measured frames as a 60 Hz display would (--cache-hz), so on a climb whose
+# 3 frames lie 150 s apart no frame is drawn with a level behind (and pgm's
+# none from coarser data; clipmap's layout leaves level 0 out where its box
+# has left the 30 km terrain, which it counts as coarser); with --cache-hz 0
+# only the measured frames' selections move it and it is behind (the counts
+# are the CSV's cache columns).
+{ cat "$src/config/default.ini"
+  printf '[budget]\nclip_bytes = 256K\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n'; } > "$out/cache.ini"
+# cache_col FILE METHOD SETTING COLUMN: the value of COLUMN in that row
+cache_col() {
+  awk -F, -v m="$2" -v st="$3" -v c="$4" 'NR == 1 { for (i = 1; i <= NF; ++i) h[$i] = i; next }
+    $1 == m && $2 == st { print $(h[c]) }' "$1"
+}
+for hz in 60 0; do
+  if "$bin" bench --scene "$out/cache.ini" --methods clipmap,pgm --path climb --size 64x48 \
+       --frames 3 --metric-every 3 --quiet --cache-hz "$hz" \
+       --settings 'clipmap.side=128;pgm.grid=64x128;pgm.heights=clipmap' \
+       --csv "$out/c$hz.csv" --plot "$out/c$hz.png" > "$out/c$hz.log" 2>&1; then
+    for row in "clipmap side=128" "pgm grid=64x128 heights=clipmap"; do
+      m=${row%% *}; st=${row#* }
+      coarser=$(cache_col "$out/c$hz.csv" "$m" "$st" cache_coarser_frames)
+      behind=$(cache_col "$out/c$hz.csv" "$m" "$st" cache_behind_frames)
+      echo "--cache-hz $hz $row: $coarser frames on coarser data, $behind with a level behind"
+      case "$hz:$m:$coarser:$behind" in
+        60:pgm:0:0|60:clipmap:*:0) ;;
+        60:*) fail "--cache-hz 60 $row: $coarser frames on coarser data, $behind behind" ;;
+        0:*:*:0|0:*:*:) fail "--cache-hz 0 $row: the cache was not behind ($behind)" ;;
+      esac
+    done
+  else
+    fail "cache bench run (--cache-hz $hz): $(cat "$out/c$hz.log")"
+  fi
+done
+
 echo "test_bench_settings: $fails failure(s)"
 [ "$fails" -eq 0 ]

@@ -30,6 +30,7 @@
 #include "app/cli.h"
 #include "app/frame.h"
 #include "bench_oracle.h"
+#include "core/platform_api.h"
 #include "terrain/default_view.h"
 #include "flight_path.h"
 #include "plot.h"
@@ -63,6 +64,12 @@
 #define BENCH_CLEAR_RADIUS_M 250.0 /* "near it": the highest ground within this radius */
 #define BENCH_HOVER_AGL_M 1000.0 /* nadir hover height above the ground */
 #define BENCH_CLIMB_DURATION_S 300.0
+/* A method reading the clipmap cache gets its cache run between measured
+ * frames as a display would run it (--cache-hz, default 60: a selection and
+ * half a frame of spare time per display frame, untimed); at a path's start
+ * it settles (at most BENCH_CACHE_SETTLE_MAX display frames) */
+#define BENCH_CACHE_HZ 60.0
+#define BENCH_CACHE_SETTLE_MAX 4096
 
 /* ---- settings ------------------------------------------------------------------ */
 
@@ -176,7 +183,7 @@ typedef struct bench_opts {
     const char *scene_path, *dem, *methods, *paths, *csv, *plot, *report, *size, *backend;
     const char *centre, *plot_error;
     int frames, every, quiet, no_oracle;
-    double ref_cache_mb, clearance_m;
+    double ref_cache_mb, clearance_m, cache_hz;
     const char *settings[BENCH_USER_AXES_MAX];
     int settings_count;
 } bench_opts;
@@ -589,6 +596,36 @@ static double ground_max_m(const ft_terrain *t, double lat, double lon, double r
     return h;
 }
 
+/* The pose of a (non-hover) path at path time tt: lifted to the clearance
+ * above the ground near it (returns 1 when it was). */
+static int pose_at(const bench_path *bp, const flight_path *fp, const ft_scene *base,
+                   const ft_terrain *t, double tt, double clearance_m, ft_pose *p)
+{
+    const double g0 = ground_m(t, base->pose.lat_deg, base->pose.lon_deg);
+    flight_sample s;
+    flight_path_sample(fp, tt, &s);
+    p->lat_deg = s.lat_deg;
+    p->lon_deg = s.lon_deg;
+    p->alt_m = s.alt_m + (bp->is_file ? 0.0 : g0);
+    p->heading_deg = s.heading_deg;
+    p->pitch_deg = s.pitch_deg;
+    p->roll_deg = s.roll_deg;
+    const double floor_m =
+        ground_max_m(t, p->lat_deg, p->lon_deg, BENCH_CLEAR_RADIUS_M) + clearance_m;
+    if (p->alt_m < floor_m) {
+        p->alt_m = floor_m;
+        return 1;
+    }
+    return 0;
+}
+
+/* Path time of frame i of frames. */
+static double frame_time_s(const flight_path *fp, int i, int frames)
+{
+    return flight_path_t0_s(fp) +
+           flight_path_duration_s(fp) * (frames > 1 ? (double)i / (frames - 1) : 0.0);
+}
+
 /* Phase 2 (terrain loaded): the frames' poses. */
 static void sample_path(bench_path *bp, const flight_path *fp, const ft_scene *base,
                         const ft_terrain *t, int frames, double clearance_m)
@@ -607,22 +644,52 @@ static void sample_path(bench_path *bp, const flight_path *fp, const ft_scene *b
             p->roll_deg = 0.0;
             continue;
         }
-        double tt = flight_path_t0_s(fp) +
-                    flight_path_duration_s(fp) * (frames > 1 ? (double)i / (frames - 1) : 0.0);
-        flight_sample s;
-        flight_path_sample(fp, tt, &s);
-        p->lat_deg = s.lat_deg;
-        p->lon_deg = s.lon_deg;
-        p->alt_m = s.alt_m + (bp->is_file ? 0.0 : g0);
-        p->heading_deg = s.heading_deg;
-        p->pitch_deg = s.pitch_deg;
-        p->roll_deg = s.roll_deg;
-        double floor_m =
-            ground_max_m(t, p->lat_deg, p->lon_deg, BENCH_CLEAR_RADIUS_M) + clearance_m;
-        if (p->alt_m < floor_m) {
-            p->alt_m = floor_m;
-            ++bp->raised;
+        bp->raised += pose_at(bp, fp, base, t, frame_time_s(fp, i, frames), clearance_m, p);
+    }
+}
+
+/* One display frame of the cache at pose: the method's selection, then
+ * half a display frame of spare time (untimed by the bench). */
+static void cache_step(const ft_pose *pose, double hz)
+{
+    ft_camera cam;
+    ft_error err;
+    if (ft_renderer_camera(&g_app.renderer, pose, &cam, &err) != FT_OK) {
+        return; /* the measured frame reports it */
+    }
+    ft_method_select(&g_app.renderer.method, &g_app.terrain, &cam);
+    const uint64_t t0 = ft_plat_monotonic_ns();
+    ft_method_spare(&g_app.renderer.method, ft_plat_monotonic_ns,
+                    t0 + (uint64_t)(0.5e9 / hz));
+}
+
+/* Before frame i of path p: the display frames since the previous measured
+ * frame (their poses on the path, every 1 / hz s of path time), or at a
+ * path's first frame the display settling there (the bench jumps between
+ * paths; a display would have flown there). */
+static void cache_catch_up(int p, int i, const bench_opts *o, const ft_scene *base)
+{
+    const ft_method *m = &g_app.renderer.method;
+    const ft_clip_cache *c = ft_method_cache(m);
+    if (c == NULL || !(o->cache_hz > 0.0)) {
+        return;
+    }
+    const bench_path *bp = &g_paths[p];
+    if (i == 0 || bp->is_hover) {
+        for (int k = 0; k < BENCH_CACHE_SETTLE_MAX && (k < 2 || c->stats.levels_behind > 0u);
+             ++k) {
+            cache_step(&bp->pose[i], o->cache_hz);
         }
+        return;
+    }
+    const flight_path *fp = &g_fp[p];
+    const double ta = frame_time_s(fp, i - 1, o->frames), tb = frame_time_s(fp, i, o->frames);
+    const double steps = floor((tb - ta) * o->cache_hz);
+    /* bounded: a path lasts minutes, at most hz x its duration steps */
+    for (double k = 1.0; k < steps; k += 1.0) {
+        ft_pose pose;
+        (void)pose_at(bp, fp, base, &g_app.terrain, ta + k / o->cache_hz, o->clearance_m, &pose);
+        cache_step(&pose, o->cache_hz);
     }
 }
 
@@ -749,6 +816,7 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
         row->path_err_max_px[p] = row->path_err_p999_px[p] = 0.0;
         for (int i = 0; i < o->frames && ok; ++i) {
             progress(o, run, runs, row, g_paths[p].name, i + 1, o->frames);
+            cache_catch_up(p, i, o, base);
             if (ft_frame_step(&loop, &g_app, &g_paths[p].pose[i], NULL, &fr, &err) != FT_OK) {
                 ok = 0;
                 break;
@@ -1203,6 +1271,12 @@ static void print_help(void)
         "                     highest ground within %.0f m. hover: %.0f m above the ground,\n"
         "                     pitch -90.\n"
         "  --clearance M      see --path (0..10000 m)\n"
+        "  --cache-hz HZ      a method reading the clipmap cache (clipmap; pgm with\n"
+        "                     pgm.heights = clipmap) gets its cache run between measured\n"
+        "                     frames as a display at HZ would (a selection and half a\n"
+        "                     display frame of spare time per display frame along the\n"
+        "                     path, untimed; settled at each path's start); default 60,\n"
+        "                     0 = only the measured frames' selections\n"
         "  --size WxH         view size (default 640x480)\n"
         "  --frames N         frames per path (default 60, at most %d)\n"
         "  --metric-every N   error on frames 0, N, 2N, ... (default 5)\n"
@@ -1349,6 +1423,7 @@ static int parse_args(int argc, char **argv, bench_opts *o)
     memset(o, 0, sizeof *o);
     uint32_t frames = 60, every = 5, ref_cache_mb = 2048;
     o->clearance_m = BENCH_CLEARANCE_M;
+    o->cache_hz = BENCH_CACHE_HZ;
     o->csv = "bench.csv";
     o->plot = "bench.png";
     o->paths = "valley";
@@ -1370,6 +1445,7 @@ static int parse_args(int argc, char **argv, bench_opts *o)
         FT_CLI_OPT_U32("--frames", &frames, 1u, BENCH_FRAMES_MAX, NULL),
         FT_CLI_OPT_U32("--metric-every", &every, 1u, BENCH_FRAMES_MAX, NULL),
         FT_CLI_OPT_DOUBLE("--clearance", &o->clearance_m, 0.0, 10000.0, "m", NULL),
+        FT_CLI_OPT_DOUBLE("--cache-hz", &o->cache_hz, 0.0, 1000.0, "Hz", NULL),
         FT_CLI_OPT_U32("--ref-cache-mb", &ref_cache_mb, 0u, 1u << 20, NULL),
         FT_CLI_OPT_CUSTOM("--settings", take_settings, o, NULL),
     };

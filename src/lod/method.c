@@ -74,6 +74,17 @@ int ft_method_reads_cache(const ft_scene *s)
            (s->method == FT_METHOD_PGM && s->pgm_heights_clipmap);
 }
 
+const ft_clip_cache *ft_method_cache(const ft_method *m)
+{
+    if (m->kind == FT_METHOD_CLIPMAP) {
+        return &m->u.clipmap.cl.cache;
+    }
+    if (m->kind == FT_METHOD_PGM && m->u.pgm.clip) {
+        return &m->u.pgm.cl.cache;
+    }
+    return NULL;
+}
+
 void ft_method_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     const ft_method_ops *o = ft_method_ops_of(s->method);

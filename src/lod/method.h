@@ -281,6 +281,8 @@ int ft_method_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
  * (clipmap; pgm with pgm.heights = clipmap): over a .ftd it draws the
  * database on past the window. */
 int ft_method_reads_cache(const ft_scene *s);
+/* The clipmap cache m reads its heights through, NULL for none. */
+const ft_clip_cache *ft_method_cache(const ft_method *m);
 uint64_t ft_method_gpu_bytes(const ft_method *m);
 void ft_method_worst_case(const ft_method *m, const ft_terrain *t, ft_method_worst *w);
 void ft_method_shutdown(ft_method *m, const ft_gl *gl);

@@ -6,6 +6,7 @@
  * rectangle); after every step, every sample of every level's valid box must
  * read back its own height from the mirror at its toroidal texel. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -115,20 +116,80 @@ static uint32_t drain(ft_clip_cache *c, int max_updates, int *levels_coarse_firs
 
 static _Alignas(64) uint8_t g_arena_mem[1u << 20]; /* FT_ARENA_ALIGN */
 
-static void make_cache(ft_clip_cache *c, ft_arena *a, uint32_t update_max)
+static void make_cache_kept(ft_clip_cache *c, ft_arena *a, uint32_t update_max, int keep_bounds)
 {
     memset(a, 0, sizeof(*a));
     a->pools[FT_POOL_CLIP].budget_bytes = 1u << 19;
     ft_error err;
     REQUIRE(ft_arena_bind(a, g_arena_mem, sizeof(g_arena_mem), &err) == FT_OK);
     ft_clip_source src = {read_synth, NULL, 16u, 0, 0, -100000, 100000, -100000, 100000};
-    ft_clip_desc d = {SIDE, LEVELS, update_max, 0};
+    ft_clip_desc d = {SIDE, LEVELS, update_max, keep_bounds};
     REQUIRE(ft_clip_init(c, &d, &src, a, &err) == FT_OK);
     for (uint32_t l = 0u; l < LEVELS; ++l) {
         for (uint32_t k = 0u; k < SIDE * SIDE; ++k) {
             g_tex[l][k] = NAN;
         }
     }
+}
+
+static void make_cache(ft_clip_cache *c, ft_arena *a, uint32_t update_max)
+{
+    make_cache_kept(c, a, update_max, 0);
+}
+
+/* ft_clip_max_height_in bounds every resident sample inside the box, at
+ * every level, while the boxes move and lag (partial drains); a box that
+ * meets no resident sample, or a NaN box, gets -INFINITY. */
+static void test_max_height_in(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache_kept(&c, &a, 256u, 1);
+    const ft_clip_world w = {1000.0, -2000.0, 30.0, 20.0};
+    uint64_t boxes = 0u, bad = 0u, hit = 0u, lcg = 12345u;
+    for (int step = 0; step < 40; ++step) {
+        (void)ft_clip_recentre(&c, 37.0 * step - 300.0, 11.0 * step + 5.0);
+        (void)drain(&c, step % 3 == 0 ? -1 : 3, NULL);
+        for (int q = 0; q < 60; ++q) {
+            double r[4];
+            for (int k = 0; k < 4; ++k) {
+                lcg = lcg * 6364136223846793005u + 1442695040888963407u;
+                r[k] = (double)(lcg >> 11) / 9007199254740992.0;
+            }
+            /* boxes of 1 m .. 40 km around the eye's region */
+            const double cx = w.origin_x_m + (37.0 * step - 300.0) * w.cell_x_m +
+                              (r[0] - 0.5) * 60000.0;
+            const double cy = w.origin_y_m + (11.0 * step + 5.0) * w.cell_y_m +
+                              (r[1] - 0.5) * 40000.0;
+            const double hx = 0.5 + r[2] * 20000.0, hy = 0.5 + r[3] * 10000.0;
+            const double got = ft_clip_max_height_in(&c, &w, cx - hx, cy - hy, cx + hx, cy + hy);
+            double ref = -INFINITY;
+            for (uint32_t l = 0u; l < LEVELS; ++l) {
+                const ft_clip_box *v = &c.level[l].valid;
+                const int64_t s = (int64_t)1 << l;
+                for (int64_t b = v->j0; b < v->j1; ++b) {
+                    const double y = w.origin_y_m + (double)(b * s) * w.cell_y_m;
+                    if (y < cy - hy || y > cy + hy) continue;
+                    for (int64_t i = v->i0; i < v->i1; ++i) {
+                        const double x = w.origin_x_m + (double)(i * s) * w.cell_x_m;
+                        if (x < cx - hx || x > cx + hx) continue;
+                        const double h = lattice_height(i * s, b * s);
+                        ref = h > ref ? h : ref;
+                    }
+                }
+            }
+            bad += !(got >= ref);
+            hit += ref > -INFINITY;
+            ++boxes;
+        }
+    }
+    printf("max_height_in: %llu boxes, %llu holding resident samples, %llu under their "
+           "highest sample\n",
+           (unsigned long long)boxes, (unsigned long long)hit, (unsigned long long)bad);
+    CHECK(bad == 0u);
+    CHECK(hit > boxes / 4u && hit < boxes); /* both kinds of box were asked */
+    CHECK(ft_clip_max_height_in(&c, &w, 1e9, 1e9, 1e9 + 10.0, 1e9 + 10.0) == -INFINITY);
+    CHECK(ft_clip_max_height_in(&c, &w, NAN, 0.0, 10.0, 10.0) == -INFINITY);
 }
 
 static void test_fill_and_nesting(void)
@@ -333,5 +394,6 @@ int main(void)
     test_stale_commit();
     test_plan_errors();
     test_terrain_source();
+    test_max_height_in();
     return ft_test_result("test_clip_cache");
 }

@@ -498,24 +498,57 @@ int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const do
     return k.any;
 }
 
-typedef struct max_ctx {
-    double x0, y0, x1, y1, best;
-} max_ctx;
-
-static void max_piece(void *ctx, double x0, double x1, double y0, double y1, double lo,
-                      double hi)
+/* Level-l samples [*lo, *hi] (inclusive) whose pieces can meet world
+ * [x0, x1] along one axis: the samples inside it and one more on each side
+ * (a piece reaches one sample past its end), cut to the valid range
+ * [v0, v1). 0 when none. */
+static int axis_range(double x0_m, double x1_m, double origin_m, double cell_m, int64_t lattice0,
+                      double s, int64_t v0, int64_t v1, int64_t *lo, int64_t *hi)
 {
-    max_ctx *k = ctx;
-    (void)lo;
-    if (x1 >= k->x0 && x0 <= k->x1 && y1 >= k->y0 && y0 <= k->y1) {
-        k->best = hi > k->best ? hi : k->best;
+    const double a0 = floor(((x0_m - origin_m) / cell_m + (double)lattice0) / s) - 1.0;
+    const double a1 = ceil(((x1_m - origin_m) / cell_m + (double)lattice0) / s) + 1.0;
+    /* NaN-safe: a NaN box compares false and meets nothing */
+    if (!(a1 >= (double)v0 && a0 <= (double)(v1 - 1))) {
+        return 0;
     }
+    *lo = a0 > (double)v0 ? (int64_t)a0 : v0;
+    *hi = a1 < (double)(v1 - 1) ? (int64_t)a1 : v1 - 1;
+    return 1;
 }
 
 double ft_clip_max_height_in(const ft_clip_cache *c, const ft_clip_world *w, double x0_m,
                              double y0_m, double x1_m, double y1_m)
 {
-    max_ctx k = {x0_m, y0_m, x1_m, y1_m, -INFINITY};
-    (void)for_each_piece(c, w, max_piece, &k);
-    return k.best;
+    const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
+    const int64_t blk = FT_CLIP_BOUND_BLOCK;
+    double best = -INFINITY;
+    for (uint32_t l = 0u; c->desc.keep_bounds && l < c->desc.levels; ++l) {
+        const ft_clip_box *v = &c->level[l].valid;
+        if (box_empty(v)) {
+            continue;
+        }
+        const double s = (double)((int64_t)1 << l);
+        int64_t i0, i1, j0, j1;
+        if (!axis_range(x0_m, x1_m, w->origin_x_m, w->cell_x_m, c->src.lattice_i0, s, v->i0,
+                        v->i1, &i0, &i1) ||
+            !axis_range(y0_m, y1_m, w->origin_y_m, w->cell_y_m, c->src.lattice_j0, s, v->j0,
+                        v->j1, &j0, &j1)) {
+            continue;
+        }
+        /* block by block: a valid box spans at most side samples, so each
+         * axis visits at most n + 1 blocks */
+        for (int64_t b = j0; b <= j1;) {
+            const uint32_t tb = wrap_index(b, side);
+            const uint32_t by = tb / FT_CLIP_BOUND_BLOCK;
+            for (int64_t a = i0; a <= i1;) {
+                const uint32_t ta = wrap_index(a, side);
+                const uint32_t bx = ta / FT_CLIP_BOUND_BLOCK;
+                const double hi = c->block_hi_m[l][(size_t)by * n + bx];
+                best = hi > best ? hi : best;
+                a += blk - (int64_t)(ta % FT_CLIP_BOUND_BLOCK);
+            }
+            b += blk - (int64_t)(tb % FT_CLIP_BOUND_BLOCK);
+        }
+    }
+    return best;
 }

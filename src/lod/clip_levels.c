@@ -79,6 +79,7 @@ static void make_textures(ft_clip_levels *c, const ft_gl *gl)
     const int es3 = (gl->api == FT_GL_API_ES3);
     const uint32_t cols = (c->layout == FT_CLIP_TEX_ATLAS) ? atlas_cols(c->levels) : 1u;
     const uint32_t rows = (c->layout == FT_CLIP_TEX_ATLAS) ? (c->levels + cols - 1u) / cols : 1u;
+    c->atlas_cols = cols;
     c->tex_w = c->side * cols;
     c->tex_h = c->side * rows;
     ft_texture_desc d = {c->unit, c->tex_w, c->tex_h, 0, 0, 0, 4u};

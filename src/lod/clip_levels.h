@@ -43,6 +43,7 @@ typedef struct ft_clip_levels {
     GLuint tex[FT_CLIP_LEVELS_MAX]; /* per level; with the atlas every entry is it */
     uint32_t origin_px[FT_CLIP_LEVELS_MAX][2];
     uint32_t tex_w, tex_h;         /* one level's texture, or the atlas */
+    uint32_t atlas_cols;           /* levels a row of the atlas (1 per level: 1) */
     GLenum unit;                   /* the unit the textures were made on */
     GLenum tex_format, tex_type;
     uint32_t side, levels, updates_per_frame;

@@ -17,6 +17,12 @@
  *    would upload every level as its own texture, and min/max too, none of
  *    which a vertex shader can pick per vertex). Level 0 is the renderer's
  *    heights texture. Vertex texture units needed: 2.
+ * With pgm.heights = clipmap the heights come from the clipmap cache
+ * instead (lod/clip_levels.h: its levels side by side in one atlas on unit
+ * 1, no avg atlas): the shader's FT_PGM_CLIP part picks each vertex's level
+ * from its footprint raised to what is resident (shaders/pgm_grid.glsl,
+ * pgm.h ft_pgm_clip_view), the selection moves the cache every frame and the
+ * sampling camera is laid over what the cache holds (ft_pgm_setup_over).
  * The CPU side per frame is the sampling camera (ft_pgm_setup: O(pyramid
  * levels), no allocation), recomputed only when the view changes. */
 #include <stdio.h>
@@ -269,9 +275,13 @@ static void clip_place(ft_pgm_method *m, const ft_terrain *t, const ft_camera *c
     const int64_t s = (int64_t)1 << top;
     const ft_clip_box *v = &c->cache.level[top].valid;
     const double i0 = fmax((double)(v->i0 * s), (double)c->src.data_i_lo);
-    const double i1 = fmin((double)((v->i1 - 1) * s), (double)c->src.data_i_hi);
+    double i1 = fmin((double)((v->i1 - 1) * s), (double)c->src.data_i_hi);
     const double j0 = fmax((double)(v->j0 * s), (double)c->src.data_j_lo);
-    const double j1 = fmin((double)((v->j1 - 1) * s), (double)c->src.data_j_hi);
+    double j1 = fmin((double)((v->j1 - 1) * s), (double)c->src.data_j_hi);
+    /* the coarsest level past the data (the eye far off a terrain's edge):
+     * nothing to draw, the grid collapses onto the nearest edge */
+    i1 = fmax(i1, i0);
+    j1 = fmax(j1, j0);
     cv->clamp_m[0] = (i0 - ei) * t->cell_x_m;
     cv->clamp_m[1] = (j0 - ej) * t->cell_y_m;
     cv->clamp_m[2] = (i1 - ei) * t->cell_x_m;
@@ -362,12 +372,8 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
         }
         gl->Uniform4f(p->method_u[FT_PCM_U_CLAMP], (float)cv->clamp_m[0], (float)cv->clamp_m[1],
                       (float)cv->clamp_m[2], (float)cv->clamp_m[3]);
-        uint32_t cols = 1u;
-        while (m->cl.tex_w > cols * m->cl.side) {
-            ++cols;
-        }
         gl->Uniform4f(p->method_u[FT_PCM_U_MISC], (float)m->cl.side,
-                      (float)m->transition_samples, (float)m->levels, (float)cols);
+                      (float)m->transition_samples, (float)m->levels, (float)m->cl.atlas_cols);
     } else {
         for (uint32_t l = 0; l < m->levels; ++l) {
             gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], m->level_px[l][0], m->level_px[l][1],

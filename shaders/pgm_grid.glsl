@@ -171,6 +171,18 @@ float ft_pcm_resident(vec2 g0)
     }
     return top;
 }
+
+/* The level sample the vertex reads (g: level-0 samples from the eye). */
+vec3 ft_height_sample(float level, vec2 g)
+{
+    return ft_pcm_sample(level, g);
+}
+#else
+/* The level sample the vertex reads (g: grid coordinates). */
+vec3 ft_height_sample(float level, vec2 g)
+{
+    return ft_level_sample(level, g);
+}
 #endif
 
 /* Image-plane height of the row at t = j / (rows - 1), whose uniform
@@ -205,20 +217,13 @@ vec3 ft_pgm_vertex(vec2 ij, out vec2 pc, out float morph)
     float w = 0.0;
 #ifdef FT_PGM_CLIP
     /* the footprint's continuous level, raised to what is resident there */
-    vec2 pcl = clamp(p, u_pcm_clamp.xy, u_pcm_clamp.zw);
-    vec2 g0 = pcl * inv_cell;
+    pc = clamp(p, u_pcm_clamp.xy, u_pcm_clamp.zw);
+    vec2 g = pc * inv_cell;
     float lc = (r > 1.0) ? log2(r) : 0.0;
-    lc = max(lc, ft_pcm_resident(g0));
-    float ctop = u_pcm_misc.z - 1.0;
-    level = min(floor(lc), ctop);
-    w = (level >= ctop) ? 0.0 : clamp(lc - level, 0.0, 1.0);
-    pc = pcl;
-    vec3 cs = ft_pcm_sample(level, g0);
-    if (w > 0.0) {
-        cs = mix(cs, ft_pcm_sample(level + 1.0, g0), w);
-    }
-    morph = level + w;
-    return cs;
+    lc = max(lc, ft_pcm_resident(g));
+    float top = u_pcm_misc.z - 1.0;
+    level = min(floor(lc), top);
+    w = (level >= top) ? 0.0 : clamp(lc - level, 0.0, 1.0);
 #else
     if (r > 1.0) {
         level = floor(log2(r));
@@ -244,13 +249,13 @@ vec3 ft_pgm_vertex(vec2 ij, out vec2 pc, out float morph)
     vec2 lo = u_origin_rel_eye_m.xy;
     pc = clamp(p, lo, lo + (u_grid_size - 1.0) * u_cell_m);
     vec2 g = (pc - lo) * inv_cell;
-    vec3 s = ft_level_sample(level, g);
+#endif
+    vec3 s = ft_height_sample(level, g);
     if (w > 0.0) {
-        s = mix(s, ft_level_sample(level + 1.0, g), w);
+        s = mix(s, ft_height_sample(level + 1.0, g), w);
     }
     morph = level + w;
     return s;
-#endif
 }
 
 #ifndef FT_PGM_GRID_NO_IO

@@ -32,9 +32,9 @@
  *
  * METHOD is clipmap (geometry clipmaps) or pgm (the persistent grid with
  * pgm.heights = clipmap: the same cache, read per vertex from an atlas);
- * both are held to the same requirements. pgm's "coarser" rule is its own:
- * level 0's resident samples do not hold the eye one sample in from their
- * edge (the frame stats' cache_coarser).
+ * both are held to the same requirements. pgm's "coarser" rule is its own
+ * (ft_pgm_clip_eye_coarser, the frame stats' cache_coarser): level 0's
+ * resident samples do not hold the eye one sample in from their edge.
  *
  * usage: test_clip_flight [SPEED_MPS [RENDER_EVERY [METHOD]]] */
 #define _POSIX_C_SOURCE 200809L
@@ -123,17 +123,6 @@ static uint64_t truth_vs_cache(const ft_ref_window *w, const ft_clip_cache *c, u
         }
     }
     return n;
-}
-
-/* pgm's rule: level 0 does not hold the eye one sample in from its
- * resident edge. */
-static int eye_coarser(const ft_clip_levels *cl, const ft_terrain *t, const double eye_m[3])
-{
-    double ei = 0.0, ej = 0.0;
-    ft_clip_levels_eye(cl, t, eye_m, &ei, &ej);
-    const ft_clip_box *v = &cl->cache.level[0].valid;
-    return !(v->i1 > v->i0 && ei - (double)v->i0 >= 1.0 && (double)(v->i1 - 1) - ei >= 1.0 &&
-             ej - (double)v->j0 >= 1.0 && (double)(v->j1 - 1) - ej >= 1.0);
 }
 
 int main(int argc, char **argv)
@@ -248,7 +237,8 @@ int main(int argc, char **argv)
         samples_max = n > samples_max ? n : samples_max;
         behind += ft_clip_finest_current(&cl->cache) > 0u;
         if (pgm) {
-            coarser += eye_coarser(cl, t, cam.eye_m);
+            /* the selection above placed the view the frame would draw */
+            coarser += ft_pgm_clip_eye_coarser(&g_app.renderer.method.u.pgm.clip_view);
         } else {
             ft_clip_box valid[FT_CLIP_LEVELS_MAX];
             for (uint32_t l = 0u; l < cl->levels; ++l) {

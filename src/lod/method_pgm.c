@@ -322,15 +322,6 @@ static void clip_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *
     ft_view_key_take(&m->sel_view, cam);
 }
 
-/* The eye's own ground drawn from a level past 0: level 0 does not hold the
- * eye one sample in from its resident edge. */
-static int clip_eye_coarser(const ft_pgm_method *m)
-{
-    const double *b = m->clip_view.box[0], *o = m->clip_view.off[0];
-    return !(b[2] >= b[0] && o[0] - b[0] >= 1.0 && b[2] - o[0] >= 1.0 && o[1] - b[1] >= 1.0 &&
-             b[3] - o[1] >= 1.0);
-}
-
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     if (ft_view_key_matches(&m->sel_view, cam)) {
@@ -413,7 +404,7 @@ void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terra
     if (m->clip) {
         st->cache_levels_behind = m->cl.cache.stats.levels_behind;
         st->cache_samples_outstanding = m->cl.cache.stats.samples_outstanding;
-        st->cache_coarser = clip_eye_coarser(m);
+        st->cache_coarser = ft_pgm_clip_eye_coarser(&m->clip_view);
         st->cache_forced_updates = m->cl.forced_last;
     }
 }

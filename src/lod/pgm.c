@@ -598,6 +598,13 @@ double ft_pgm_clip_resident(const ft_pgm_clip_view *v, double g0x, double g0y)
     return (double)top;
 }
 
+int ft_pgm_clip_eye_coarser(const ft_pgm_clip_view *v)
+{
+    const double *b = v->box[0], *o = v->off[0];
+    return !(b[2] >= b[0] && o[0] - b[0] >= 1.0 && b[2] - o[0] >= 1.0 && o[1] - b[1] >= 1.0 &&
+             b[3] - o[1] >= 1.0);
+}
+
 void ft_pgm_clip_vertex_at(const ft_pgm_sampling *s, const ft_pgm_clip_view *v,
                            double cell_x_m, double cell_y_m, double curv_drop_per_m2,
                            uint32_t cols, uint32_t rows, uint32_t i, uint32_t j,

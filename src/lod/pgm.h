@@ -177,6 +177,10 @@ typedef struct ft_pgm_clip_view {
  * transition_samples before that edge g0 is (0..1); the top level when none. */
 double ft_pgm_clip_resident(const ft_pgm_clip_view *v, double g0x, double g0y);
 
+/* 1 when the eye's own ground is drawn from a level past 0: level 0's
+ * resident samples do not hold the eye one sample in from their edge. */
+int ft_pgm_clip_eye_coarser(const ft_pgm_clip_view *v);
+
 /* Grid vertex (i, j) over the clip cache: the shader's arithmetic (level =
  * max(log2 r, resident) split into L + w, bilinear in L and L + 1 inside
  * their resident boxes), cell_* and curv_drop_per_m2 the terrain's. grid[]

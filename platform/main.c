@@ -118,7 +118,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         " \"cache_samples_outstanding\": %llu, \"cache_coarser\": %d,"
         " \"cache_forced_updates\": %u,"
         " \"tau_achieved_px\": %s, \"tau_target_px\": %s, \"budget_hit\": %d,"
-        " \"back_faces_culled\": %d, \"select_ms\": %.3f,"
+        " \"back_faces_culled\": %d, \"envelopes\": %u, \"select_ms\": %.3f,"
         " \"cpu_ms\": %.3f, \"gpu_ms\": %.3f, \"gpu_timer_ms\": %.3f, \"median_gpu_ms\": %.3f,"
         " \"near_m\": %.4f, \"far_m\": %.1f, \"depth_format\": \"%s\", \"depth_res_far_m\": %s},\n"
         "  \"gpu_bytes\": %llu,\n  \"gpu_budget_bytes\": %llu,\n"
@@ -133,7 +133,7 @@ static ft_status write_stats(const char *path, const ft_app *app, const ft_camer
         last->internal_fault, last->cache_levels_behind,
         (unsigned long long)last->cache_samples_outstanding, last->cache_coarser,
         last->cache_forced_updates, tau_text, target_text, last->budget_hit,
-        last->back_faces_culled, last->select_ms,
+        last->back_faces_culled, last->envelopes, last->select_ms,
         last->cpu_ms, last->gpu_ms, last->gpu_timer_ms, median_ms, last->near_m, last->far_m,
         depth_format_name(last), res_text,
         (unsigned long long)app->renderer.gpu_bytes,

@@ -239,11 +239,53 @@ static void test_residual_bound(void)
     CHECK(ft_pgrid_quad_bound(&t, &q) < 1e-3);
 }
 
+/* The lower envelope's rule (src/lod/pgrid.h 3): drawn off the grid, at or
+ * under the terrain's highest sample; left out over the grid above it. */
+static void test_lower_envelope_rule(void)
+{
+    ft_terrain t;
+    memset(&t, 0, sizeof t);
+    t.width = t.height = 9u;
+    t.cell_x_m = t.cell_y_m = 10.0;
+    t.origin_world_x_m = 1000.0;
+    t.origin_world_y_m = -500.0;
+    float top = -1e9f;
+    for (uint32_t i = 0; i < 81u; ++i) {
+        g_heights[i] = (float)((i * 37u) % 23u);
+        top = fmaxf(top, g_heights[i]);
+    }
+    t.heights_m = g_heights;
+    t.min_height_m = 0.0f;
+    t.max_height_m = top;
+    ft_pgm_sampling s;
+    memset(&s, 0, sizeof s);
+    s.eye_m[0] = 1000.0 + 25.0;
+    s.eye_m[1] = -500.0 + 35.0;
+    s.eye_m[2] = (double)top + 0.01;
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 0);
+    s.eye_m[2] = (double)top; /* level with the highest sample: may touch it */
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 1);
+    s.eye_m[2] = (double)top - 1.0; /* above the cell under it, not above the top */
+    CHECK(s.eye_m[2] > g_heights[3 * 9 + 2] && ft_pgrid_lower_envelope_needed(&t, &s) == 1);
+    s.eye_m[2] = 1000.0;
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 0);
+    s.eye_m[0] = 1000.0 - 0.5; /* west of the grid */
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 1);
+    s.eye_m[0] = 1000.0 + 80.0; /* on the east edge */
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 0);
+    s.eye_m[1] = -500.0 + 80.01; /* past the north edge */
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 1);
+    s.eye_m[1] = -500.0 + 35.0;
+    s.eye_m[2] = NAN;
+    CHECK(ft_pgrid_lower_envelope_needed(&t, &s) == 1);
+}
+
 int main(void)
 {
     test_error_terms();
     test_rows();
     test_region();
+    test_lower_envelope_rule();
     test_budget();
     test_residual_bound();
     return ft_test_result("test_pgrid");

@@ -23,6 +23,9 @@
  *    pass is terrain at every pixel (a ray-cast miss would show there),
  *    ray casting on and off; a view with sky shows magenta (the counter
  *    works).
+ * 5. Lower envelope: drawn only with the eye off the grid or not above the
+ *    surface under it (src/lod/pgrid.h 3); on views where the rule leaves it
+ *    out, drawing it changes no pixel's ray-cast decision.
  * es2 (run with MESA_GLES_VERSION_OVERRIDE=2.0, backend egl-gles2):
  *    init with ray_casting = 1 succeeds and runs without ray casting (no
  *    pixel ray cast, budget not hit), the reported bound is the mesh's own
@@ -573,6 +576,121 @@ static void test_error_buffer_mrt(const char *dem)
     }
 }
 
+/* ---- 3. the lower envelope only where the surface may be seen from below ------- */
+
+/* src/lod/pgrid.h 3: with the eye over the grid and above the terrain's
+ * highest sample, the lower envelope is not drawn; drawn anyway
+ * (lower_envelope_force 1) it must change no pixel's ray-cast decision
+ * (dilated code >= code(gamma)), and where the rule draws it, leaving it out
+ * (-1) must change some. Views: the flight of part 1 (3.5-5 km, above the
+ * tile's highest sample), and where it is drawn: low views 20-60 m above the
+ * ground, 15 m under it, and off the grid west of it looking east. */
+#define LOWER_VIEWS (PATH_FRAMES + 5)
+
+static ft_pose lower_view(int v, int *must_draw)
+{
+    *must_draw = 0;
+    if (v < PATH_FRAMES) {
+        const ft_pose p = path_pose(v);
+        CHECK(p.alt_m > (double)g_app.terrain.max_height_m);
+        return p;
+    }
+    static const double low[4][5] = {
+        /* lat, lon, height over the ground (m; < 0 under it), heading, pitch */
+        {42.45, 1.55, 20.0, 200.0, 0.0},
+        {42.60, 1.30, 60.0, 10.0, 6.0},
+        {42.35, 1.80, 35.0, 120.0, -3.0},
+        {42.45, 1.55, -15.0, 200.0, 5.0},
+    };
+    if (v < PATH_FRAMES + 4) {
+        const double *a = low[v - PATH_FRAMES];
+        double x, y;
+        ft_terrain_geo_to_world(&g_app.terrain, a[0], a[1], &x, &y);
+        *must_draw = 1;
+        return ft_test_pose(a[0], a[1], ft_terrain_height_at(&g_app.terrain, x, y) + a[2], a[3],
+                            a[4], 0.0);
+    }
+    *must_draw = 1;
+    return ft_test_pose(42.5, 0.97, 2500.0, 90.0, -4.0, 0.0); /* west of the grid */
+}
+
+/* The frame's ray-cast decision per pixel (1: dilated code >= code(gamma)),
+ * after drawing the pose twice (the readback is a frame late). */
+static uint32_t lower_decisions(const ft_pose *p, int force, uint8_t *decide,
+                                uint32_t *envelopes)
+{
+    ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
+    m->lower_envelope_force = force;
+    ft_frame_stats fs;
+    for (int k = 0; k < 2; ++k) {
+        ft_camera cam;
+        ft_test_frame(&g_app, p, &cam, &fs);
+    }
+    *envelopes = fs.envelopes;
+    const uint32_t thr = ft_pgrid_code(1.0);
+    uint32_t marked = 0u;
+    for (int y = 0; y < (int)H_PX; ++y) {
+        for (int x = 0; x < (int)W_PX; ++x) {
+            uint32_t code = 0u;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int xx = x + dx, yy = y + dy;
+                    if (xx < 0 || yy < 0 || xx >= (int)W_PX || yy >= (int)H_PX) continue;
+                    const uint32_t c = m->readback[4u * ((uint32_t)yy * W_PX + (uint32_t)xx) + 1u];
+                    if (c > code) code = c;
+                }
+            }
+            decide[(uint32_t)y * W_PX + (uint32_t)x] = (uint8_t)(code >= thr);
+            marked += (code >= thr);
+        }
+    }
+    m->lower_envelope_force = 0;
+    return marked;
+}
+
+static void test_lower_envelope(const char *dem)
+{
+    for (int residual = 0; residual <= 1; ++residual) {
+        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, residual};
+        app_init(&c);
+        uint32_t skipped = 0u, drawn = 0u, lost = 0u;
+        for (int v = 0; v < LOWER_VIEWS; ++v) {
+            int must_draw;
+            const ft_pose p = lower_view(v, &must_draw);
+            uint32_t env_rule, env_always;
+            const uint32_t marked = lower_decisions(&p, 0, g_codes[0], &env_rule);
+            (void)lower_decisions(&p, 1, g_codes[1], &env_always);
+            uint32_t differ = 0u, without = 0u;
+            for (uint32_t k = 0; k < W_PX * H_PX; ++k) differ += (g_codes[0][k] != g_codes[1][k]);
+            if (must_draw) {
+                uint32_t env_never;
+                (void)lower_decisions(&p, -1, g_codes[0], &env_never);
+                CHECK(env_never == 1u);
+                for (uint32_t k = 0; k < W_PX * H_PX; ++k) {
+                    without += (g_codes[0][k] != g_codes[1][k]);
+                }
+                lost += without;
+            }
+            printf("lower envelope (%s) view %d: %u envelopes by the rule (must draw it: %d), "
+                   "%u px marked, %u decisions differ from always drawing it (%u without it)\n",
+                   residual ? "residual" : "relief", v, env_rule, must_draw, marked, differ,
+                   without);
+            CHECK(env_always == 2u);
+            CHECK(env_rule == (must_draw ? 2u : 1u));
+            if (env_rule == 1u) {
+                CHECK(differ == 0u);
+                ++skipped;
+            } else {
+                ++drawn;
+            }
+        }
+        CHECK(skipped == PATH_FRAMES);
+        CHECK(drawn == LOWER_VIEWS - PATH_FRAMES);
+        CHECK(lost > 0u); /* the comparison sees what the lower envelope marks */
+        ft_app_shutdown(&g_app);
+    }
+}
+
 int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
@@ -595,6 +713,7 @@ int main(int argc, char **argv)
         test_error_bound(dem, 1);
     }
     if (only == NULL || strcmp(only, "mrt") == 0) test_error_buffer_mrt(dem);
+    if (only == NULL || strcmp(only, "lower") == 0) test_lower_envelope(dem);
     if (only == NULL || strcmp(only, "dist") == 0) test_distribution(dem);
     if (only == NULL || strcmp(only, "sweep") == 0) test_sweep(dem, 42.45, 1.55);
     if (only == NULL || strcmp(only, "cracks") == 0) test_cracks("egl-gles3", dem);

@@ -629,6 +629,7 @@ ft_status ft_renderer_draw(ft_renderer *r, const ft_camera *cam, ft_frame_stats 
     st->tau_target_px = ms.tau_target_px;
     st->budget_hit = ms.budget_hit;
     st->back_faces_culled = ms.back_faces_culled;
+    st->envelopes = ms.envelopes;
     st->cache_levels_behind = ms.cache_levels_behind;
     st->cache_samples_outstanding = ms.cache_samples_outstanding;
     st->cache_coarser = ms.cache_coarser;

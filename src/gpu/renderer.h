@@ -38,6 +38,7 @@ typedef struct ft_frame_stats {
     double tau_target_px;   /* bintree: the selection's target (method.h) */
     int budget_hit;         /* bintree: the tile budget forced a coarser tau */
     int back_faces_culled;  /* bintree: back faces culled (the eye above the surface) */
+    uint32_t envelopes;     /* pgrid: envelopes drawn (2: the lower one too) */
     uint32_t cache_levels_behind;       /* clipmap: its cache's levels behind */
     uint64_t cache_samples_outstanding; /* clipmap: samples still to upload */
     int cache_coarser;      /* clipmap: the eye's surroundings drawn from a level > 0 */

@@ -35,6 +35,8 @@ typedef struct ft_method_draw_stats {
     int budget_hit;          /* bintree: tau was raised to fit the tile budget;
                                 pgrid: the ray-casting budget raised gamma */
     int back_faces_culled;   /* bintree: the eye was above the surface, back faces culled */
+    uint32_t envelopes;      /* pgrid: envelopes drawn (2 with the lower one: the eye off
+                                the grid or not above the surface under it; src/lod/pgrid.h 3) */
     /* clipmap: how far behind its cache is at this frame's draw */
     uint32_t cache_levels_behind;       /* levels whose valid box is not the wanted one */
     uint64_t cache_samples_outstanding; /* samples still to read and upload */
@@ -120,6 +122,10 @@ typedef struct ft_pgrid_method {
      * test against the picture's depth; err_fbo and err_prog then serve a
      * position pass of a view the picture did not see */
     int mrt, env_prog_built;
+    /* 0: the lower envelope only when the eye may see the surface from
+     * below (src/lod/pgrid.h 3); 1 on every frame, -1 never: for the test
+     * that shows the rule changes no decision and leaving it out does */
+    int lower_envelope_force;
     /* the tight bound (src/lod/pgrid.h 6; GLES 3 with ray casting): residual
      * atlas (levels >= FT_PGRID_RES_L0), the vertex pass's and quad-bound
      * pass's targets (grid-sized RGBA32F) and programs */

@@ -789,13 +789,19 @@ static void draw_envelopes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain
     gl->DepthMask(GL_FALSE);
     gl->Enable(GL_BLEND);
     gl->BlendEquation(GL_MAX);
-    for (int side = 0; side < 2; ++side) {
+    /* the lower one only where the surface may be seen from below */
+    const int sides =
+        m->lower_envelope_force != 0
+            ? (m->lower_envelope_force > 0 ? 2 : 1)
+            : (ft_pgrid_lower_envelope_needed(t, &m->pgm.sampling) ? 2 : 1);
+    for (int side = 0; side < sides; ++side) {
         gl->Uniform1f(env, side == 0 ? 1.0f : -1.0f);
         ft_method_draw_stats dummy;
         memset(&dummy, 0, sizeof dummy);
         ft_pgm_method_draw(&m->pgm, gl, e, t, cam, &dummy);
         st->draw_calls += dummy.draw_calls;
     }
+    st->envelopes = (uint32_t)sides;
     gl->Disable(GL_BLEND);
     gl->BlendEquation(GL_FUNC_ADD);
     gl->DepthMask(GL_TRUE);

@@ -24,8 +24,9 @@
  *    ray casting on and off; a view with sky shows magenta (the counter
  *    works).
  * 5. Lower envelope: drawn only with the eye off the grid or not above the
- *    surface under it (src/lod/pgrid.h 3); on views where the rule leaves it
- *    out, drawing it changes no pixel's ray-cast decision.
+ *    terrain's highest sample (src/lod/pgrid.h 3); on views where the rule
+ *    leaves it out, drawing it changes no pixel's ray-cast decision, and
+ *    leaving it out where the rule draws it changes some.
  * es2 (run with MESA_GLES_VERSION_OVERRIDE=2.0, backend egl-gles2):
  *    init with ray_casting = 1 succeeds and runs without ray casting (no
  *    pixel ray cast, budget not hit), the reported bound is the mesh's own
@@ -100,6 +101,22 @@ static double pixel_error(const ft_camera *cam, const float *q, double *dist)
            cam->px_per_rad_k / d;
 }
 
+/* The largest code of the error buffer's 3 x 3 pixels around (x, gy), gy in
+ * the buffer's rows (0 = bottom): the dilated code of src/lod/pgrid.h 4. */
+static uint32_t dilated_code(const ft_pgrid_method *m, int x, int gy)
+{
+    uint32_t code = 0u;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = x + dx, yy = gy + dy;
+            if (xx < 0 || yy < 0 || xx >= (int)W_PX || yy >= (int)H_PX) continue;
+            const uint32_t c = m->readback[4u * ((uint32_t)yy * W_PX + (uint32_t)xx) + 1u];
+            if (c > code) code = c;
+        }
+    }
+    return code;
+}
+
 static split split_errors(const ft_camera *cam)
 {
     const float *pos = g_app.renderer.pos;
@@ -111,16 +128,8 @@ static split split_errors(const ft_camera *cam)
             if (!(q[3] > 0.5f)) continue;
             double dist;
             const double e = pixel_error(cam, q, &dist);
-            uint32_t code = 0;
-            const int gy = (int)(H_PX - 1u - y); /* error buffer rows: 0 = bottom */
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int xx = (int)x + dx, yy = gy + dy;
-                    if (xx < 0 || yy < 0 || xx >= (int)W_PX || yy >= (int)H_PX) continue;
-                    const uint32_t c = m->readback[4u * ((uint32_t)yy * W_PX + (uint32_t)xx) + 1u];
-                    if (c > code) code = c;
-                }
-            }
+            /* error buffer rows: 0 = bottom */
+            const uint32_t code = dilated_code(m, (int)x, (int)(H_PX - 1u - y));
             if (code >= m->thr) {
                 if (e > r.rc_max) {
                     if (getenv("PGRID_DEBUG") != NULL) {
@@ -576,7 +585,7 @@ static void test_error_buffer_mrt(const char *dem)
     }
 }
 
-/* ---- 3. the lower envelope only where the surface may be seen from below ------- */
+/* ---- 5. the lower envelope only where the surface may be seen from below ------- */
 
 /* src/lod/pgrid.h 3: with the eye over the grid and above the terrain's
  * highest sample, the lower envelope is not drawn; drawn anyway
@@ -631,15 +640,7 @@ static uint32_t lower_decisions(const ft_pose *p, int force, uint8_t *decide,
     uint32_t marked = 0u;
     for (int y = 0; y < (int)H_PX; ++y) {
         for (int x = 0; x < (int)W_PX; ++x) {
-            uint32_t code = 0u;
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int xx = x + dx, yy = y + dy;
-                    if (xx < 0 || yy < 0 || xx >= (int)W_PX || yy >= (int)H_PX) continue;
-                    const uint32_t c = m->readback[4u * ((uint32_t)yy * W_PX + (uint32_t)xx) + 1u];
-                    if (c > code) code = c;
-                }
-            }
+            const uint32_t code = dilated_code(m, x, y);
             decide[(uint32_t)y * W_PX + (uint32_t)x] = (uint8_t)(code >= thr);
             marked += (code >= thr);
         }

@@ -36,7 +36,7 @@ typedef struct ft_method_draw_stats {
                                 pgrid: the ray-casting budget raised gamma */
     int back_faces_culled;   /* bintree: the eye was above the surface, back faces culled */
     uint32_t envelopes;      /* pgrid: envelopes drawn (2 with the lower one: the eye off
-                                the grid or not above the surface under it; src/lod/pgrid.h 3) */
+                                the grid or not above the terrain's top; src/lod/pgrid.h 3) */
     /* clipmap: how far behind its cache is at this frame's draw */
     uint32_t cache_levels_behind;       /* levels whose valid box is not the wanted one */
     uint64_t cache_samples_outstanding; /* samples still to read and upload */

@@ -790,10 +790,9 @@ static void draw_envelopes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain
     gl->Enable(GL_BLEND);
     gl->BlendEquation(GL_MAX);
     /* the lower one only where the surface may be seen from below */
-    const int sides =
-        m->lower_envelope_force != 0
-            ? (m->lower_envelope_force > 0 ? 2 : 1)
-            : (ft_pgrid_lower_envelope_needed(t, &m->pgm.sampling) ? 2 : 1);
+    int lower = ft_pgrid_lower_envelope_needed(t, &m->pgm.sampling);
+    if (m->lower_envelope_force != 0) lower = m->lower_envelope_force > 0;
+    const int sides = lower ? 2 : 1;
     for (int side = 0; side < sides; ++side) {
         gl->Uniform1f(env, side == 0 ? 1.0f : -1.0f);
         ft_method_draw_stats dummy;

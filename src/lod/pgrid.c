@@ -5,15 +5,11 @@
 
 int ft_pgrid_lower_envelope_needed(const ft_terrain *t, const ft_pgm_sampling *s)
 {
-    const double *eye_m = s->eye_m;
-    const double gx = (eye_m[0] - t->origin_world_x_m) / t->cell_x_m;
-    const double gy = (eye_m[1] - t->origin_world_y_m) / t->cell_y_m;
-    const int over = gx >= 0.0 && gy >= 0.0 && gx <= (double)(t->width - 1u) &&
-                     gy <= (double)(t->height - 1u);
     /* every sample, so every mesh vertex (an average or bilinear value of
      * samples) and the bilinear truth, lies at or under the terrain's highest
      * sample, and the curvature drop only lowers them */
-    return !(over && eye_m[2] > (double)t->max_height_m);
+    return !(ft_terrain_contains(t, s->eye_m[0], s->eye_m[1]) &&
+             s->eye_m[2] > (double)t->max_height_m);
 }
 
 double ft_pgrid_delta(double hmin_m, double hmax_m, double h_m)

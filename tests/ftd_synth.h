@@ -57,7 +57,8 @@ static inline size_t ft_synth_ftd(uint8_t *out, size_t cap, float widen_m,
         if (t == 0u) {
             bits[5] = 0x0bu; /* samples 40, 41, 43 */
         }
-        if (ft_tdb_encode_tile(hv, bits, T, out + pos, cap - pos, &e[t], "synth", err) != FT_OK) {
+        if (ft_tdb_encode_tile(hv, bits, NULL, T, t == 2u ? 1u : 0u, out + pos, cap - pos, &e[t],
+                               "synth", err) != FT_OK) {
             return 0u;
         }
         e[t].offset = pos;

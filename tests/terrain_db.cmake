@@ -22,3 +22,11 @@ if(TARGET ft_tools AND TARGET ft_app AND FIXTERRAIN_WITH_EGL
   ft_add_test(test_antimeridian SOURCES test_antimeridian.c LIBS ft_tools ft_app m)
   set_tests_properties(test_antimeridian PROPERTIES SKIP_RETURN_CODE 77)
 endif()
+
+# The deviation bounds a database stores for its coarse levels, measured
+# against the finest data read by the runtime's rule (databases built in the
+# test from N41E001 + N42E001, and N42E001 over ETOPO5).
+if(TARGET ft_tools AND TARGET ft_app)
+  ft_add_test(test_tdb_dev SOURCES test_tdb_dev.c LIBS ft_tools ft_app m)
+  set_tests_properties(test_tdb_dev PROPERTIES SKIP_RETURN_CODE 77)
+endif()

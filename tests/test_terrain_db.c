@@ -714,8 +714,21 @@ static size_t synth_db(void)
     ft_synth_ftd_heights(hv);
     hv[7] = NAN;
     ft_tdb_entry e;
-    CHECK(ft_tdb_encode_tile(hv, bits, SYN_T, scratch, sizeof scratch, &e, "syn", &err) ==
-          FT_ERR_NUMERIC);
+    CHECK(ft_tdb_encode_tile(hv, bits, NULL, SYN_T, 0u, scratch, sizeof scratch, &e, "syn",
+                             &err) == FT_ERR_NUMERIC);
+    ft_synth_ftd_heights(hv);
+    static float dev[SYN_T * SYN_T];
+    static uint8_t tile_bytes[SYN_T * SYN_T * 8u + SYN_T * SYN_T / 8u];
+    for (uint32_t i = 0u; i < SYN_T * SYN_T; ++i) {
+        dev[i] = 0.5f;
+    }
+    CHECK(ft_tdb_encode_tile(hv, bits, dev, SYN_T, 1u, tile_bytes, sizeof tile_bytes, &e, "syn",
+                             &err) == FT_OK);
+    CHECK(e.byte_size == SYN_T * SYN_T * 8u);
+    dev[9] = FT_TDB_DEV_MAX_M * 2.0f; /* no two heights differ this much */
+    CHECK(ft_tdb_encode_tile(hv, bits, dev, SYN_T, 1u, tile_bytes, sizeof tile_bytes, &e, "syn",
+                             &err) == FT_ERR_NUMERIC);
+    CHECK(strstr(err.text, "dev 42000 m at row 0 col 9") != NULL);
     return size;
 }
 
@@ -747,7 +760,14 @@ static void synthetic(void)
     CHECK(t.state == FT_TDB_NO_DATA);
     CHECK(ft_tdb_read_tile(&db, 1u, 5u, 2u, h, SYN_T * SYN_T, bits, sizeof bits, &t, &err) ==
           FT_OK);
-    CHECK(t.state == FT_TDB_DATA && t.entry.void_count == 0u);
+    CHECK(t.state == FT_TDB_DATA && t.entry.void_count == 0u && t.dev_m == NULL);
+    /* the level-1 tile's dev: written as "not known" by an encoder given none */
+    static float dev[SYN_T * SYN_T];
+    CHECK(ft_tdb_read_tile_dev(&db, 1u, 5u, 2u, h, SYN_T * SYN_T, bits, sizeof bits, dev,
+                               SYN_T * SYN_T, &t, &err) == FT_OK);
+    CHECK(t.dev_m == dev && dev[0] == FT_TDB_DEV_NONE && dev[SYN_T * SYN_T - 1u] == FT_TDB_DEV_NONE);
+    CHECK(ft_tdb_read_tile_dev(&db, 1u, 5u, 2u, h, SYN_T * SYN_T, bits, sizeof bits, dev,
+                               SYN_T * SYN_T - 1u, &t, &err) == FT_ERR_ARG);
     /* buffers smaller than a tile: refused before any read */
     CHECK(ft_tdb_read_tile(&db, 0u, 10u, 5u, h, SYN_T * SYN_T - 1u, bits, sizeof bits, &t,
                            &err) == FT_ERR_ARG);
@@ -762,7 +782,8 @@ static void synthetic(void)
         ft_status want;
         const char *phrase;
     } cases[] = {
-        {"version 2", 8u, 2u, 1, size, FT_ERR_VERSION, "database version 2"},
+        {"version 3", 8u, 3u, 1, size, FT_ERR_VERSION, "database version 3"},
+        {"version 1 (no dev)", 8u, 1u, 1, size, FT_ERR_VERSION, "import the inputs again"},
         {"a level box past the lattice", 128u, 23u, 1, size, FT_ERR_FORMAT, "the lattice has"},
         {"a no-data entry with an offset", FT_TDB_HEADER_BYTES + 40u + 8u, 1000u, 1, size,
          FT_ERR_FORMAT, "not all zero"},
@@ -802,6 +823,21 @@ static void synthetic(void)
           FT_ERR_FORMAT);
     printf("synthetic, a void bit on an uncovered sample: %s\n", err.text);
     CHECK(strstr(err.text, "void bit on an uncovered sample") != NULL);
+    /* a dev that is no bound (NaN), behind valid crcs: refused on read, with
+     * or without a dev buffer */
+    memcpy(bad, g_syn, size);
+    rec = bad + FT_TDB_HEADER_BYTES + 2u * FT_TDB_ENTRY_BYTES; /* the level-1 tile */
+    const uint64_t off1 = get64(rec + 8);
+    put32(bad + off1 + SYN_T * SYN_T * 4u + (3u * SYN_T + 2u) * 4u, 0x7fc00000u);
+    put32(rec + 16, (uint32_t)crc32(0L, bad + off1, get32(rec + 4)));
+    refresh_crcs(bad);
+    REQUIRE(syn_open(bad, size, &db, &m, &r, &err) == FT_OK);
+    CHECK(ft_tdb_read_tile(&db, 1u, 5u, 2u, h, SYN_T * SYN_T, bits, sizeof bits, &t, &err) ==
+          FT_ERR_NUMERIC);
+    printf("synthetic, a NaN dev: %s\n", err.text);
+    CHECK(strstr(err.text, "dev at row 3 col 2 is nan") != NULL);
+    CHECK(ft_tdb_read_tile_dev(&db, 1u, 5u, 2u, h, SYN_T * SYN_T, bits, sizeof bits, dev,
+                               SYN_T * SYN_T, &t, &err) == FT_ERR_NUMERIC);
 }
 
 int main(void)

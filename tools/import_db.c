@@ -37,6 +37,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "core/byte_codec.h"
 #include "import_db.h"
+#include "import_dev.h"
 
 #include <cpl_conv.h>
 #include <dirent.h>
@@ -126,6 +127,8 @@ typedef struct db_job {
     size_t win_cap;
     void *fill_scratch;
     size_t fill_cap;
+    uint8_t *subtree_data; /* per entry: it or a tile under it has data */
+    ft_dev_stats *dev_stats; /* per level */
     db_pair pairs[FT_IMPORT_DB_PAIRS_MAX];
     uint32_t n_pairs;
     uint64_t all_void_windows;
@@ -700,6 +703,25 @@ static int tile_has_sources(const db_job *J, uint32_t k, uint32_t tx, uint32_t t
     return 0;
 }
 
+/* 1 when a level k-1 tile under tile (k, tx, ty), or one under that, has
+ * data (their flags are set: levels are built upwards). */
+static int children_have_data(const db_job *J, uint32_t k, uint32_t tx, uint32_t ty)
+{
+    if (k == 0u) {
+        return 0;
+    }
+    const ft_tdb_level *cl = &J->hdr.levels[k - 1u];
+    for (uint32_t c = 0u; c < 4u; ++c) {
+        const uint32_t cx = 2u * tx + (c & 1u), cy = 2u * ty + (c >> 1);
+        if (cx >= cl->tx0 && cy >= cl->ty0 && cx - cl->tx0 < cl->cols &&
+            cy - cl->ty0 < cl->rows &&
+            J->subtree_data[cl->first_entry + (cy - cl->ty0) * cl->cols + (cx - cl->tx0)]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 static int build_tile(db_job *J, uint32_t k, uint32_t tx, uint32_t ty, ft_tdb_entry *e)
 {
     const uint32_t T = J->T;
@@ -739,7 +761,9 @@ static int build_tile(db_job *J, uint32_t k, uint32_t tx, uint32_t ty, ft_tdb_en
     char what[FT_PATH_MAX + 64];
     (void)snprintf(what, sizeof what, "%s: tile (level %u, %u, %u)", J->out_path, k, tx, ty);
     ft_error err;
-    if (ft_tdb_encode_tile(J->hv, J->bits, T, J->bytes, J->bytes_cap, e, what, &err) != FT_OK) {
+    /* dev: "not known" until the level's deviation pass (import_dev.c) */
+    if (ft_tdb_encode_tile(J->hv, J->bits, NULL, T, k, J->bytes, J->bytes_cap, e, what, &err) !=
+        FT_OK) {
         fprintf(stderr, "fixterrain import: %s\n", err.text);
         return 0;
     }
@@ -775,7 +799,7 @@ static int plan_buffers(db_job *J)
     }
     J->win_cap = win_w * win_h;
     J->fill_cap = ft_void_fill_scratch_bytes((uint32_t)win_w, (uint32_t)win_h);
-    J->bytes_cap = ft_tdb_tile_bytes(J->T, 1u);
+    J->bytes_cap = ft_tdb_tile_bytes(J->T, 1u, 1u);
     J->hv = malloc(n * sizeof(float));
     J->vmask = malloc(n);
     J->origin = malloc(n);
@@ -786,7 +810,8 @@ static int plan_buffers(db_job *J)
     J->win_void = malloc(J->win_cap);
     J->fill_scratch = malloc(J->fill_cap > 0u ? J->fill_cap : 1u);
     J->entries = calloc(J->hdr.entry_count, sizeof(ft_tdb_entry));
-    return J->hv != NULL && J->vmask != NULL && J->origin != NULL && J->src_of != NULL &&
+    J->subtree_data = calloc(J->hdr.entry_count, 1u);
+    return J->subtree_data != NULL && J->hv != NULL && J->vmask != NULL && J->origin != NULL && J->src_of != NULL &&
            J->bits != NULL && J->bytes != NULL && J->win != NULL && J->win_void != NULL &&
            J->fill_scratch != NULL && J->entries != NULL;
 }
@@ -803,6 +828,8 @@ static void free_job(db_job *J)
     free(J->win_void);
     free(J->fill_scratch);
     free(J->entries);
+    free(J->subtree_data);
+    free(J->dev_stats);
     for (uint32_t i = 0u; J->in != NULL && i < J->n_in; ++i) {
         if (J->in[i].ds != NULL) {
             GDALClose(J->in[i].ds);
@@ -929,16 +956,28 @@ int ft_cmd_import_db(int argc, char **argv)
         goto done;
     }
     J.offset = (uint64_t)FT_TDB_HEADER_BYTES + (uint64_t)J.hdr.entry_count * FT_TDB_ENTRY_BYTES;
-    int ok = 1;
+    J.dev_stats = calloc(J.hdr.level_count, sizeof(ft_dev_stats));
+    ft_dev_pass dev;
+    memset(&dev, 0, sizeof dev);
+    int ok = J.dev_stats != NULL &&
+             ft_dev_pass_init(&dev, J.out, J.out_path, &J.hdr, J.entries, J.subtree_data);
+    if (!ok) {
+        fprintf(stderr, "fixterrain import: out of memory for the deviation pass\n");
+    }
     for (uint32_t k = 0u; k < J.hdr.level_count && ok; ++k) {
         const ft_tdb_level *lv = &J.hdr.levels[k];
         for (uint32_t r = 0u; r < lv->rows && ok; ++r) {
             for (uint32_t c = 0u; c < lv->cols && ok; ++c) {
-                ok = build_tile(&J, k, lv->tx0 + c, lv->ty0 + r,
-                                &J.entries[lv->first_entry + r * lv->cols + c]);
+                const uint32_t n = lv->first_entry + r * lv->cols + c;
+                ok = build_tile(&J, k, lv->tx0 + c, lv->ty0 + r, &J.entries[n]);
+                J.subtree_data[n] = (uint8_t)(J.entries[n].state == FT_TDB_DATA ||
+                                              children_have_data(&J, k, lv->tx0 + c, lv->ty0 + r));
             }
         }
+        /* the level is written: bound how far it departs from the finest data */
+        ok = ok && (k == 0u || ft_dev_pass_level(&dev, k, &J.dev_stats[k]));
     }
+    ft_dev_pass_free(&dev);
     ok = ok && write_index_and_header(&J);
     ok = ok && fflush(J.out) == 0 && fsync(fileno(J.out)) == 0;
     if (fclose(J.out) != 0) {
@@ -972,6 +1011,20 @@ int ft_cmd_import_db(int argc, char **argv)
         printf("  level %u: spacing %.6g arc-s, tiles x %u+%u y %u+%u: %u data, %u no data\n", k,
                3600.0 * level_step_deg(&J, k), lv->tx0, lv->cols, lv->ty0, lv->rows, data,
                lv->cols * lv->rows - data);
+        const ft_dev_stats *ds = &J.dev_stats[k];
+        const uint64_t cells =
+            ds->bound_cells + ds->partial_cells + ds->none_cells + ds->coarser_cells;
+        if (k > 0u && cells > 0u) {
+            printf("    dev from the finest data: %llu cells bound, p50 %.1f p99 %.1f max %.2f "
+                   "mean %.2f m; %llu at a data edge, %llu coarser data only, %llu no bound "
+                   "(%.3f %%)\n",
+                   (unsigned long long)ds->bound_cells, ft_dev_stats_quantile(ds, 0.5),
+                   ft_dev_stats_quantile(ds, 0.99), (double)ds->max_m,
+                   ds->bound_cells > 0u ? ds->sum_m / (double)ds->bound_cells : 0.0,
+                   (unsigned long long)ds->partial_cells, (unsigned long long)ds->coarser_cells,
+                   (unsigned long long)ds->none_cells,
+                   100.0 * (double)ds->none_cells / (double)cells);
+        }
     }
     if (J.all_void_windows > 0u) {
         printf("  %llu input windows were void throughout: left as no data\n",

@@ -81,10 +81,16 @@ void ft_tdb_lattice_tiles(uint32_t samples_per_deg, uint32_t tile_samples, uint3
     *rows = (uint32_t)((ny + tile_samples - 1u) / tile_samples);
 }
 
-uint32_t ft_tdb_tile_bytes(uint32_t tile_samples, uint32_t void_count)
+uint32_t ft_tdb_tile_bytes(uint32_t tile_samples, uint32_t void_count, uint32_t level)
 {
     const uint32_t n = tile_samples * tile_samples;
-    return n * 4u + (void_count > 0u ? n / 8u : 0u);
+    return n * 4u + (void_count > 0u ? n / 8u : 0u) + (level > 0u ? n * 4u : 0u);
+}
+
+int ft_tdb_dev_ok(float d)
+{
+    return (d >= 0.0f && d <= FT_TDB_DEV_MAX_M) || d == FT_TDB_DEV_NONE ||
+           d == FT_TDB_DEV_COARSER;
 }
 
 static int is_pow2(uint32_t v)
@@ -259,12 +265,12 @@ static ft_status check_entry(const ft_tdb_header *h, const ft_tdb_entry *e, uint
                        "fit %u samples with one covered",
                        name, k, tx, ty, e->void_count, e->nodata_count, samples);
     }
-    if (e->byte_size != ft_tdb_tile_bytes(h->tile_samples, e->void_count)) {
+    if (e->byte_size != ft_tdb_tile_bytes(h->tile_samples, e->void_count, k)) {
         return ft_fail(err, FT_ERR_FORMAT,
                        "%s: tile (level %u, %u, %u) is %u bytes, a %ux%u tile with %u voids is "
                        "%u",
                        name, k, tx, ty, e->byte_size, h->tile_samples, h->tile_samples,
-                       e->void_count, ft_tdb_tile_bytes(h->tile_samples, e->void_count));
+                       e->void_count, ft_tdb_tile_bytes(h->tile_samples, e->void_count, k));
     }
     if (!ft_terrain_height_ok((double)e->min_m) || !ft_terrain_height_ok((double)e->max_m) ||
         !ft_terrain_height_ok((double)e->avg_m) || !(e->min_m <= e->avg_m) ||
@@ -315,8 +321,12 @@ ft_status ft_tdb_read_header(const ft_reader_at *r, ft_tdb_header *h, ft_error *
     }
     const uint32_t version = ft_le_get_u32(hb + OFF_VERSION);
     if (version != FT_TDB_VERSION) {
-        return ft_fail(err, FT_ERR_VERSION, "%s: database version %u, this build reads %u", name,
-                       version, FT_TDB_VERSION);
+        return ft_fail(err, FT_ERR_VERSION,
+                       "%s: database version %u, this build reads %u%s", name, version,
+                       FT_TDB_VERSION,
+                       version < FT_TDB_VERSION
+                           ? " (older files have no deviation bounds: import the inputs again)"
+                           : "");
     }
     if (ft_le_get_u32(hb + OFF_HEADER_BYTES) != FT_TDB_HEADER_BYTES) {
         return ft_fail(err, FT_ERR_FORMAT, "%s: header_bytes is %u, expected %u", name,
@@ -614,8 +624,9 @@ static float stats_avg(const tile_stats *s, uint32_t n)
 }
 
 ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
-                             uint32_t tile_samples, uint8_t *out, size_t out_cap,
-                             ft_tdb_entry *e, const char *what, ft_error *err)
+                             const float *dev_m, uint32_t tile_samples, uint32_t level,
+                             uint8_t *out, size_t out_cap, ft_tdb_entry *e, const char *what,
+                             ft_error *err)
 {
     const uint32_t n = tile_samples * tile_samples;
     tile_stats s;
@@ -630,7 +641,15 @@ ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
         return ft_fail(err, FT_ERR_ARG,
                        "%s: no covered sample, or a void bit on an uncovered one", what);
     }
-    const uint32_t bytes = ft_tdb_tile_bytes(tile_samples, s.voids);
+    const uint32_t bytes = ft_tdb_tile_bytes(tile_samples, s.voids, level);
+    for (uint32_t i = 0u; level > 0u && dev_m != NULL && i < n; ++i) {
+        if (!ft_tdb_dev_ok(dev_m[i])) {
+            return ft_fail(err, FT_ERR_NUMERIC,
+                           "%s: dev %g m at row %u col %u is neither within 0..%g m nor a marker",
+                           what, (double)dev_m[i], i / tile_samples, i % tile_samples,
+                           (double)FT_TDB_DEV_MAX_M);
+        }
+    }
     if (out_cap < bytes) {
         return ft_fail(err, FT_ERR_ARG, "%s: %zu bytes of room for a %u-byte tile", what,
                        out_cap, bytes);
@@ -640,6 +659,12 @@ ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
     }
     if (s.voids > 0u) {
         memcpy(out + (size_t)n * 4u, void_bits, n / 8u);
+    }
+    if (level > 0u) {
+        uint8_t *dev_out = out + (size_t)n * 4u + (s.voids > 0u ? n / 8u : 0u);
+        for (uint32_t i = 0u; i < n; ++i) {
+            ft_le_put_f32(dev_out + (size_t)i * 4u, dev_m != NULL ? dev_m[i] : FT_TDB_DEV_NONE);
+        }
     }
     e->state = FT_TDB_DATA;
     e->byte_size = bytes;
@@ -652,9 +677,48 @@ ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
     return FT_OK;
 }
 
+/* Dev floats checked per read when the caller keeps none (1 KB of stack). */
+#define FT_TDB_DEV_CHUNK 256u
+
+/* Reads the dev block at `at` (n floats) into dev_m, or through a stack
+ * block when dev_m is NULL; folds it into *crc and returns the first value
+ * that is not a stored dev (index in *bad, UINT32_MAX none). */
+static ft_status read_dev(const ft_reader_at *r, uint64_t at, uint32_t n, float *dev_m,
+                          uint32_t *crc, uint32_t *bad, float *bad_value, ft_error *err)
+{
+    float chunk[FT_TDB_DEV_CHUNK];
+    *bad = UINT32_MAX;
+    for (uint32_t i0 = 0u; i0 < n; i0 += FT_TDB_DEV_CHUNK) {
+        const uint32_t cnt = n - i0 < FT_TDB_DEV_CHUNK ? n - i0 : FT_TDB_DEV_CHUNK;
+        float *dst = dev_m != NULL ? dev_m + i0 : chunk;
+        ft_status st = ft_read_at_exact(r, at + (uint64_t)i0 * 4u, dst, (size_t)cnt * 4u, err);
+        if (st != FT_OK) {
+            return st;
+        }
+        *crc = ft_crc32(*crc, dst, (size_t)cnt * 4u);
+        for (uint32_t i = 0u; i < cnt; ++i) {
+            dst[i] = le_float(&dst[i]);
+            if (*bad == UINT32_MAX && !ft_tdb_dev_ok(dst[i])) {
+                *bad = i0 + i;
+                *bad_value = dst[i];
+            }
+        }
+    }
+    return FT_OK;
+}
+
 ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32_t ty,
                            float *heights_m, size_t heights_cap, uint8_t *void_bits,
                            size_t bits_cap, ft_tdb_tile *out, ft_error *err)
+{
+    return ft_tdb_read_tile_dev(db, level, tx, ty, heights_m, heights_cap, void_bits, bits_cap,
+                                NULL, 0u, out, err);
+}
+
+ft_status ft_tdb_read_tile_dev(const ft_tdb *db, uint32_t level, uint32_t tx, uint32_t ty,
+                               float *heights_m, size_t heights_cap, uint8_t *void_bits,
+                               size_t bits_cap, float *dev_m, size_t dev_cap, ft_tdb_tile *out,
+                               ft_error *err)
 {
     if (db == NULL || db->r == NULL || out == NULL || heights_m == NULL || void_bits == NULL) {
         return ft_fail(err, FT_ERR_ARG, "terrain database read: a NULL argument (or not open)");
@@ -675,11 +739,12 @@ ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32
                        level, tx, ty, cols, rows);
     }
     const uint32_t n = h->tile_samples * h->tile_samples;
-    if (heights_cap < n || bits_cap < n / 8u) {
+    if (heights_cap < n || bits_cap < n / 8u || (dev_m != NULL && level > 0u && dev_cap < n)) {
         return ft_fail(err, FT_ERR_ARG,
-                       "%s: tile buffers hold %zu heights and %zu void-bit bytes, a tile needs "
-                       "%u and %u",
-                       name, heights_cap, bits_cap, n, n / 8u);
+                       "%s: tile buffers hold %zu heights, %zu void-bit bytes and %zu devs, a "
+                       "tile needs %u, %u and %u",
+                       name, heights_cap, bits_cap, dev_m != NULL ? dev_cap : 0u, n, n / 8u,
+                       level > 0u && dev_m != NULL ? n : 0u);
     }
     const ft_tdb_entry *e = ft_tdb_find(db, level, tx, ty);
     if (e == NULL || e->state != (uint32_t)FT_TDB_DATA) {
@@ -699,6 +764,15 @@ ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32
         crc = ft_crc32(crc, void_bits, n / 8u);
     } else {
         memset(void_bits, 0, n / 8u);
+    }
+    uint32_t bad_dev = UINT32_MAX;
+    float bad_dev_value = 0.0f;
+    if (level > 0u) {
+        const uint64_t at = e->offset + (uint64_t)n * 4u + (e->void_count > 0u ? n / 8u : 0u);
+        st = read_dev(db->r, at, n, dev_m, &crc, &bad_dev, &bad_dev_value, err);
+        if (st != FT_OK) {
+            return st;
+        }
     }
     if (crc != e->crc32) {
         return ft_fail(err, FT_ERR_CHECKSUM,
@@ -738,8 +812,18 @@ ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32
                        name, level, tx, ty, (double)s.min_m, (double)s.max_m, (double)avg,
                        (double)e->min_m, (double)e->max_m, (double)e->avg_m);
     }
+    if (bad_dev != UINT32_MAX) {
+        return ft_fail(err, FT_ERR_NUMERIC,
+                       "%s: tile (level %u, %u, %u): dev at row %u col %u is %g, neither within "
+                       "0..%g m nor a marker (%g, %g)",
+                       name, level, tx, ty, bad_dev / h->tile_samples,
+                       bad_dev % h->tile_samples, (double)bad_dev_value,
+                       (double)FT_TDB_DEV_MAX_M, (double)FT_TDB_DEV_NONE,
+                       (double)FT_TDB_DEV_COARSER);
+    }
     out->heights_m = heights_m;
     out->void_bits = void_bits;
+    out->dev_m = level > 0u ? dev_m : NULL;
     out->state = FT_TDB_DATA;
     out->entry = *e;
     return FT_OK;

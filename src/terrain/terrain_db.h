@@ -39,7 +39,8 @@
  *   index at 512: entry_count records of FT_TDB_ENTRY_BYTES (40), level by
  *   level, in each level row by row from (tx0, ty0) eastwards then north:
  *     0  u32 state (0 no data, 1 data)
- *     4  u32 byte_size (T*T*4, plus T*T/8 when void_count > 0)
+ *     4  u32 byte_size (T*T*4, plus T*T/8 when void_count > 0, plus T*T*4
+ *        on levels k >= 1)
  *     8  u64 offset
  *     16 u32 crc32 of the tile's bytes
  *     20 f32 min_m, 24 f32 max_m: exact bounds of every level-0-and-coarser
@@ -55,7 +56,36 @@
  *     T*T f32 heights, row 0 = south; a sample no input covers holds exactly
  *     FT_TDB_NODATA_M (outside the height range, so never mistaken for one);
  *     then, when void_count > 0, the void bits (one per sample, as
- *     ft_terrain.void_bits: set = void in the source and filled).
+ *     ft_terrain.void_bits: set = void in the source and filled);
+ *     then, on levels k >= 1, T*T f32 dev_m: dev_m[j*T + i] bounds, over
+ *     the closed level-k cell whose south-west corner is the tile's sample
+ *     (i, j), how far the finest data depart from this level's bilinear
+ *     surface (below). Level 0 is the finest data: it has no dev.
+ *
+ * Deviation from the finest data (for error bounds drawn from coarse levels).
+ *   The truth T is level 0 read by the runtime's rule (db_window.h): a
+ *   sample's data, else the nearest coarser level's bilinear value where
+ *   every sample with a weight has data; a point "resolves" at the level
+ *   the rule takes it from. B_k is level k's bilinear surface. dev_m of a
+ *   level-k cell c (closed: its edges and corners included) is:
+ *   - c's 4 corners have data at level k: a bound of |T - B_k| at every
+ *     point of c (every point resolves at level k or finer);
+ *   - a corner lacks data ("at a data edge") and finer data lie in c: a
+ *     bound of |T - r| at the points of c that resolve finer than k, where
+ *     r is the mean of c's corners that have data, or the tile's avg_m when
+ *     none has (its other points take a coarser level's truth);
+ *   - FT_TDB_DEV_COARSER (-2): a corner lacks data and no finer data lie in
+ *     c: every point of it takes a coarser level's truth;
+ *   - FT_TDB_DEV_NONE (-1): not known (finer data under a level-k tile that
+ *     has none: data only between its samples).
+ *   It is built level by level: over each of c's 4 level-(k-1) sub-cells
+ *   c', |T - B_k| <= |T - B_(k-1)| + |B_(k-1) - B_k|, and two surfaces
+ *   bilinear on c' differ most at a corner of c' (likewise against r); so
+ *   dev_1 is exact and each level above may add slack. Computed in double,
+ *   rounded up to float, capped at FT_TDB_DEV_MAX_M (no two heights differ
+ *   more). Cells past the lattice (north of the pole row; east of 180 deg
+ *   on a level that does not close) lack data; on a level that closes, the
+ *   sample at 180 deg is sample 0, as the runtime reads it.
  *
  * Opening checks: magic, version, sizes, header crc, T, L, N, each level's box
  * (inside the lattice; ntiles and entries within FT_TDB_ENTRIES_MAX and the
@@ -64,8 +94,10 @@
  * overlap, no gap, none past the end; min <= avg <= max within the height
  * range; counts within T*T; a no-data entry all zero). Reading a tile checks
  * its crc, then every height (finite, in range or the no-data value), the
- * counts and min/max/avg against the index, and the void bits. Never trusts a
- * size before checking it. */
+ * counts and min/max/avg against the index, the void bits and every dev
+ * (a bound within 0..FT_TDB_DEV_MAX_M, or one of the two markers). Never
+ * trusts a size before checking it. Version 1 (no dev) is refused: import
+ * the inputs again. */
 #ifndef FT_TERRAIN_DB_H
 #define FT_TERRAIN_DB_H
 
@@ -75,7 +107,7 @@
 #include "core/io.h"
 
 #define FT_TDB_MAGIC "FXTRDB\r\n"
-#define FT_TDB_VERSION 1u
+#define FT_TDB_VERSION 2u
 #define FT_TDB_HEADER_BYTES 512u
 #define FT_TDB_ENTRY_BYTES 40u
 /* Level table records in the header: at most this many levels. */
@@ -88,6 +120,10 @@
 #define FT_TDB_ENTRIES_MAX (1u << 20)
 /* The stored value of a sample no input covers. */
 #define FT_TDB_NODATA_M (-32768.0f)
+/* dev_m markers (terrain_db.h top) and the largest bound: the height range. */
+#define FT_TDB_DEV_NONE (-1.0f)
+#define FT_TDB_DEV_COARSER (-2.0f)
+#define FT_TDB_DEV_MAX_M 21000.0f
 
 typedef enum ft_tdb_state { FT_TDB_NO_DATA = 0, FT_TDB_DATA = 1 } ft_tdb_state;
 
@@ -130,6 +166,7 @@ typedef struct ft_tdb {
 typedef struct ft_tdb_tile {
     float *heights_m;   /* T*T, row 0 = south; FT_TDB_NODATA_M where not covered */
     uint8_t *void_bits; /* T*T/8 bytes; all zero when the tile filled no sample */
+    float *dev_m;       /* T*T on levels >= 1 when asked for; else NULL */
     ft_tdb_state state; /* FT_TDB_NO_DATA: nothing was read, heights untouched */
     ft_tdb_entry entry; /* the index entry (zero for no data) */
 } ft_tdb_tile;
@@ -176,11 +213,22 @@ const ft_tdb_entry *ft_tdb_find(const ft_tdb *db, uint32_t level, uint32_t tx, u
 ft_status ft_tdb_read_tile(const ft_tdb *db, uint32_t level, uint32_t tx, uint32_t ty,
                            float *heights_m, size_t heights_cap, uint8_t *void_bits,
                            size_t bits_cap, ft_tdb_tile *out, ft_error *err);
+/* The same, and the tile's dev into dev_m (dev_cap floats, T*T on levels
+ * >= 1; untouched on level 0). dev_m NULL: the dev is read through a small
+ * stack block and checked all the same, but not kept. */
+ft_status ft_tdb_read_tile_dev(const ft_tdb *db, uint32_t level, uint32_t tx, uint32_t ty,
+                               float *heights_m, size_t heights_cap, uint8_t *void_bits,
+                               size_t bits_cap, float *dev_m, size_t dev_cap, ft_tdb_tile *out,
+                               ft_error *err);
+
+/* 1 when d is a stored dev: a bound within 0..FT_TDB_DEV_MAX_M or a marker. */
+int ft_tdb_dev_ok(float d);
 
 /* ---- writing (the importer; the same checks as the reader) -------------- */
 
-/* Bytes of one data tile (T*T floats, plus the void bits when voids > 0). */
-uint32_t ft_tdb_tile_bytes(uint32_t tile_samples, uint32_t void_count);
+/* Bytes of one data tile of `level` (T*T floats, plus the void bits when
+ * voids > 0, plus T*T dev floats on levels >= 1). */
+uint32_t ft_tdb_tile_bytes(uint32_t tile_samples, uint32_t void_count, uint32_t level);
 
 /* Serialises the header (crc included) into out[FT_TDB_HEADER_BYTES]; fails
  * on a header the reader would refuse (except the index crc and file size,
@@ -190,11 +238,14 @@ ft_status ft_tdb_encode_header(const ft_tdb_header *h, uint8_t *out, const char 
 /* Serialises one entry into out[FT_TDB_ENTRY_BYTES]. */
 void ft_tdb_encode_entry(const ft_tdb_entry *e, uint8_t *out);
 
-/* Serialises a tile into out (ft_tdb_tile_bytes bytes) and fills the
- * entry's byte_size, crc32, counts, avg and own min/max (the caller widens
- * min/max to the footprint). Checks each height as the reader will. */
+/* Serialises a tile of `level` into out (ft_tdb_tile_bytes bytes) and
+ * fills the entry's byte_size, crc32, counts, avg and own min/max (the
+ * caller widens min/max to the footprint). dev_m (T*T, levels >= 1): NULL
+ * writes FT_TDB_DEV_NONE throughout (not yet known). Checks each height and
+ * dev as the reader will. */
 ft_status ft_tdb_encode_tile(const float *heights_m, const uint8_t *void_bits,
-                             uint32_t tile_samples, uint8_t *out, size_t out_cap,
-                             ft_tdb_entry *e, const char *what, ft_error *err);
+                             const float *dev_m, uint32_t tile_samples, uint32_t level,
+                             uint8_t *out, size_t out_cap, ft_tdb_entry *e, const char *what,
+                             ft_error *err);
 
 #endif

@@ -51,10 +51,14 @@ int ft_dev_pass_init(ft_dev_pass *P, FILE *f, const char *path, const ft_tdb_hea
     P->tile_dev = malloc(T * T * sizeof(float));
     P->dev_out = malloc(T * T * sizeof(float));
     P->bits = malloc(T * T / 8u);
+    P->measured = malloc(T * T * sizeof(double));
+    P->seen = malloc(T * T * sizeof(uint64_t));
+    P->exact = malloc(T * T * sizeof(double));
     P->bytes_cap = ft_tdb_tile_bytes((uint32_t)T, 1u, 1u);
     P->bytes = malloc(P->bytes_cap);
     return P->hk != NULL && P->hc != NULL && P->dc != NULL && P->tile_h != NULL &&
-           P->tile_dev != NULL && P->dev_out != NULL && P->bits != NULL && P->bytes != NULL;
+           P->tile_dev != NULL && P->dev_out != NULL && P->bits != NULL && P->bytes != NULL &&
+           P->measured != NULL && P->seen != NULL && P->exact != NULL;
 }
 
 void ft_dev_pass_free(ft_dev_pass *P)
@@ -67,6 +71,9 @@ void ft_dev_pass_free(ft_dev_pass *P)
     free(P->dev_out);
     free(P->bits);
     free(P->bytes);
+    free(P->measured);
+    free(P->seen);
+    free(P->exact);
     memset(P, 0, sizeof *P);
 }
 
@@ -392,6 +399,142 @@ static float cell_dev(const ft_dev_pass *P, uint32_t i, uint32_t j, double tile_
     return bound_up(worst);
 }
 
+/* The finest level m with data under tile (k, tx, ty)'s closed footprint:
+ * no tile of level m-1 there (nor under it) has data. 0 when level 0 has. */
+static uint32_t finest_under(const ft_dev_pass *P, uint32_t k, uint32_t tx, uint32_t ty)
+{
+    for (uint32_t m = 1u; m < k; ++m) {
+        const uint64_t span = (uint64_t)1u << (k - m + 1u); /* level m-1 tiles per side */
+        int any = 0;
+        /* bounded: at most (2^(k-m+1) + 1)^2 index lookups */
+        for (uint64_t y = (uint64_t)ty * span; y <= (uint64_t)ty * span + span && !any; ++y) {
+            for (uint64_t x = (uint64_t)tx * span; x <= (uint64_t)tx * span + span && !any;
+                 ++x) {
+                const int64_t n = entry_index(P, m - 1u, x, y);
+                any = n >= 0 && P->subtree_data[n];
+            }
+        }
+        if (any) {
+            return m - 1u;
+        }
+    }
+    return k;
+}
+
+/* Level m (nothing finer under the tile: finest_under) under tile (k, tx,
+ * ty), measured: for each cell with 4 data corners, the largest
+ * |v_m - B_k| over its level-m points that have data (measured) and their
+ * number (seen; (2^(k-m) + 1)^2 when level m covers the closed cell). T is
+ * level m's bilinear surface there, and T - B_k is bilinear on each level-m
+ * cell, so over a covered cell this maximum is exact. Streams the level-m
+ * tiles one at a time. Returns 1 when measured, 0 when skipped (the
+ * footprint crosses 180 deg, where level m's columns wrap), -1 on a read
+ * error. */
+static int measure_from(ft_dev_pass *P, uint32_t k, uint32_t m, uint32_t tx, uint32_t ty)
+{
+    const uint32_t T = P->T;
+    const uint64_t step = (uint64_t)1u << (k - m);
+    const uint64_t i_lo = (uint64_t)tx * T * step, j_lo = (uint64_t)ty * T * step;
+    const uint64_t i_hi = i_lo + (uint64_t)T * step, j_hi = j_lo + (uint64_t)T * step;
+    uint64_t nx = 0u, ny = 0u;
+    ft_tdb_lattice_samples(P->hdr->samples_per_deg, m, &nx, &ny);
+    if (i_hi >= nx) {
+        return 0;
+    }
+    memset(P->measured, 0, (size_t)T * T * sizeof *P->measured);
+    memset(P->seen, 0, (size_t)T * T * sizeof *P->seen);
+    const ft_tdb_level *l0 = &P->hdr->levels[m];
+    const size_t kw = T + 1u;
+    /* bounded: the level-0 box, clipped to the footprint */
+    const uint64_t bx0 = l0->tx0, bx1 = (uint64_t)l0->tx0 + l0->cols - 1u;
+    const uint64_t by0 = l0->ty0, by1 = (uint64_t)l0->ty0 + l0->rows - 1u;
+    const uint64_t ax0 = i_lo / T > bx0 ? i_lo / T : bx0, ax1 = i_hi / T < bx1 ? i_hi / T : bx1;
+    const uint64_t ay0 = j_lo / T > by0 ? j_lo / T : by0, ay1 = j_hi / T < by1 ? j_hi / T : by1;
+    for (uint64_t y0t = ay0; y0t <= ay1 && ax0 <= ax1; ++y0t) {
+        for (uint64_t x0t = ax0; x0t <= ax1; ++x0t) {
+            const int64_t n = entry_index(P, m, x0t, y0t);
+            if (n < 0 || P->entries[n].state != FT_TDB_DATA) {
+                continue;
+            }
+            if (!read_tile(P, n, m, 0, NULL)) {
+                return -1;
+            }
+            for (uint32_t y = 0u; y < T; ++y) {
+                const uint64_t J = y0t * T + y;
+                if (J < j_lo || J > j_hi) {
+                    continue;
+                }
+                const uint64_t rj = J - j_lo;
+                const uint64_t cj_a = rj / step < T ? rj / step : T - 1u;
+                const uint64_t cj_b = (rj % step == 0u && rj > 0u) ? rj / step - 1u : cj_a;
+                for (uint32_t x = 0u; x < T; ++x) {
+                    const uint64_t I = x0t * T + x;
+                    const float v = P->tile_h[(size_t)y * T + x];
+                    if (I < i_lo || I > i_hi || !has(v)) {
+                        continue;
+                    }
+                    const uint64_t ri = I - i_lo;
+                    const uint64_t ci_a = ri / step < T ? ri / step : T - 1u;
+                    const uint64_t ci_b = (ri % step == 0u && ri > 0u) ? ri / step - 1u : ci_a;
+                    /* the 1, 2 or 4 closed cells this point lies in */
+                    for (uint64_t cj = cj_b; cj <= cj_a; ++cj) {
+                        for (uint64_t ci = ci_b; ci <= ci_a; ++ci) {
+                            const float *k0 = P->hk + cj * kw + ci, *k1 = k0 + kw;
+                            if (!has(k0[0]) || !has(k0[1]) || !has(k1[0]) || !has(k1[1])) {
+                                continue;
+                            }
+                            const double fx = (double)(ri - ci * step) / (double)step;
+                            const double fy = (double)(rj - cj * step) / (double)step;
+                            const double b = (1.0 - fy) * ((1.0 - fx) * k0[0] + fx * k0[1]) +
+                                             fy * ((1.0 - fx) * k1[0] + fx * k1[1]);
+                            const double e = fabs((double)v - b);
+                            const size_t c = (size_t)(cj * T + ci);
+                            P->measured[c] = e > P->measured[c] ? e : P->measured[c];
+                            P->seen[c]++;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    return 1;
+}
+
+/* P->exact: per cell of tile (k, tx, ty), the exact largest |T - B_k|
+ * where it can be measured, else -1. A cell's truth is the finest level j
+ * with data in the closed cell when j covers all of it (no finer data, so
+ * every point resolves at j); its measured maximum is then exact. Levels
+ * from k-2 down to the finest under the tile, each overwriting the cells
+ * it has data in; levels k-1 and k are as exact by the recursion. Skipped
+ * (all -1) where a level's footprint crosses 180 deg. 0 on a read error. */
+static int measure_exact(ft_dev_pass *P, uint32_t k, uint32_t tx, uint32_t ty)
+{
+    const size_t cells = (size_t)P->T * P->T;
+    for (size_t c = 0u; c < cells; ++c) {
+        P->exact[c] = -1.0;
+    }
+    const uint32_t finest = finest_under(P, k, tx, ty);
+    for (uint32_t j = k - 1u; j-- > finest && k >= 2u;) {
+        const int r = measure_from(P, k, j, tx, ty);
+        if (r < 0) {
+            return 0;
+        }
+        if (r == 0) {
+            for (size_t c = 0u; c < cells; ++c) {
+                P->exact[c] = -1.0;
+            }
+            return 1;
+        }
+        const uint64_t full = ((uint64_t)1u << (k - j)) + 1u;
+        for (size_t c = 0u; c < cells; ++c) {
+            if (P->seen[c] > 0u) {
+                P->exact[c] = P->seen[c] == full * full ? P->measured[c] : -1.0;
+            }
+        }
+    }
+    return 1;
+}
+
 static void note(ft_dev_stats *s, float d, int partial)
 {
     if (d == FT_TDB_DEV_NONE) {
@@ -444,11 +587,20 @@ int ft_dev_pass_level(ft_dev_pass *P, uint32_t k, ft_dev_stats *s)
             if (!load_level(P, k, tx, ty) || !load_children(P, k, tx, ty)) {
                 return 0;
             }
+            /* levels k-1 and k measure as exactly by the recursion */
+            if (!measure_exact(P, k, tx, ty)) {
+                return 0;
+            }
             for (uint32_t j = 0u; j < T; ++j) {
                 for (uint32_t i = 0u; i < T; ++i) {
                     int partial = 0;
-                    const float d = cell_dev(P, i, j, (double)e->avg_m, &partial);
-                    P->dev_out[(size_t)j * T + i] = d;
+                    const size_t cell = (size_t)j * T + i;
+                    float d = cell_dev(P, i, j, (double)e->avg_m, &partial);
+                    if (!partial && d >= 0.0f && P->exact[cell] >= 0.0) {
+                        const float exact_m = bound_up(P->exact[cell]);
+                        d = exact_m < d ? exact_m : d;
+                    }
+                    P->dev_out[cell] = d;
                     note(s, d, partial);
                 }
             }

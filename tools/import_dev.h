@@ -44,6 +44,9 @@ typedef struct ft_dev_pass {
     float *tile_dev; /* T*T */
     float *dev_out;  /* T*T: the tile's new dev */
     uint8_t *bits;   /* T*T/8 */
+    double *measured; /* T*T: largest |v_m - B_k| over a cell's level-m points */
+    uint64_t *seen;   /* T*T: level-m points with data in each closed cell */
+    double *exact;    /* T*T: the exact largest |T - B_k| where measured, else -1 */
     uint8_t *bytes;  /* one encoded tile */
     size_t bytes_cap;
 } ft_dev_pass;

@@ -185,7 +185,7 @@ static void frames(const char *method)
                    "[budget]\nheights_bytes = 2M\npyramids_bytes = 4M\ndem_io_bytes = 4M\n"
                    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 4M\n"
                    "metric_bytes = 1M\ngpu_staging_bytes = 4M\nmethod_bytes = 4M\n"
-                   "clip_bytes = 8M\n",
+                   "clip_bytes = 12M\n",
                    method, k_db, WIN_SIDE, LAT_DEG, CLIP_SIDE, CLIP_LEVELS);
     ft_test_app_init(&g_app, g_scene, method);
     const ft_terrain *t = &g_app.terrain;

@@ -24,10 +24,24 @@ static float lattice_height(int64_t i, int64_t j)
     return (float)(h % 20000u) * 0.25f - 1000.0f;
 }
 
+/* A cell deviation for every level, known to the test: 0 on level 0 (the
+ * finest data itself), unknown (-1) on a band of level 2's cells. */
+static float synth_dev_m(uint32_t level, int64_t i, int64_t j)
+{
+    if (level == 0u) {
+        return 0.0f;
+    }
+    if (level == 2u && (i >> 2) % 37 == 5) {
+        return -1.0f;
+    }
+    return (float)((uint64_t)(i * 31 + j * 17) % 8u) * 0.125f * (float)level;
+}
+
 static uint64_t g_reads, g_read_samples;
 
 static ft_status read_synth(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint32_t w,
-                            uint32_t h, float *heights_m, uint8_t *marks, ft_error *err)
+                            uint32_t h, float *heights_m, uint8_t *marks, float *dev_m,
+                            ft_error *err)
 {
     (void)ctx;
     (void)err;
@@ -38,6 +52,9 @@ static ft_status read_synth(void *ctx, uint32_t level, int64_t i0, int64_t j0, u
             const int64_t s = (int64_t)1 << level;
             heights_m[r * w + q] = lattice_height((i0 + q) * s, (j0 + r) * s);
             marks[r * w + q] = 0u;
+            if (dev_m != NULL) {
+                dev_m[r * w + q] = synth_dev_m(level, (i0 + q) * s, (j0 + r) * s);
+            }
         }
     }
     return FT_OK;
@@ -373,17 +390,110 @@ static void test_terrain_source(void)
     uint8_t marks[16];
     ft_error err;
     /* level 1, samples (1..3) x (1..2): terrain (2,2) (4,2) (6,2) / (2,4) .. */
-    CHECK(src.read(src.ctx, 1u, 1, 1, 3u, 2u, out, marks, &err) == FT_OK);
+    float dev[16];
+    CHECK(src.read(src.ctx, 1u, 1, 1, 3u, 2u, out, marks, dev, &err) == FT_OK);
+    CHECK(dev[0] < 0.0f && dev[5] < 0.0f); /* no deviation kept above level 0 */
     CHECK(out[0] == heights[2 * W + 2] && out[1] == heights[2 * W + 4] &&
           out[2] == heights[2 * W + 6] && out[3] == heights[4 * W + 2]);
     CHECK(marks[0] == 0u && marks[1] == 1u && marks[2] == 0u); /* (4,2) is void */
     /* off the terrain: the nearest edge sample, marked */
-    CHECK(src.read(src.ctx, 2u, -1, 1, 4u, 1u, out, marks, &err) == FT_OK);
+    CHECK(src.read(src.ctx, 2u, -1, 1, 4u, 1u, out, marks, NULL, &err) == FT_OK);
     CHECK(out[0] == heights[4 * W + 0] && marks[0] == 1u);
     CHECK(out[1] == heights[4 * W + 0] && marks[1] == 0u);
     CHECK(out[3] == heights[4 * W + 8] && marks[3] == 0u);
-    CHECK(src.read(src.ctx, 2u, 3, 2, 1u, 1u, out, marks, &err) == FT_OK);
+    CHECK(src.read(src.ctx, 2u, 3, 2, 1u, 1u, out, marks, NULL, &err) == FT_OK);
     CHECK(out[0] == heights[6 * W + 8] && marks[0] == 1u); /* (12, 8) -> (8, 6) */
+    /* level 0: the terrain is its own finest data; off it, nothing is known */
+    CHECK(src.read(src.ctx, 0u, -1, 0, 3u, 1u, out, marks, dev, &err) == FT_OK);
+    CHECK(dev[0] < 0.0f && dev[1] == 0.0f && dev[2] == 0.0f);
+}
+
+/* The blocks' errors against the synthetic source's deviations, recomputed
+ * cell by cell from the lattice: every resident cell's dev + twist / 4 is
+ * within its block's err_m (+INF where a corner's deviation is unknown),
+ * every sample's distance to the next level's bilinear surface within
+ * morph_m; and the bounds are tight (the largest cell of a block is its
+ * err_m within the float steps) while the boxes move and lag. */
+typedef struct block_check {
+    const ft_clip_cache *c;
+    uint64_t pieces, finite, unbounded, under, loose;
+} block_check;
+
+static double synth_h(uint32_t l, int64_t a, int64_t b)
+{
+    const int64_t s = (int64_t)1 << l;
+    return (double)lattice_height(a * s, b * s);
+}
+
+static void check_block(void *ctx, uint32_t l, const ft_clip_block_bound *bb)
+{
+    block_check *k = ctx;
+    const ft_clip_box *v = &k->c->level[l].valid;
+    const int64_t s = (int64_t)1 << l;
+    double worst = 0.0;
+    int unknown = 0;
+    for (int64_t b = bb->box.j0; b < bb->box.j1; ++b) {
+        for (int64_t a = bb->box.i0; a < bb->box.i1; ++a) {
+            if (l + 1u < LEVELS) {
+                const double hc = 0.25 * (synth_h(l + 1u, a >> 1, b >> 1) +
+                                          synth_h(l + 1u, (a + 1) >> 1, b >> 1) +
+                                          synth_h(l + 1u, a >> 1, (b + 1) >> 1) +
+                                          synth_h(l + 1u, (a + 1) >> 1, (b + 1) >> 1));
+                k->under += fabs(synth_h(l, a, b) - hc) > (double)bb->morph_m;
+            }
+            if (a + 1 >= v->i1 || b + 1 >= v->j1) {
+                continue;
+            }
+            int any_unknown = 0;
+            for (int q = 0; q < 4; ++q) {
+                any_unknown |= synth_dev_m(l, (a + (q & 1)) * s, (b + (q >> 1)) * s) < 0.0f;
+            }
+            if (any_unknown) {
+                unknown = 1;
+                continue;
+            }
+            const double tw = 0.25 * fabs(synth_h(l, a, b) + synth_h(l, a + 1, b + 1) -
+                                          synth_h(l, a + 1, b) - synth_h(l, a, b + 1));
+            worst = fmax(worst, (double)synth_dev_m(l, a * s, b * s) + tw);
+        }
+    }
+    k->pieces++;
+    if (unknown) {
+        k->under += !isinf(bb->err_m);
+        k->unbounded++;
+        return;
+    }
+    k->under += worst > (double)bb->err_m;
+    if (isfinite(bb->err_m)) {
+        k->finite++;
+        /* the block's apron holds more cells than the piece: only a block
+         * whose piece is the whole block is held to tightness */
+        const int whole = bb->box.i1 - bb->box.i0 == 16 && bb->box.j1 - bb->box.j0 == 16;
+        k->loose += whole && (double)bb->err_m > 4.0 * worst + 1.0;
+    }
+}
+
+static void test_block_errors(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache_kept(&c, &a, 256u, 1);
+    block_check k = {&c, 0u, 0u, 0u, 0u, 0u};
+    for (int step = 0; step < 30; ++step) {
+        (void)ft_clip_recentre(&c, 23.0 * step - 200.0, -13.0 * step + 40.0);
+        (void)drain(&c, step % 4 == 0 ? -1 : 5, NULL);
+        for (uint32_t l = 0u; l < LEVELS; ++l) {
+            (void)ft_clip_blocks_visit(&c, l, check_block, &k);
+        }
+    }
+    printf("block errors: %llu pieces, %llu bounded, %llu unbounded, %llu under the cells, "
+           "%llu loose\n",
+           (unsigned long long)k.pieces, (unsigned long long)k.finite,
+           (unsigned long long)k.unbounded, (unsigned long long)k.under,
+           (unsigned long long)k.loose);
+    CHECK(k.under == 0u);
+    CHECK(k.loose == 0u);
+    CHECK(k.finite > k.pieces / 2u && k.unbounded > 0u);
 }
 
 int main(void)
@@ -395,5 +505,6 @@ int main(void)
     test_plan_errors();
     test_terrain_source();
     test_max_height_in();
+    test_block_errors();
     return ft_test_result("test_clip_cache");
 }

@@ -153,7 +153,7 @@ int main(int argc, char **argv)
                    "[budget]\nheights_bytes = 33M\npyramids_bytes = 100M\ndem_io_bytes = 8M\n"
                    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 136M\n"
                    "metric_bytes = 1M\ngpu_staging_bytes = 16M\nmethod_bytes = 4M\n"
-                   "clip_bytes = 8M\n",
+                   "clip_bytes = 12M\n",
                    method, db_path);
     char what[64];
     (void)snprintf(what, sizeof what, "%s flight", method);

@@ -101,7 +101,7 @@ static const char k_scene[] =
 static const char k_db_terrain[] =
     "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 257\n"
     "db_centre_lat_deg = 42.5\ndb_centre_lon_deg = 1.5\n"
-    "[clipmap]\ntile_slots = 4\n[budget]\nclip_bytes = 2M\nreference_bytes = 4M\n";
+    "[clipmap]\ntile_slots = 4\n[budget]\nclip_bytes = 3M\nreference_bytes = 4M\n";
 static double g_lat0 = 46.5, g_lon0 = 8.0;
 
 static ft_app g_app;

@@ -278,7 +278,7 @@ static double cache_texel(const void *ctx, uint32_t level, int64_t a, int64_t b)
     const ft_clip_source *src = ctx;
     float h = 0.0f;
     ft_error err;
-    REQUIRE(src->read(src->ctx, level, a, b, 1u, 1u, &h, NULL, &err) == FT_OK);
+    REQUIRE(src->read(src->ctx, level, a, b, 1u, 1u, &h, NULL, NULL, &err) == FT_OK);
     return (double)h;
 }
 

@@ -101,7 +101,7 @@ static const char k_scene_db_fmt[] =
     "[clipmap]\nside = 64\nlevels = 5\nupdate_samples_max = 1024\nupdates_per_frame = 4\n"
     "tile_slots = 8\n"
     "[pgm]\ngrid_cols = 64\ngrid_rows = 128\nheights = clipmap\n"
-    "[budget]\nclip_bytes = 4M\n"
+    "[budget]\nclip_bytes = 6M\n"
     "[frame]\nperiod_ms = %g\nbudget_ms = %g\ndegrade = 0\n";
 
 /* ---- the faulted log -------------------------------------------------------- */

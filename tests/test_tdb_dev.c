@@ -72,7 +72,7 @@ static void read_rule(const ft_tdb *db, ft_tdb_tile_cache *tc, uint32_t level, i
 {
     REQUIRE((size_t)w * h <= REGION_MAX);
     memset(g_bits, 0, ((size_t)w * h + 7u) / 8u);
-    const ft_dbw_rect r = {level, i0, j0, w, h, out, g_bits};
+    const ft_dbw_rect r = {level, i0, j0, w, h, out, g_bits, NULL};
     ft_dbw_counts c;
     memset(&c, 0, sizeof c);
     uint64_t remaining = 0u;
@@ -247,9 +247,9 @@ static void check_db(const char *path, const region *g)
     REQUIRE(ft_tdb_open(&db, &f.reader_at, g_entries, ENTRIES_CAP, &err) == FT_OK);
     const uint32_t T = db.hdr.tile_samples;
     REQUIRE(T <= TILE_MAX);
-    REQUIRE(ft_tdb_tile_cache_bytes(&db.hdr, CACHE_SLOTS) <= sizeof g_cache_mem);
+    REQUIRE(ft_tdb_tile_cache_bytes(&db.hdr, CACHE_SLOTS, 0) <= sizeof g_cache_mem);
     ft_tdb_tile_cache tc;
-    ft_tdb_tile_cache_init(&tc, &db.hdr, CACHE_SLOTS, g_cache_mem);
+    ft_tdb_tile_cache_init(&tc, &db.hdr, CACHE_SLOTS, 0, g_cache_mem);
     REQUIRE((size_t)g->w * g->h <= REGION_MAX);
     uint64_t ny0 = 0u;
     ft_tdb_lattice_samples(db.hdr.samples_per_deg, 0u, &g_nx0, &ny0);

@@ -149,9 +149,11 @@ static int parse_args(int argc, char **argv, report_args *a)
 
 /* The plan checks the description only; it reads nothing. */
 static ft_status no_read(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint32_t w,
-                         uint32_t h, float *heights_m, uint8_t *marks, ft_error *err)
+                         uint32_t h, float *heights_m, uint8_t *marks, float *dev_m,
+                         ft_error *err)
 {
     (void)ctx, (void)level, (void)i0, (void)j0, (void)w, (void)h, (void)heights_m, (void)marks;
+    (void)dev_m;
     return ft_fail(err, FT_ERR_ARG, "cache-report: no source yet");
 }
 

@@ -19,7 +19,7 @@ static ref_parts parts_of(const ft_tdb_header *h, uint32_t level, uint32_t side)
     p.heights = ft_arena_round(n * sizeof(float));
     p.pyramid = ft_arena_round(ft_pyramid_bytes(side, side));
     p.bits = ft_arena_round((n + 7u) / 8u);
-    p.tiles = ft_arena_round(ft_tdb_tile_cache_bytes(h, FT_REF_WINDOW_TILE_SLOTS));
+    p.tiles = ft_arena_round(ft_tdb_tile_cache_bytes(h, FT_REF_WINDOW_TILE_SLOTS, 0));
     p.coarse = ft_arena_round(ft_dbw_rect_coarse_bytes(h, level, side, side));
     return p;
 }
@@ -63,7 +63,7 @@ ft_status ft_ref_window_init(ft_ref_window *w, const ft_terrain *scene, uint32_t
     w->t.void_bits = m; /* the read's marks (the caster ignores them) */
     w->t.void_count = 0u;
     m += p.bits;
-    ft_tdb_tile_cache_init(&w->tiles, &scene->db->hdr, FT_REF_WINDOW_TILE_SLOTS, m);
+    ft_tdb_tile_cache_init(&w->tiles, &scene->db->hdr, FT_REF_WINDOW_TILE_SLOTS, 0, m);
     m += p.tiles;
     w->coarse_m = (float *)(void *)m;
     w->coarse_bytes = p.coarse;
@@ -103,7 +103,8 @@ ft_status ft_ref_window_follow(ft_ref_window *w, const double eye_m[3], int *mov
     const size_t n = (size_t)side * side;
     memset(w->t.void_bits, 0, (n + 7u) / 8u);
     memset(&w->counts, 0, sizeof w->counts);
-    const ft_dbw_rect r = {s->db_level, i0, j0, side, side, w->t.heights_m, w->t.void_bits};
+    const ft_dbw_rect r = {s->db_level, i0, j0, side, side, w->t.heights_m, w->t.void_bits,
+                           NULL};
     uint64_t remaining = 0u;
     w->loaded = 0; /* a failed read leaves no half-moved window behind */
     ft_status st = ft_dbw_read_rect(s->db, &r, &w->tiles, w->coarse_m, w->coarse_bytes,

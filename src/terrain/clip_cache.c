@@ -83,10 +83,15 @@ ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_aren
     if (a != NULL) {
         ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max * sizeof(float));
         ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max);
+        if (d->keep_bounds) {
+            ft_arena_plan(a, FT_POOL_CLIP, (size_t)d->update_samples_max * sizeof(float));
+        }
         for (uint32_t l = 0u; d->keep_bounds && l < d->levels; ++l) {
             ft_arena_plan(a, FT_POOL_CLIP, mirror_bytes(d));
-            ft_arena_plan(a, FT_POOL_CLIP, block_bytes(d));
-            ft_arena_plan(a, FT_POOL_CLIP, block_bytes(d));
+            ft_arena_plan(a, FT_POOL_CLIP, mirror_bytes(d));
+            for (int k = 0; k < 4; ++k) {
+                ft_arena_plan(a, FT_POOL_CLIP, block_bytes(d));
+            }
         }
     }
     return FT_OK;
@@ -109,21 +114,44 @@ ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_so
     if (st != FT_OK) {
         return st;
     }
+    if (d->keep_bounds) {
+        void *dev = NULL;
+        st = ft_arena_take(a, FT_POOL_CLIP, (size_t)d->update_samples_max * sizeof(float), &dev,
+                           err);
+        if (st != FT_OK) {
+            return st;
+        }
+        c->dev_staging_m = dev;
+    }
+    const size_t texels = (size_t)d->side * d->side;
+    const size_t blocks = block_bytes(d) / sizeof(float);
     for (uint32_t l = 0u; d->keep_bounds && l < d->levels; ++l) {
-        void *m = NULL, *lo = NULL, *hi = NULL;
+        void *m = NULL, *dm = NULL, *b[4] = {NULL, NULL, NULL, NULL};
         st = ft_arena_take(a, FT_POOL_CLIP, mirror_bytes(d), &m, err);
-        if (st == FT_OK) st = ft_arena_take(a, FT_POOL_CLIP, block_bytes(d), &lo, err);
-        if (st == FT_OK) st = ft_arena_take(a, FT_POOL_CLIP, block_bytes(d), &hi, err);
+        if (st == FT_OK) st = ft_arena_take(a, FT_POOL_CLIP, mirror_bytes(d), &dm, err);
+        for (int k = 0; k < 4 && st == FT_OK; ++k) {
+            st = ft_arena_take(a, FT_POOL_CLIP, block_bytes(d), &b[k], err);
+        }
         if (st != FT_OK) {
             return st;
         }
         c->mirror_m[l] = m;
-        c->block_lo_m[l] = lo;
-        c->block_hi_m[l] = hi;
-        /* nothing uploaded yet: texels read 0, and the blocks say so */
+        c->dev_mirror_m[l] = dm;
+        c->block_lo_m[l] = b[0];
+        c->block_hi_m[l] = b[1];
+        c->block_err_m[l] = b[2];
+        c->block_morph_m[l] = b[3];
+        /* nothing uploaded yet: texels read 0, nothing is bounded */
         memset(m, 0, mirror_bytes(d));
-        memset(lo, 0, block_bytes(d));
-        memset(hi, 0, block_bytes(d));
+        memset(b[0], 0, block_bytes(d));
+        memset(b[1], 0, block_bytes(d));
+        for (size_t k = 0u; k < texels; ++k) {
+            c->dev_mirror_m[l][k] = INFINITY;
+        }
+        for (size_t k = 0u; k < blocks; ++k) {
+            c->block_err_m[l][k] = INFINITY;
+            c->block_morph_m[l][k] = INFINITY;
+        }
     }
     c->desc = *d;
     c->src = *src;
@@ -263,8 +291,8 @@ ft_status ft_clip_next_update(ft_clip_cache *c, ft_clip_update *u, int *have, ft
         }
         const ft_clip_box k = chunk_at(c, l);
         const uint32_t w = (uint32_t)(k.i1 - k.i0), h = (uint32_t)(k.j1 - k.j0);
-        const ft_status st =
-            c->src.read(c->src.ctx, l, k.i0, k.j0, w, h, c->staging_m, c->marks, err);
+        const ft_status st = c->src.read(c->src.ctx, l, k.i0, k.j0, w, h, c->staging_m,
+                                         c->marks, c->dev_staging_m, err);
         if (st != FT_OK) {
             return st;
         }
@@ -276,6 +304,7 @@ ft_status ft_clip_next_update(ft_clip_cache *c, ft_clip_update *u, int *have, ft
         u->h = h;
         u->heights_m = c->staging_m;
         u->marks = c->marks;
+        u->dev_m = c->dev_staging_m;
         c->last = *u;
         c->pending = 1;
         *have = 1;
@@ -284,26 +313,84 @@ ft_status ft_clip_next_update(ft_clip_cache *c, ft_clip_update *u, int *have, ft
     return FT_OK;
 }
 
-/* The range of block (bx, by) of level l over its texels and the apron
- * around them (texel indices wrap). */
+/* A bound rounded up to float (err: the texels' float steps too). */
+static float round_up_f(double v)
+{
+    float f = (float)v;
+    if ((double)f < v) {
+        f = nextafterf(f, INFINITY);
+    }
+    return f;
+}
+
+/* Level l+1's bilinear surface at level-l sample (a, b), from its mirror:
+ * the sample itself, or the mean of the 2 or 4 around a half-integer. */
+static double coarser_at(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b)
+{
+    const uint32_t side = c->desc.side;
+    const float *m = c->mirror_m[l + 1u];
+    const int64_t a0 = floor_div_i64(a, 2), b0 = floor_div_i64(b, 2);
+    const int64_t a1 = a0 + (a & 1), b1 = b0 + (b & 1);
+    const double h00 = m[(size_t)wrap_index(b0, side) * side + wrap_index(a0, side)];
+    const double h10 = m[(size_t)wrap_index(b0, side) * side + wrap_index(a1, side)];
+    const double h01 = m[(size_t)wrap_index(b1, side) * side + wrap_index(a0, side)];
+    const double h11 = m[(size_t)wrap_index(b1, side) * side + wrap_index(a1, side)];
+    return 0.25 * (h00 + h10 + h01 + h11);
+}
+
+/* Block (bx, by) of level l over its texels and the apron around them
+ * (texel indices wrap): its height range, and its errors
+ * (ft_clip_block_bound). A cell is the texels (x, y) .. (x + 1, y + 1)
+ * unless x or y is the wanted box's seam (the texel before its first
+ * sample: the next texel holds a sample side away), and its samples are
+ * the wanted box's. Texels the valid box does not hold are counted too:
+ * they can only widen the bounds, and every texel a drawn cell uses was
+ * resident when its block was last refreshed (an update refreshes the
+ * blocks its apron meets; a coarser level is current whenever a finer one
+ * takes an update, and keeps the samples under the finer valid box). */
 static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_t by)
 {
     const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
-    const float *m = c->mirror_m[l];
+    const float *m = c->mirror_m[l], *dev = c->dev_mirror_m[l];
+    const ft_clip_box *want = &c->level[l].want;
     const int64_t span = (int64_t)FT_CLIP_BOUND_BLOCK + 2 * (int64_t)FT_CLIP_BOUND_APRON;
     const int64_t x0 = (int64_t)bx * FT_CLIP_BOUND_BLOCK - FT_CLIP_BOUND_APRON;
     const int64_t y0 = (int64_t)by * FT_CLIP_BOUND_BLOCK - FT_CLIP_BOUND_APRON;
+    const uint32_t seam_x = wrap_index(want->i0 - 1, side), seam_y = wrap_index(want->j0 - 1, side);
+    const int morph = (l + 1u < c->desc.levels);
     float lo = m[(size_t)wrap_index(y0, side) * side + wrap_index(x0, side)], hi = lo;
+    double err = 0.0, dmorph = 0.0;
     for (int64_t y = y0; y < y0 + span; ++y) {
-        const float *row = m + (size_t)wrap_index(y, side) * side;
+        const uint32_t ty = wrap_index(y, side), ty1 = wrap_index(y + 1, side);
+        const float *row = m + (size_t)ty * side, *row1 = m + (size_t)ty1 * side;
+        const float *drow = dev + (size_t)ty * side, *drow1 = dev + (size_t)ty1 * side;
+        const int64_t b = want->j0 + (int64_t)wrap_index((int64_t)ty - want->j0, side);
         for (int64_t x = x0; x < x0 + span; ++x) {
-            const float v = row[wrap_index(x, side)];
+            const uint32_t tx = wrap_index(x, side), tx1 = wrap_index(x + 1, side);
+            const float v = row[tx];
             lo = v < lo ? v : lo;
             hi = v > hi ? v : hi;
+            if (morph) {
+                const int64_t a = want->i0 + (int64_t)wrap_index((int64_t)tx - want->i0, side);
+                dmorph = fmax(dmorph, fabs((double)v - coarser_at(c, l, a, b)));
+            }
+            if (x + 1 >= x0 + span || y + 1 >= y0 + span || tx == seam_x || ty == seam_y) {
+                continue; /* not a cell of the block's span */
+            }
+            /* the south-west corner's deviation is the cell's; a corner
+             * without one (+INF) leaves the cell unbounded */
+            const float d = fmaxf(fmaxf(drow[tx], drow[tx1]), fmaxf(drow1[tx], drow1[tx1]));
+            const double twist =
+                0.25 * fabs((double)v + (double)row1[tx1] - (double)row[tx1] - (double)row1[tx]);
+            err = isinf(d) ? INFINITY : fmax(err, (double)drow[tx] + twist);
         }
     }
-    c->block_lo_m[l][(size_t)by * n + bx] = lo;
-    c->block_hi_m[l][(size_t)by * n + bx] = hi;
+    const double steps = 4.0 * fmax(fabs((double)lo), fabs((double)hi)) * ldexp(1.0, -24);
+    const size_t k = (size_t)by * n + bx;
+    c->block_lo_m[l][k] = lo;
+    c->block_hi_m[l][k] = hi;
+    c->block_err_m[l][k] = round_up_f(err + steps);
+    c->block_morph_m[l][k] = morph ? round_up_f(dmorph + steps) : 0.0f;
 }
 
 /* Copies a committed update into the level's mirror and refreshes the
@@ -311,10 +398,15 @@ static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_
 static void keep_bounds_of(ft_clip_cache *c, const ft_clip_update *u)
 {
     const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
-    float *m = c->mirror_m[u->level];
+    float *m = c->mirror_m[u->level], *dm = c->dev_mirror_m[u->level];
     for (uint32_t r = 0u; r < u->h; ++r) {
         memcpy(m + (size_t)(u->tex_y + r) * side + u->tex_x, u->heights_m + (size_t)r * u->w,
                (size_t)u->w * sizeof(float));
+        float *drow = dm + (size_t)(u->tex_y + r) * side + u->tex_x;
+        for (uint32_t q = 0u; q < u->w; ++q) {
+            const float d = (u->dev_m != NULL) ? u->dev_m[(size_t)r * u->w + q] : -1.0f;
+            drow[q] = (d >= 0.0f) ? d : INFINITY; /* negative: not known */
+        }
     }
     /* blocks within the apron of the rect, as block indices that may wrap;
      * at most n per axis */
@@ -403,49 +495,73 @@ static int block_pieces(int64_t t0, int64_t w0, int64_t v0, int64_t v1, uint32_t
     return k;
 }
 
+uint64_t ft_clip_blocks_visit(const ft_clip_cache *c, uint32_t l, ft_clip_block_fn fn,
+                              void *ctx)
+{
+    const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
+    if (!c->desc.keep_bounds || l >= c->desc.levels || box_empty(&c->level[l].valid)) {
+        return 0u;
+    }
+    const ft_clip_box *v = &c->level[l].valid, *wb = &c->level[l].want;
+    uint64_t count = 0u;
+    for (uint32_t by = 0u; by < n; ++by) {
+        int64_t py[2][2];
+        const int ky =
+            block_pieces((int64_t)by * FT_CLIP_BOUND_BLOCK, wb->j0, v->j0, v->j1, side, py);
+        for (uint32_t bx = 0u; bx < n && ky > 0; ++bx) {
+            int64_t px[2][2];
+            const int kx =
+                block_pieces((int64_t)bx * FT_CLIP_BOUND_BLOCK, wb->i0, v->i0, v->i1, side, px);
+            const size_t k = (size_t)by * n + bx;
+            ft_clip_block_bound b = {{0, 0, 0, 0},    c->block_lo_m[l][k],  c->block_hi_m[l][k],
+                                     c->block_err_m[l][k], c->block_morph_m[l][k]};
+            for (int qy = 0; qy < ky; ++qy) {
+                for (int qx = 0; qx < kx; ++qx) {
+                    b.box.i0 = px[qx][0];
+                    b.box.i1 = px[qx][1];
+                    b.box.j0 = py[qy][0];
+                    b.box.j1 = py[qy][1];
+                    fn(ctx, l, &b);
+                    ++count;
+                }
+            }
+        }
+    }
+    return count;
+}
+
 /* Calls fn for every resident piece of every level's blocks: its world box
  * (one sample past the piece: the triangles reach it) and its block's
  * height range. Returns the pieces visited. */
 typedef void (*piece_fn)(void *ctx, double x0, double x1, double y0, double y1, double lo,
                          double hi);
 
+typedef struct piece_world_ctx {
+    const ft_clip_cache *c;
+    const ft_clip_world *w;
+    piece_fn fn;
+    void *ctx;
+} piece_world_ctx;
+
+static void piece_world(void *ctx, uint32_t l, const ft_clip_block_bound *b)
+{
+    const piece_world_ctx *k = ctx;
+    const ft_clip_world *w = k->w;
+    const double s = (double)((int64_t)1 << l);
+    const double li = (double)k->c->src.lattice_i0, lj = (double)k->c->src.lattice_j0;
+    k->fn(k->ctx, w->origin_x_m + ((double)b->box.i0 * s - li) * w->cell_x_m,
+          w->origin_x_m + ((double)b->box.i1 * s - li) * w->cell_x_m,
+          w->origin_y_m + ((double)b->box.j0 * s - lj) * w->cell_y_m,
+          w->origin_y_m + ((double)b->box.j1 * s - lj) * w->cell_y_m, b->lo_m, b->hi_m);
+}
+
 static uint64_t for_each_piece(const ft_clip_cache *c, const ft_clip_world *w, piece_fn fn,
                                void *ctx)
 {
-    const uint32_t side = c->desc.side, n = side / FT_CLIP_BOUND_BLOCK;
+    piece_world_ctx k = {c, w, fn, ctx};
     uint64_t count = 0u;
-    for (uint32_t l = 0u; c->desc.keep_bounds && l < c->desc.levels; ++l) {
-        const ft_clip_box *v = &c->level[l].valid, *wb = &c->level[l].want;
-        if (box_empty(v)) {
-            continue;
-        }
-        const double s = (double)((int64_t)1 << l);
-        for (uint32_t by = 0u; by < n; ++by) {
-            int64_t py[2][2];
-            const int ky = block_pieces((int64_t)by * FT_CLIP_BOUND_BLOCK, wb->j0, v->j0, v->j1,
-                                        side, py);
-            for (uint32_t bx = 0u; bx < n && ky > 0; ++bx) {
-                int64_t px[2][2];
-                const int kx = block_pieces((int64_t)bx * FT_CLIP_BOUND_BLOCK, wb->i0, v->i0,
-                                            v->i1, side, px);
-                const double lo = c->block_lo_m[l][(size_t)by * n + bx];
-                const double hi = c->block_hi_m[l][(size_t)by * n + bx];
-                for (int qy = 0; qy < ky; ++qy) {
-                    const double y0 = w->origin_y_m +
-                                      ((double)py[qy][0] * s - (double)c->src.lattice_j0) * w->cell_y_m;
-                    const double y1 = w->origin_y_m +
-                                      ((double)py[qy][1] * s - (double)c->src.lattice_j0) * w->cell_y_m;
-                    for (int qx = 0; qx < kx; ++qx) {
-                        const double x0 = w->origin_x_m + ((double)px[qx][0] * s -
-                                                           (double)c->src.lattice_i0) * w->cell_x_m;
-                        const double x1 = w->origin_x_m + ((double)px[qx][1] * s -
-                                                           (double)c->src.lattice_i0) * w->cell_x_m;
-                        fn(ctx, x0, x1, y0, y1, lo, hi);
-                        ++count;
-                    }
-                }
-            }
-        }
+    for (uint32_t l = 0u; l < c->desc.levels; ++l) {
+        count += ft_clip_blocks_visit(c, l, piece_world, &k);
     }
     return count;
 }

@@ -53,13 +53,17 @@
 #define FT_CLIP_SIDE_MAX 4096u
 
 /* Reads level `level` samples [i0, i0 + w) x [j0, j0 + h) (level-l indices)
- * into heights_m (row-major, w per row, row 0 = south) and, when marks is not
+ * into heights_m (row-major, w per row, row 0 = south); when marks is not
  * NULL, one byte per sample: 0 measured, 1 not measured (void-filled, from a
- * coarser level, or no data anywhere). A source gives a height for every
+ * coarser level, or no data anywhere); when dev_m is not NULL, per sample a
+ * bound of how far the source's finest data depart from this level's
+ * bilinear surface over the cell whose south-west corner it is, valid when
+ * none of the cell's 4 corners is negative (negative: not known, or the
+ * sample lacks this level's own data). A source gives a height for every
  * sample it is asked for (outside its data: the rule it documents, marked). */
 typedef ft_status (*ft_clip_read_fn)(void *ctx, uint32_t level, int64_t i0, int64_t j0,
                                      uint32_t w, uint32_t h, float *heights_m, uint8_t *marks,
-                                     ft_error *err);
+                                     float *dev_m, ft_error *err);
 
 typedef struct ft_clip_source {
     ft_clip_read_fn read;
@@ -75,9 +79,12 @@ typedef struct ft_clip_desc {
     uint32_t side;               /* samples per level side: power of two, MIN..MAX */
     uint32_t levels;             /* 1 .. min(FT_CLIP_LEVELS_MAX, source levels) */
     uint32_t update_samples_max; /* samples one update reads (>= 2 * side) */
-    int keep_bounds;             /* keep height bounds of what is resident
-                                    (ft_clip_clearance_m): a CPU copy of every
-                                    level, levels x side^2 floats more */
+    int keep_bounds;             /* keep bounds of what is resident: heights
+                                    (ft_clip_clearance_m) and the error against
+                                    the source's finest data
+                                    (ft_clip_blocks_visit): a CPU copy of every
+                                    level's heights and cell deviations,
+                                    levels x 2 side^2 floats more */
 } ft_clip_desc;
 
 /* Height bounds: per level, blocks of FT_CLIP_BOUND_BLOCK^2 texels, each
@@ -114,6 +121,7 @@ typedef struct ft_clip_update {
     uint32_t tex_x, tex_y, w, h;
     const float *heights_m; /* w * h, the cache's staging, valid until the next call */
     const uint8_t *marks;   /* w * h */
+    const float *dev_m;     /* w * h cell deviations (keep_bounds), else NULL */
 } ft_clip_update;
 
 typedef struct ft_clip_stats {
@@ -139,10 +147,16 @@ typedef struct ft_clip_cache {
     int64_t cursor_i[FT_CLIP_LEVELS_MAX], cursor_j[FT_CLIP_LEVELS_MAX];
     int pending;        /* an update was produced and not committed */
     ft_clip_update last; /* the update produced last */
-    /* keep_bounds: each level's texels as uploaded, and its blocks' ranges */
-    float *mirror_m[FT_CLIP_LEVELS_MAX];   /* side^2 */
-    float *block_lo_m[FT_CLIP_LEVELS_MAX]; /* (side / BLOCK)^2 */
+    /* keep_bounds: each level's texels as uploaded and their cells'
+     * deviations (+INF where the source gave none), and per block its
+     * range and errors (ft_clip_block_bound) */
+    float *dev_staging_m;                    /* update_samples_max */
+    float *mirror_m[FT_CLIP_LEVELS_MAX];     /* side^2 */
+    float *dev_mirror_m[FT_CLIP_LEVELS_MAX]; /* side^2 */
+    float *block_lo_m[FT_CLIP_LEVELS_MAX];   /* (side / BLOCK)^2 */
     float *block_hi_m[FT_CLIP_LEVELS_MAX];
+    float *block_err_m[FT_CLIP_LEVELS_MAX];
+    float *block_morph_m[FT_CLIP_LEVELS_MAX];
 } ft_clip_cache;
 
 /* Checks the description (the message names the scene key: clipmap.side,
@@ -186,6 +200,35 @@ int ft_clip_clearance_m(const ft_clip_cache *c, const ft_clip_world *w, const do
  * from any of them stays under it); -INFINITY when none does. */
 double ft_clip_max_height_in(const ft_clip_cache *c, const ft_clip_world *w, double x0_m,
                              double y0_m, double x1_m, double y1_m);
+
+/* keep_bounds: what a resident block of level l bounds, over the piece
+ * of its samples that is resident (the toroidal texels of one block hold at
+ * most 2 x 2 pieces of the lattice).
+ *  - err_m: over every cell with a corner in the piece, how far the
+ *    surface drawn from level l's samples (2 triangles a cell, or the
+ *    stitch rule's 3: any triangle of points on the cell's bilinear
+ *    surface) departs from the source's finest data: dev + |h00 + h11 -
+ *    h10 - h01| / 4 (the bilinear surface departs from a triangle of its
+ *    points by at most a quarter of the twist), the largest over the cells
+ *    of the block and its apron; +INF when a cell's deviation is unknown.
+ *  - morph_m: the largest |h - H(l + 1)| at the level's samples of the
+ *    block and apron, H(l + 1) the next level's bilinear surface as its
+ *    texels hold it; a vertex blended between the two moves by at most that
+ *    (0 on the coarsest level).
+ * Rounding: err_m and morph_m are rounded up to float and include 4 float
+ * steps of the block's largest height (the shader's bilinear and blend). */
+typedef struct ft_clip_block_bound {
+    ft_clip_box box; /* level-l samples, resident */
+    float lo_m, hi_m; /* the block's height range, apron included */
+    float err_m, morph_m;
+} ft_clip_block_bound;
+
+typedef void (*ft_clip_block_fn)(void *ctx, uint32_t level, const ft_clip_block_bound *b);
+
+/* Calls fn for every resident piece of level l's blocks; returns how many
+ * (0 without keep_bounds). At most (side / BLOCK)^2 x 4 calls. */
+uint64_t ft_clip_blocks_visit(const ft_clip_cache *c, uint32_t level, ft_clip_block_fn fn,
+                              void *ctx);
 
 /* 1 when level l's valid box equals its wanted box (and it has one). */
 int ft_clip_level_current(const ft_clip_cache *c, uint32_t l);

@@ -15,7 +15,8 @@ static int void_bit(const ft_terrain *t, uint64_t k)
 }
 
 static ft_status read_terrain(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint32_t w,
-                              uint32_t h, float *heights_m, uint8_t *marks, ft_error *err)
+                              uint32_t h, float *heights_m, uint8_t *marks, float *dev_m,
+                              ft_error *err)
 {
     (void)err;
     const ft_terrain *t = ctx;
@@ -31,6 +32,12 @@ static ft_status read_terrain(void *ctx, uint32_t level, int64_t i0, int64_t j0,
             heights_m[o] = t->heights_m[k];
             if (marks != NULL) {
                 marks[o] = (uint8_t)((x != xc || y != yc || void_bit(t, k)) ? 1u : 0u);
+            }
+            /* level 0 is the terrain itself (void fills included: the
+             * reference draws them too); no deviation is stored for the
+             * coarser levels of a terrain in memory */
+            if (dev_m != NULL) {
+                dev_m[o] = (level == 0u && x == xc && y == yc) ? 0.0f : -1.0f;
             }
         }
     }
@@ -61,7 +68,7 @@ static size_t coarse_bytes_of(const ft_clip_desc *d)
 size_t ft_clip_db_source_bytes(const ft_tdb_header *h, uint32_t tile_slots,
                                const ft_clip_desc *d)
 {
-    return ft_arena_round(ft_tdb_tile_cache_bytes(h, tile_slots)) +
+    return ft_arena_round(ft_tdb_tile_cache_bytes(h, tile_slots, 1)) +
            ft_arena_round(coarse_bytes_of(d)) +
            ft_arena_round(((size_t)d->update_samples_max + 7u) / 8u);
 }
@@ -69,13 +76,14 @@ size_t ft_clip_db_source_bytes(const ft_tdb_header *h, uint32_t tile_slots,
 void ft_clip_db_source_plan(const ft_tdb_header *h, uint32_t tile_slots, const ft_clip_desc *d,
                             ft_arena *a)
 {
-    ft_arena_plan(a, FT_POOL_CLIP, ft_tdb_tile_cache_bytes(h, tile_slots));
+    ft_arena_plan(a, FT_POOL_CLIP, ft_tdb_tile_cache_bytes(h, tile_slots, 1));
     ft_arena_plan(a, FT_POOL_CLIP, coarse_bytes_of(d));
     ft_arena_plan(a, FT_POOL_CLIP, ((size_t)d->update_samples_max + 7u) / 8u);
 }
 
 static ft_status read_db(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint32_t w,
-                         uint32_t h, float *heights_m, uint8_t *marks, ft_error *err)
+                         uint32_t h, float *heights_m, uint8_t *marks, float *dev_m,
+                         ft_error *err)
 {
     ft_clip_db_source *s = ctx;
     const size_t n = (size_t)w * h;
@@ -84,7 +92,7 @@ static ft_status read_db(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint
                        h, s->update_samples_max);
     }
     memset(s->bits, 0, (n + 7u) / 8u);
-    const ft_dbw_rect r = {s->base_level + level, i0, j0, w, h, heights_m, s->bits};
+    const ft_dbw_rect r = {s->base_level + level, i0, j0, w, h, heights_m, s->bits, dev_m};
     uint64_t remaining = 0u;
     const ft_status st = ft_dbw_read_rect(s->db, &r, &s->tiles, s->coarse_m, s->coarse_bytes,
                                           &s->counts, &remaining, err);
@@ -118,7 +126,7 @@ ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_
     s->update_samples_max = d->update_samples_max;
     s->coarse_bytes = coarse_bytes_of(d);
     void *tiles = NULL, *coarse = NULL, *bits = NULL;
-    ft_status st = ft_arena_take(a, FT_POOL_CLIP, ft_tdb_tile_cache_bytes(&db->hdr, tile_slots),
+    ft_status st = ft_arena_take(a, FT_POOL_CLIP, ft_tdb_tile_cache_bytes(&db->hdr, tile_slots, 1),
                                  &tiles, err);
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_CLIP, s->coarse_bytes, &coarse, err);
@@ -130,7 +138,7 @@ ft_status ft_clip_source_db(ft_clip_source *out, ft_clip_db_source *s, const ft_
     if (st != FT_OK) {
         return st;
     }
-    ft_tdb_tile_cache_init(&s->tiles, &db->hdr, tile_slots, tiles);
+    ft_tdb_tile_cache_init(&s->tiles, &db->hdr, tile_slots, 1, tiles);
     s->coarse_m = coarse;
     s->bits = bits;
     uint64_t nx = 0u, ny = 0u;

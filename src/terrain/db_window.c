@@ -123,27 +123,32 @@ size_t ft_dbw_rect_coarse_bytes(const ft_tdb_header *h, uint32_t level, uint32_t
                                          : 0u;
 }
 
-static size_t slot_bytes(const ft_tdb_header *h)
+static size_t slot_bytes(const ft_tdb_header *h, int with_dev)
 {
     const size_t n = (size_t)h->tile_samples * h->tile_samples;
-    return n * sizeof(float) + n / 8u; /* a multiple of 4: T >= 16 */
+    /* a multiple of 4: T >= 16 */
+    return n * sizeof(float) + n / 8u + (with_dev ? n * sizeof(float) : 0u);
 }
 
-size_t ft_tdb_tile_cache_bytes(const ft_tdb_header *h, uint32_t slots)
+size_t ft_tdb_tile_cache_bytes(const ft_tdb_header *h, uint32_t slots, int with_dev)
 {
-    return slot_bytes(h) * slots;
+    return slot_bytes(h, with_dev) * slots;
 }
 
 void ft_tdb_tile_cache_init(ft_tdb_tile_cache *tc, const ft_tdb_header *h, uint32_t slots,
-                            void *mem)
+                            int with_dev, void *mem)
 {
     memset(tc, 0, sizeof *tc);
     tc->slots = slots < FT_TDB_TILE_CACHE_MAX ? slots : FT_TDB_TILE_CACHE_MAX;
+    tc->with_dev = with_dev != 0;
     tc->tile_n = (size_t)h->tile_samples * h->tile_samples;
     for (uint32_t k = 0u; k < tc->slots; ++k) {
-        uint8_t *base = (uint8_t *)mem + slot_bytes(h) * k;
+        uint8_t *base = (uint8_t *)mem + slot_bytes(h, tc->with_dev) * k;
         tc->slot[k].heights_m = (float *)(void *)base;
         tc->slot[k].void_bits = base + tc->tile_n * sizeof(float);
+        tc->slot[k].dev_m =
+            tc->with_dev ? (float *)(void *)(base + tc->tile_n * sizeof(float) + tc->tile_n / 8u)
+                         : NULL;
     }
 }
 
@@ -172,8 +177,10 @@ static ft_status cached_tile(const ft_tdb *db, ft_tdb_tile_cache *tc, uint32_t l
         }
     }
     victim->filled = 0;
-    const ft_status st = ft_tdb_read_tile(db, level, tx, ty, victim->heights_m, tc->tile_n,
-                                          victim->void_bits, tc->tile_n / 8u, &victim->tile, err);
+    const ft_status st =
+        ft_tdb_read_tile_dev(db, level, tx, ty, victim->heights_m, tc->tile_n, victim->void_bits,
+                             tc->tile_n / 8u, victim->dev_m, tc->with_dev ? tc->tile_n : 0u,
+                             &victim->tile, err);
     if (st != FT_OK) {
         return st;
     }
@@ -189,7 +196,7 @@ static ft_status cached_tile(const ft_tdb *db, ft_tdb_tile_cache *tc, uint32_t l
 
 size_t ft_dbw_staging_bytes(const ft_dbw *w)
 {
-    return ft_tdb_tile_cache_bytes(&w->hdr, 1u) +
+    return ft_tdb_tile_cache_bytes(&w->hdr, 1u, 0) +
            ft_dbw_rect_coarse_bytes(&w->hdr, w->level, w->side, w->side);
 }
 
@@ -226,6 +233,7 @@ typedef struct lattice_grid {
     uint32_t w, h;
     float *m;
     uint8_t *bits;
+    float *dev; /* NULL, or w * h cell devs (ft_dbw_rect) */
 } lattice_grid;
 
 /* The grid's samples [lo, hi) on one axis that the lattice (n samples)
@@ -259,6 +267,14 @@ static void copy_tile(const ft_tdb_tile *tile, uint64_t T, uint64_t tx, uint64_t
             const size_t s = src_row + (size_t)(i - tx * T);
             const size_t o = dst_row + (size_t)((int64_t)i - g->i0);
             g->m[o] = tile->heights_m[s];
+            if (g->dev != NULL) {
+                /* a sample without data here takes a coarser level's value:
+                 * no cell it is a corner of has this level's bound */
+                g->dev[o] = (tile->heights_m[s] == FT_TDB_NODATA_M) ? FT_TDB_DEV_NONE
+                            : (g->level == 0u)                    ? 0.0f
+                            : (tile->dev_m != NULL)               ? tile->dev_m[s]
+                                                                  : FT_TDB_DEV_NONE;
+            }
             if (g->bits != NULL && ((tile->void_bits[s >> 3] >> (s & 7u)) & 1u) != 0u) {
                 mark(g->bits, o);
                 ++c->filled_samples;
@@ -278,6 +294,9 @@ static ft_status read_grid(const ft_tdb *db, lattice_grid *g, ft_tdb_tile_cache 
     const size_t n = (size_t)g->w * g->h;
     for (size_t k = 0u; k < n; ++k) {
         g->m[k] = FT_TDB_NODATA_M; /* until a tile says otherwise */
+    }
+    for (size_t k = 0u; g->dev != NULL && k < n; ++k) {
+        g->dev[k] = FT_TDB_DEV_NONE;
     }
     uint64_t nx = 0u, ny = 0u, jlo = 0u, jhi = 0u;
     ft_tdb_lattice_samples(db->hdr.samples_per_deg, g->level, &nx, &ny);
@@ -403,11 +422,12 @@ ft_status ft_dbw_read_rect(const ft_tdb *db, const ft_dbw_rect *r, ft_tdb_tile_c
     const ft_tdb_header *h = &db->hdr;
     if (r->w == 0u || r->h == 0u || r->level >= h->level_count || tc->slots == 0u ||
         tc->tile_n != (size_t)h->tile_samples * h->tile_samples ||
-        coarse_bytes < ft_dbw_rect_coarse_bytes(h, r->level, r->w, r->h)) {
+        coarse_bytes < ft_dbw_rect_coarse_bytes(h, r->level, r->w, r->h) ||
+        (r->dev_m != NULL && !tc->with_dev)) {
         return ft_fail(err, FT_ERR_ARG, "database rect %u x %u at level %u without its staging",
                        r->w, r->h, r->level);
     }
-    lattice_grid g = {r->level, r->i0, r->j0, r->w, r->h, r->heights_m, r->void_bits};
+    lattice_grid g = {r->level, r->i0, r->j0, r->w, r->h, r->heights_m, r->void_bits, r->dev_m};
     ft_status st = read_grid(db, &g, tc, c, err);
     const size_t n = (size_t)r->w * r->h;
     uint64_t left = 0u;
@@ -417,7 +437,7 @@ ft_status ft_dbw_read_rect(const ft_tdb *db, const ft_dbw_rect *r, ft_tdb_tile_c
     /* Coarser levels, nearest first, while samples lack data. Bounded by
      * the level count (at most FT_TDB_LEVELS_MAX). */
     for (uint32_t k = r->level + 1u; st == FT_OK && left > 0u && k < h->level_count; ++k) {
-        lattice_grid cg = {0u, 0, 0, 0u, 0u, coarse_m, NULL};
+        lattice_grid cg = {0u, 0, 0, 0u, 0u, coarse_m, NULL, NULL};
         st = fill_from_coarser(db, k, &g, &cg, tc, c, &left, err);
     }
     *remaining = left;
@@ -450,12 +470,12 @@ ft_status ft_dbw_load(const ft_reader_at *r, const ft_dbw *w, ft_terrain *t, voi
         return ft_fail(err, FT_ERR_FORMAT, "%s: the header changed between probe and load", name);
     }
     const ft_dbw_rect rect = {w->level, w->i0, w->j0, w->side, w->side, t->heights_m,
-                              t->void_bits};
+                              t->void_bits, NULL};
     uint64_t remaining = 0u;
     ft_tdb_tile_cache tc;
     uint8_t *staging = (uint8_t *)io + index_bytes;
-    const size_t tile_bytes = ft_tdb_tile_cache_bytes(&w->hdr, 1u);
-    ft_tdb_tile_cache_init(&tc, &w->hdr, 1u, staging);
+    const size_t tile_bytes = ft_tdb_tile_cache_bytes(&w->hdr, 1u, 0);
+    ft_tdb_tile_cache_init(&tc, &w->hdr, 1u, 0, staging);
     st = ft_dbw_read_rect(&db, &rect, &tc, (float *)(void *)(staging + tile_bytes),
                           staging_bytes - tile_bytes, counts, &remaining, err);
     if (st != FT_OK) {

@@ -85,19 +85,28 @@ size_t ft_dbw_staging_bytes(const ft_dbw *w);
 
 /* A rect of one level's lattice samples (level-l indices, row 0 = south)
  * and where its heights and void bits (rect-local, bit k of sample k, zeroed
- * by the caller) go. */
+ * by the caller) go; and, when dev_m is not NULL, each sample's cell dev
+ * (terrain_db.h: of the level-l cell whose south-west corner it is): the
+ * level's own tile's value, 0 on level 0 (the finest data itself), and
+ * FT_TDB_DEV_NONE where the sample lacks this level's data (no tile, no
+ * data in it, outside the lattice: its height is a coarser level's), so a
+ * cell bounds |truth - this level's bilinear surface| by its south-west
+ * corner's value only when none of its 4 corners is NONE (dev_m needs a
+ * tile cache made with its dev). */
 typedef struct ft_dbw_rect {
     uint32_t level;
     int64_t i0, j0;
     uint32_t w, h;
     float *heights_m; /* w * h */
     uint8_t *void_bits; /* (w * h + 7) / 8 */
+    float *dev_m;       /* w * h, or NULL */
 } ft_dbw_rect;
 
 /* Decoded tiles kept between reads, least recently used replaced: one
  * slot is enough for a window read once; a cache that reads strips next to
- * each other keeps more. Slots are T*T heights and their void bits, in
- * caller memory (ft_tdb_tile_cache_bytes). */
+ * each other keeps more. Slots are T*T heights and their void bits, and
+ * with_dev T*T dev bounds more (read on levels >= 1), in caller memory
+ * (ft_tdb_tile_cache_bytes). */
 #define FT_TDB_TILE_CACHE_MAX 64u
 typedef struct ft_tdb_tile_slot {
     uint32_t level, tx, ty;
@@ -105,20 +114,22 @@ typedef struct ft_tdb_tile_slot {
     uint64_t stamp;
     float *heights_m;
     uint8_t *void_bits;
+    float *dev_m; /* with_dev: T*T (level 0: untouched), else NULL */
     ft_tdb_tile tile;
 } ft_tdb_tile_slot;
 
 typedef struct ft_tdb_tile_cache {
     ft_tdb_tile_slot slot[FT_TDB_TILE_CACHE_MAX];
     uint32_t slots;
+    int with_dev;
     size_t tile_n;
     uint64_t clock, hits, reads;
 } ft_tdb_tile_cache;
 
-size_t ft_tdb_tile_cache_bytes(const ft_tdb_header *h, uint32_t slots);
+size_t ft_tdb_tile_cache_bytes(const ft_tdb_header *h, uint32_t slots, int with_dev);
 /* slots is capped at FT_TDB_TILE_CACHE_MAX; mem holds the bytes above. */
 void ft_tdb_tile_cache_init(ft_tdb_tile_cache *tc, const ft_tdb_header *h, uint32_t slots,
-                            void *mem);
+                            int with_dev, void *mem);
 
 /* Bytes of the grid of a coarser level ft_dbw_read_rect needs for a rect
  * of w x hgt samples at `level` (0 at the last level). */

@@ -382,7 +382,7 @@ static int back_faces_hidden_brute(const ft_bintree *bt, const ft_terrain *t,
                                    const ft_bt_view *v, uint32_t tiles)
 {
     const double f = (double)(1u << bt->sub);
-    const double ex = v->eye_m[0] / t->cell_x_m, ey = v->eye_m[1] / t->cell_y_m;
+    const double ex = v->b.eye_m[0] / t->cell_x_m, ey = v->b.eye_m[1] / t->cell_y_m;
     if (!(ex >= 0.0 && ey >= 0.0 && ex <= (double)t->width - 1.0 &&
           ey <= (double)t->height - 1.0)) {
         return 0;
@@ -403,7 +403,7 @@ static int back_faces_hidden_brute(const ft_bintree *bt, const ft_terrain *t,
             found = 1;
         }
     }
-    return found && v->eye_m[2] > top + 0.01;
+    return found && v->b.eye_m[2] > top + 0.01;
 }
 
 static int g_low_hidden, g_low_shown; /* eyes near the ground, over all cases */
@@ -535,15 +535,15 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
             double hi[3] = {gx1 * t.cell_x_m, gy1 * t.cell_y_m, z1};
             double d2 = 0.0, lo_rel[3], hi_rel[3];
             for (int q = 0; q < 3; ++q) {
-                double e = v.eye_m[q];
+                double e = v.b.eye_m[q];
                 double d = e < lo[q] ? lo[q] - e : (e > hi[q] ? e - hi[q] : 0.0);
                 d2 += d * d;
                 lo_rel[q] = lo[q] - e;
                 hi_rel[q] = hi[q] - e;
             }
             /* pixels a vertical metre covers over the tile's box (view_scale.h) */
-            const double gain = ft_view_vertical_gain(&v.gain, lo_rel, hi_rel);
-            if (dev > 1e-3 && v.k_px * dev * gain > thr * sqrt(d2) * (1.0 + 1e-6) + 1e-3) {
+            const double gain = ft_view_vertical_gain(&v.b.gain, lo_rel, hi_rel);
+            if (dev > 1e-3 && v.b.k_px * dev * gain > thr * sqrt(d2) * (1.0 + 1e-6) + 1e-3) {
                 if (bad_bound < 3) {
                     double w_m;
                     const double q = ft_bt_diamond_q(&bt, &v, tile->level, c, tau, &w_m);

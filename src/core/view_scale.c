@@ -72,3 +72,95 @@ double ft_view_vertical_gain(const ft_view_gain_frame *g, const double lo[3], co
     const double b = fmin(sqrt(b2_max), g->b_cap);
     return a * b;
 }
+
+/* ---- a vertical error over a box ----------------------------------------------- */
+
+void ft_view_bound_from_camera(const ft_camera *c, const double origin_m[2],
+                               double curv_drop_per_m2, ft_view_bound *v)
+{
+    v->eye_m[0] = c->eye_m[0] - origin_m[0];
+    v->eye_m[1] = c->eye_m[1] - origin_m[1];
+    v->eye_m[2] = c->eye_m[2];
+    v->k_px = c->px_per_rad_k;
+    ft_view_gain_frame_from_camera(c, &v->gain);
+    v->curv_drop_per_m2 = curv_drop_per_m2;
+    const double tv = tan(0.5 * c->fovy_rad);
+    const double th = tv * (double)c->width_px / (double)(c->height_px > 0u ? c->height_px : 1u);
+    for (int i = 0; i < 3; ++i) {
+        v->plane_n[0][i] = c->forward[i] * tv - c->up[i];    /* top */
+        v->plane_n[1][i] = c->forward[i] * tv + c->up[i];    /* bottom */
+        v->plane_n[2][i] = c->forward[i] * th - c->right[i]; /* right */
+        v->plane_n[3][i] = c->forward[i] * th + c->right[i]; /* left */
+    }
+}
+
+/* Distance from e to the interval [lo, hi] (0 inside). */
+static double gap_1d(double e, double lo, double hi)
+{
+    return (e < lo) ? lo - e : ((e > hi) ? e - hi : 0.0);
+}
+
+void ft_view_bound_drawn_box(const ft_view_bound *v, double lo[3], double hi[3])
+{
+    if (!(v->curv_drop_per_m2 > 0.0)) {
+        return;
+    }
+    double near2 = 0.0, far2 = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        const double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
+        const double f = fmax(fabs(v->eye_m[i] - lo[i]), fabs(v->eye_m[i] - hi[i]));
+        near2 += g * g;
+        far2 += f * f;
+    }
+    lo[2] -= v->curv_drop_per_m2 * far2;
+    hi[2] -= v->curv_drop_per_m2 * near2;
+}
+
+void ft_view_bound_terms(const ft_view_bound *v, double err_m, const double lo[3],
+                         const double hi[3], ft_view_box_terms *out)
+{
+    double rlo[3], rhi[3], d2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
+        d2 += g * g;
+        rlo[i] = lo[i] - v->eye_m[i];
+        rhi[i] = hi[i] - v->eye_m[i];
+    }
+    const double l2 = (rhi[0] - rlo[0]) * (rhi[0] - rlo[0]) + (rhi[1] - rlo[1]) * (rhi[1] - rlo[1]);
+    out->err_m = err_m + 0.25 * v->curv_drop_per_m2 * l2;
+    out->dist_m = sqrt(d2);
+    out->gain = (out->err_m > 0.0 && d2 > 0.0) ? ft_view_vertical_gain(&v->gain, rlo, rhi) : 0.0;
+}
+
+double ft_view_bound_error_px(const ft_view_bound *v, double err_m, const double lo[3],
+                              const double hi[3])
+{
+    if (!(err_m < INFINITY)) {
+        return INFINITY; /* unknown (or NaN): no bound */
+    }
+    ft_view_box_terms t;
+    ft_view_bound_terms(v, err_m, lo, hi, &t);
+    if (!(t.err_m > 0.0)) {
+        return 0.0;
+    }
+    if (!(t.dist_m > 0.0)) {
+        return INFINITY;
+    }
+    return v->k_px * t.err_m * t.gain / t.dist_m;
+}
+
+int ft_view_bound_outside(const ft_view_bound *v, const double lo[3], const double hi[3])
+{
+    for (int p = 0; p < 5; ++p) {
+        const double *nrm = (p < 4) ? v->plane_n[p] : v->gain.fwd;
+        double best = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const double c = (nrm[i] >= 0.0) ? hi[i] : lo[i];
+            best += nrm[i] * (c - v->eye_m[i]);
+        }
+        if (best < 0.0) {
+            return 1;
+        }
+    }
+    return 0;
+}

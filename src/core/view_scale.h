@@ -30,7 +30,8 @@
  * over the image rectangle (a convex function: at a corner of the image);
  * a box with a corner at or behind the eye gets the caps.
  *
- * The bintree bounds its boxes with G. pgrid's per-fragment rho keeps
+ * The bintree and the clipmap bound their boxes with G (ft_view_bound below).
+ * pgrid's per-fragment rho keeps
  * 1 / cos^2 theta (>= G): its mesh also misplaces the terrain's edge
  * sideways, which no vertical bound covers, and its sweep test at 100 km
  * straight down relies on the larger factor marking those pixels. */
@@ -57,5 +58,53 @@ void ft_view_gain_frame_from_camera(const ft_camera *c, ft_view_gain_frame *g);
  * Always in [0, a_cap b_cap]. */
 double ft_view_vertical_gain(const ft_view_gain_frame *g, const double lo_rel_m[3],
                              const double hi_rel_m[3]);
+
+/* ---- a vertical error over a box, in pixels ----------------------------------
+
+ * What a method's per-box bound needs of a view, in the method's own frame
+ * (world metres less an origin the caller chose; heights as stored): the
+ * eye, K (pixels per radian), the gain frame, the curvature drop k (a point
+ * at horizontal distance r from the eye is drawn k r^2 lower) and the
+ * frustum's four side planes through the eye (a point p is inside iff
+ * dot(n, p - eye) >= 0 for each). */
+typedef struct ft_view_bound {
+    double eye_m[3];
+    double k_px;
+    ft_view_gain_frame gain;
+    double curv_drop_per_m2;
+    double plane_n[4][3];
+} ft_view_bound;
+
+/* origin_m: the world x, y of the frame's origin. */
+void ft_view_bound_from_camera(const ft_camera *c, const double origin_m[2],
+                               double curv_drop_per_m2, ft_view_bound *v);
+
+/* The box as drawn: its z range lowered by the curvature drop, k r^2 with
+ * r at least the box's nearest and at most its farthest xy point. */
+void ft_view_bound_drawn_box(const ft_view_bound *v, double lo_m[3], double hi_m[3]);
+
+/* The terms of an error err_m over a drawn box: the distance from the eye
+ * to it, the vertical gain over it (0 when the error or the distance is 0:
+ * not needed), and the error plus the chord k L^2 / 4 by which a straight
+ * edge of length L (at most the box's xy diagonal) lies under the curved
+ * surface. */
+typedef struct ft_view_box_terms {
+    double dist_m;
+    double gain;
+    double err_m;
+} ft_view_box_terms;
+
+void ft_view_bound_terms(const ft_view_bound *v, double err_m, const double lo_m[3],
+                         const double hi_m[3], ft_view_box_terms *out);
+
+/* Pixels an error err_m over the drawn box can move a point of it on the
+ * image: K (err + chord) G / distance; 0 for no error, +INF with the eye in
+ * the box (and for an infinite or NaN error). */
+double ft_view_bound_error_px(const ft_view_bound *v, double err_m, const double lo_m[3],
+                              const double hi_m[3]);
+
+/* 1 if the box lies wholly outside one frustum side plane or behind the
+ * eye (nothing of it is drawn). */
+int ft_view_bound_outside(const ft_view_bound *v, const double lo_m[3], const double hi_m[3]);
 
 #endif

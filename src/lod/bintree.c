@@ -894,24 +894,12 @@ void ft_bt_view_from_camera(const ft_camera *cam, const ft_terrain *t, int cull,
                             ft_bt_view *v)
 {
     memset(v, 0, sizeof *v);
-    v->eye_m[0] = cam->eye_m[0] - t->origin_world_x_m;
-    v->eye_m[1] = cam->eye_m[1] - t->origin_world_y_m;
-    v->eye_m[2] = cam->eye_m[2];
+    const double origin_m[2] = {t->origin_world_x_m, t->origin_world_y_m};
+    ft_view_bound_from_camera(cam, origin_m, t->curv_drop_per_m2, &v->b);
     v->cell_m[0] = t->cell_x_m;
     v->cell_m[1] = t->cell_y_m;
-    v->k_px = cam->px_per_rad_k;
-    ft_view_gain_frame_from_camera(cam, &v->gain);
-    v->curv_drop_per_m2 = t->curv_drop_per_m2;
     v->cull = cull;
     v->morph = morph;
-    const double tv = tan(0.5 * cam->fovy_rad);
-    const double th = tv * (double)cam->width_px / (double)cam->height_px;
-    for (int i = 0; i < 3; ++i) {
-        v->plane_n[0][i] = cam->forward[i] * tv - cam->up[i];    /* top */
-        v->plane_n[1][i] = cam->forward[i] * tv + cam->up[i];    /* bottom */
-        v->plane_n[2][i] = cam->forward[i] * th - cam->right[i]; /* right */
-        v->plane_n[3][i] = cam->forward[i] * th + cam->right[i]; /* left */
-    }
 }
 
 /* ---- selection (per frame) ------------------------------------------------------------ */
@@ -921,15 +909,8 @@ typedef struct bt_node {
     uint32_t level;
 } bt_node;
 
-/* Distance from e to the interval [lo, hi] (0 inside). */
-static double gap_1d(double e, double lo, double hi)
-{
-    return (e < lo) ? lo - e : ((e > hi) ? e - hi : 0.0);
-}
-
-/* World-metre box (relative to sample (0,0)) of grid box b, as drawn: its
- * z range lowered by the curvature drop k r^2 over the box (r from the
- * eye: at least the box's nearest, at most its farthest xy corner). */
+/* World-metre box (relative to sample (0,0)) of grid box b, as drawn (its
+ * z range lowered by the curvature drop: ft_view_bound_drawn_box). */
 static void box_to_m(const ft_bt_view *v, const float *b, double lo[3], double hi[3])
 {
     lo[0] = (double)b[0] * v->cell_m[0];
@@ -938,43 +919,16 @@ static void box_to_m(const ft_bt_view *v, const float *b, double lo[3], double h
     hi[1] = (double)b[3] * v->cell_m[1];
     lo[2] = b[4];
     hi[2] = b[5];
-    if (v->curv_drop_per_m2 > 0.0) {
-        double near2 = 0.0, far2 = 0.0;
-        for (int i = 0; i < 2; ++i) {
-            double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
-            double f = fmax(fabs(v->eye_m[i] - lo[i]), fabs(v->eye_m[i] - hi[i]));
-            near2 += g * g;
-            far2 += f * f;
-        }
-        lo[2] -= v->curv_drop_per_m2 * far2;
-        hi[2] -= v->curv_drop_per_m2 * near2;
-    }
+    ft_view_bound_drawn_box(&v->b, lo, hi);
 }
 
-/* Screen-space size in pixels of a diamond error err_m over grid box b:
- * K (err + chord) * gain / distance, with the distance from the eye to the
- * drawn box, the vertical gain bounded over it (view_scale.h), and the
- * chord k L^2 / 4 by which a straight edge of length L (at most the box's
- * xy diagonal) lies under the curved surface. */
+/* Screen-space size in pixels of a diamond error err_m over grid box b
+ * (ft_view_bound_error_px: K (err + chord) G / distance to the drawn box). */
 static double box_error_px(const ft_bt_view *v, double err_m, const float *b)
 {
-    double lo[3], hi[3], d2 = 0.0, l2 = 0.0;
+    double lo[3], hi[3];
     box_to_m(v, b, lo, hi);
-    for (int i = 0; i < 3; ++i) {
-        double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
-        d2 += g * g;
-        lo[i] -= v->eye_m[i];
-        hi[i] -= v->eye_m[i];
-    }
-    l2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]);
-    double e = err_m + 0.25 * v->curv_drop_per_m2 * l2;
-    if (!(e > 0.0)) {
-        return 0.0;
-    }
-    if (!(d2 > 0.0)) {
-        return INFINITY;
-    }
-    return v->k_px * e * ft_view_vertical_gain(&v->gain, lo, hi) / sqrt(d2);
+    return ft_view_bound_error_px(&v->b, err_m, lo, hi);
 }
 
 /* Q of an error err_m over grid box b at target tau (see bintree.h). */
@@ -983,41 +937,23 @@ static double box_q_m(const ft_bt_view *v, double err_m, const float *b, double 
     if (!(tau_px >= 0.0) || !isfinite(tau_px)) {
         return -INFINITY;
     }
-    double lo[3], hi[3], d2 = 0.0;
+    double lo[3], hi[3];
     box_to_m(v, b, lo, hi);
-    for (int i = 0; i < 3; ++i) {
-        double g = gap_1d(v->eye_m[i], lo[i], hi[i]);
-        d2 += g * g;
-        lo[i] -= v->eye_m[i];
-        hi[i] -= v->eye_m[i];
-    }
-    const double l2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]);
-    const double e = err_m + 0.25 * v->curv_drop_per_m2 * l2;
-    if (!(e > 0.0)) {
+    ft_view_box_terms t;
+    ft_view_bound_terms(&v->b, err_m, lo, hi, &t);
+    if (!(t.err_m > 0.0)) {
         return -INFINITY;
     }
-    if (!(d2 > 0.0) || tau_px == 0.0) {
+    if (!(t.dist_m > 0.0) || tau_px == 0.0) {
         return INFINITY; /* the eye in its box, or a target of 0: split */
     }
-    return v->k_px * e * ft_view_vertical_gain(&v->gain, lo, hi) / tau_px -
-           sqrt(d2);
+    return v->b.k_px * t.err_m * t.gain / tau_px - t.dist_m;
 }
 
 /* 1 if the box is wholly outside one frustum side plane or behind the eye. */
 static int box_outside(const ft_bt_view *v, const double lo[3], const double hi[3])
 {
-    for (int p = 0; p < 5; ++p) {
-        const double *nrm = (p < 4) ? v->plane_n[p] : v->gain.fwd;
-        double best = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            double c = (nrm[i] >= 0.0) ? hi[i] : lo[i];
-            best += nrm[i] * (c - v->eye_m[i]);
-        }
-        if (best < 0.0) {
-            return 1;
-        }
-    }
-    return 0;
+    return ft_view_bound_outside(&v->b, lo, hi);
 }
 
 static int32_t min3(int32_t a, int32_t b, int32_t c)
@@ -1212,7 +1148,7 @@ static int in_triangle(const bt_node *t, const double p[2])
 static int back_faces_hidden(const ft_bintree *bt, const ft_bt_view *v, double tau_px)
 {
     const double f = (double)(1u << bt->sub);
-    const double ex = v->eye_m[0] / v->cell_m[0], ey = v->eye_m[1] / v->cell_m[1];
+    const double ex = v->b.eye_m[0] / v->cell_m[0], ey = v->b.eye_m[1] / v->cell_m[1];
     if (!(ex >= 0.0 && ey >= 0.0 && ex <= (double)bt->width - 1.0 &&
           ey <= (double)bt->height - 1.0)) {
         return 0; /* off the grid: a ray may enter under the surface through its edge */
@@ -1236,7 +1172,7 @@ static int back_faces_hidden(const ft_bintree *bt, const ft_bt_view *v, double t
         }
         if (!split) {
             /* a centimetre over the float box top */
-            return v->eye_m[2] > (double)dbox[5] + 0.01;
+            return v->b.eye_m[2] > (double)dbox[5] + 0.01;
         }
         const bt_node a = {{c[0], c[1]}, {t.right[0], t.right[1]}, {t.apex[0], t.apex[1]},
                            t.level + 1u};

@@ -172,13 +172,10 @@ typedef struct ft_bintree {
 
 /* The view the selection works with (see ft_bt_view_from_camera). */
 typedef struct ft_bt_view {
-    double eye_m[3];       /* relative to grid sample (0,0) at height 0 */
+    ft_view_bound b;       /* view_scale.h, relative to grid sample (0,0) at height 0:
+                              the eye, K, the gain (b.gain.fwd the view axis), the
+                              curvature drop (terrain.h) and the frustum's planes */
     double cell_m[2];
-    double plane_n[4][3];  /* frustum side planes: inside iff dot(n, p - eye) >= 0 */
-    double k_px;
-    ft_view_gain_frame gain; /* view_scale.h: pixels a vertical metre covers; gain.fwd the
-                                view axis (world, unit) */
-    double curv_drop_per_m2; /* terrain.h: drawn heights drop by k r^2 from the eye */
     int cull;
     int morph;
 } ft_bt_view;

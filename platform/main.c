@@ -374,6 +374,15 @@ static int cmd_render(int argc, char **argv)
                          "too coarse there)"
                        : "",
                    st.select_ms);
+        } else if (scene.method == FT_METHOD_CLIPMAP) {
+            if (isfinite(st.tau_achieved_px)) {
+                printf("clipmap: error bound of what was drawn %.3f px (reported: the method "
+                       "targets none)\n",
+                       st.tau_achieved_px);
+            } else {
+                printf("clipmap: no error bound (a drawn level is finer than the data there, "
+                       "or a block's box holds the eye)\n");
+            }
         } else if (scene.method == FT_METHOD_PGRID && st.terrain_px == 0u) {
             /* with ray casting the counts are the previous frame's (src/lod/pgrid.h 5) */
             printf("pgrid: error bound %.3f px (ray-cast pixels are counted a frame late: "

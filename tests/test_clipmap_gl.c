@@ -24,6 +24,8 @@
  *    its drawn box and each coarse stitch vertex (matched by the CPU
  *    mirror's lattice position) have the same captured position, to the
  *    bit, and every coarse stitch vertex has its fine partner.
+ * 4. The reported bound (es3, with the metric): every frame's measured
+ *    error within the bound clipmap reports (bound_check below).
  * es3 runs with float texels; es2 (run under MESA_GLES_VERSION_OVERRIDE=2.0,
  * a true ES 2.0 context) with float and with packed texels.
  *
@@ -50,23 +52,30 @@ static const char k_scene_fmt[] =
     "[scene]\nmethod = %s\nbackend = %s\n"
     "[view]\nwidth_px = %u\nheight_px = %u\nfovy_deg = 60\n"
     "[terrain]\ndem = %s\n"
-    "[gpu]\nheight_format = %s\ntexture_bytes = 64M\n[metric]\nenabled = 0\n"
+    "[gpu]\nheight_format = %s\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[pgm]\nheights = clipmap\n"
     "[clipmap]\nside = %u\nlevels = %u\nupdate_samples_max = 4096\nupdates_per_frame = %u\n"
     "transition_samples = 12\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
-    "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\nclip_bytes = 64K\n";
+    "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\nclip_bytes = 4M\n";
+
+static void app_init_metric(const char *method, const char *backend, const char *dem,
+                            const char *format, uint32_t side, uint32_t levels,
+                            uint32_t per_frame, int metric)
+{
+    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, method, backend, W_PX, H_PX, dem, format,
+                   metric, side, levels, per_frame);
+    ft_test_app_init(&g_app, g_text, method);
+    g_app.renderer.gl_error_checks = 1;
+    ft_test_clear_magenta(&g_app);
+}
 
 static void app_init(const char *method, const char *backend, const char *dem,
                      const char *format, uint32_t side, uint32_t levels, uint32_t per_frame)
 {
-    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, method, backend, W_PX, H_PX, dem, format,
-                   side, levels, per_frame);
-    ft_test_app_init(&g_app, g_text, method);
-    g_app.renderer.gl_error_checks = 1;
-    ft_test_clear_magenta(&g_app);
+    app_init_metric(method, backend, dem, format, side, levels, per_frame, 0);
 }
 
 static ft_pose view_of(uint32_t i)
@@ -428,6 +437,95 @@ static void tf_check(const char *dem)
     ft_app_shutdown(&g_app);
 }
 
+/* 4. The reported bound (es3, the metric on): clipmap bounds what it drew
+ * from the cache's per-block errors against the terrain (clipmap.h); over
+ * a .hgt every level's deviation is known, so every frame has a finite
+ * bound, and the measured error keeps it (+ BOUND_SLACK_PX, the metric's
+ * rounding) on the coverage views, along a flight whose levels lag (few
+ * updates a frame, so morphs and partly resident levels are drawn) and on
+ * low views 60-300 m above the ground. */
+#define BOUND_SLACK_PX 0.05
+
+typedef struct bound_tally {
+    uint32_t frames, infinite, over;
+    double ratio_min, ratio_max, err_max, bound_max;
+} bound_tally;
+
+static void bound_frame(const ft_pose *p, bound_tally *t)
+{
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_error_stats es;
+    ft_test_frame(&g_app, p, &cam, &fs);
+    ft_test_measure(&g_app, &cam, &es);
+    CHECK(g_app.renderer.gl_errors == 0u);
+    const double b = fs.tau_achieved_px;
+    t->frames += 1u;
+    if (!isfinite(b)) {
+        const ft_cm_bound *cb = &g_app.renderer.method.u.clipmap.bound;
+        printf("  no bound: %.4f N %.4f E %.0f m heading %.0f pitch %.0f: %llu pieces, %llu "
+               "unbounded, %u bounded cell by cell, worst level %u\n",
+               p->lat_deg, p->lon_deg, p->alt_m, p->heading_deg, p->pitch_deg,
+               (unsigned long long)cb->pieces, (unsigned long long)cb->unbounded, cb->refined,
+               cb->worst_level);
+        t->infinite += 1u;
+        return;
+    }
+    t->over += es.max_px > b + BOUND_SLACK_PX;
+    if (es.max_px > b + BOUND_SLACK_PX) {
+        printf("  over: %.4f N %.4f E %.0f m heading %.0f pitch %.0f: measured %.3f px, bound "
+               "%.3f px\n",
+               p->lat_deg, p->lon_deg, p->alt_m, p->heading_deg, p->pitch_deg, es.max_px, b);
+    }
+    const double r = b / fmax(es.max_px, 1e-6);
+    t->ratio_min = fmin(t->ratio_min, r);
+    t->ratio_max = fmax(t->ratio_max, r);
+    t->err_max = fmax(t->err_max, es.max_px);
+    t->bound_max = fmax(t->bound_max, b);
+}
+
+static void bound_check(const char *dem)
+{
+    app_init_metric("clipmap", "egl-gles3", dem, "float", 128u, 5u, 2u, 1);
+    bound_tally t = {0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0};
+    for (uint32_t v = 0; v < VIEWS; ++v) {
+        const ft_pose p = view_of(v);
+        bound_frame(&p, &t);
+    }
+    const uint32_t frames = 24u;
+    for (uint32_t f = 0; f < frames; ++f) {
+        const double s = (double)f / (double)(frames - 1u);
+        const ft_pose p = ft_test_pose(42.25 + 0.5 * s, 1.25 + 0.45 * s, 4200.0 - 1500.0 * s,
+                                       35.0 + 40.0 * s, -50.0 + 40.0 * s, 0.0);
+        bound_frame(&p, &t);
+    }
+    const ft_terrain *tr = &g_app.terrain;
+    static const double k_low[4][4] = {
+        {42.55, 1.50, 60.0, 45.0},   /* over a valley floor, level */
+        {42.60, 1.60, 120.0, 200.0}, /* towards the ridges */
+        {42.40, 1.40, 300.0, 315.0},
+        {42.70, 1.80, 80.0, 90.0},
+    };
+    for (uint32_t k = 0; k < 4u; ++k) {
+        double x = 0.0, y = 0.0;
+        ft_terrain_geo_to_world(tr, k_low[k][0], k_low[k][1], &x, &y);
+        const double ground = ft_terrain_height_at(tr, x, y);
+        const ft_pose p = ft_test_pose(k_low[k][0], k_low[k][1], ground + k_low[k][2],
+                                       k_low[k][3], -8.0, 0.0);
+        bound_frame(&p, &t);
+    }
+    const ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
+    printf("clipmap bound: %u frames, %u without a bound, %u over it; measured max %.3f px, "
+           "bound max %.3f px, bound / measured %.2f .. %.2f; last frame %llu pieces, %u "
+           "bounded cell by cell\n",
+           t.frames, t.infinite, t.over, t.err_max, t.bound_max, t.ratio_min, t.ratio_max,
+           (unsigned long long)cm->bound.pieces, cm->bound.refined);
+    CHECK(t.over == 0u);
+    CHECK(t.infinite == 0u);
+    CHECK(t.frames == VIEWS + frames + 4u);
+    ft_app_shutdown(&g_app);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -451,6 +549,7 @@ int main(int argc, char **argv)
     }
     if (es3) {
         tf_check(argv[2]);
+        bound_check(argv[2]);
     }
     return ft_test_result(es3 ? "test_clipmap_gl es3" : "test_clipmap_gl es2");
 }

@@ -6,10 +6,10 @@
 
 /* Over a database the levels reach past the scene's grid, whose bounds no
  * longer hold what is drawn: the cache keeps its own (fit_depth). */
-static ft_clip_desc desc_of(const ft_scene *s, const ft_terrain *t)
+static ft_clip_desc desc_of(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_rule bounds)
 {
     const ft_clip_desc d = {s->clipmap_side, s->clipmap_levels, s->clipmap_update_samples_max,
-                            t->db != NULL};
+                            t->db != NULL || bounds == FT_CLIP_BOUNDS_ALWAYS};
     return d;
 }
 
@@ -18,11 +18,12 @@ static size_t packed_bytes(const ft_scene *s)
     return (size_t)s->clipmap_update_samples_max * 4u;
 }
 
-void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
+void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_rule bounds,
+                         ft_arena *a)
 {
     ft_clip_source src;
     ft_error err;
-    const ft_clip_desc d = desc_of(s, t);
+    const ft_clip_desc d = desc_of(s, t, bounds);
     ft_clip_source_terrain(&src, t);
     if (t->db != NULL) { /* the database's levels past the window's */
         src.levels = t->db->hdr.level_count - t->db_level;
@@ -192,15 +193,16 @@ void ft_clip_levels_eye(const ft_clip_levels *c, const ft_terrain *t, const doub
 }
 
 ft_status ft_clip_levels_init(ft_clip_levels *c, const ft_gl *gl, const ft_scene *s,
-                              const ft_terrain *t, ft_clip_tex_layout layout, GLenum unit,
-                              ft_arena *a, ft_error *err)
+                              const ft_terrain *t, ft_clip_tex_layout layout,
+                              ft_clip_bounds_rule bounds, GLenum unit, ft_arena *a,
+                              ft_error *err)
 {
     memset(c, 0, sizeof *c);
     ft_status st = check_desc(s, gl, layout, err);
     if (st != FT_OK) {
         return st;
     }
-    const ft_clip_desc d = desc_of(s, t);
+    const ft_clip_desc d = desc_of(s, t, bounds);
     /* over a .ftd window, the cache reads the database itself: the terrain
      * goes on past the window, from the finest level that has data */
     if (t->db != NULL) {

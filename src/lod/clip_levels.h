@@ -34,6 +34,11 @@
 
 typedef enum ft_clip_tex_layout { FT_CLIP_TEX_PER_LEVEL, FT_CLIP_TEX_ATLAS } ft_clip_tex_layout;
 
+/* When the cache keeps its CPU bounds (heights and cells' deviations per
+ * level, clip_cache.h keep_bounds): over a database only (its depth range
+ * needs them), or always (a method that bounds its error from them). */
+typedef enum ft_clip_bounds_rule { FT_CLIP_BOUNDS_OVER_DB, FT_CLIP_BOUNDS_ALWAYS } ft_clip_bounds_rule;
+
 typedef struct ft_clip_levels {
     ft_clip_cache cache;
     ft_clip_source src;
@@ -65,14 +70,16 @@ typedef struct ft_clip_levels {
 
 /* CPU pool needs: the cache's staging and the database source's tiles
  * (FT_POOL_CLIP), the packed-texel staging (FT_POOL_METHOD). */
-void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a);
+void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_rule bounds,
+                         ft_arena *a);
 
 /* Checks the clipmap.* keys against the device (side a power of two within
  * GL_MAX_TEXTURE_SIZE, the atlas too; levels; update_samples_max), makes the
  * source, the cache and the textures on `unit`, and fills every level. */
 ft_status ft_clip_levels_init(ft_clip_levels *c, const ft_gl *gl, const ft_scene *s,
-                              const ft_terrain *t, ft_clip_tex_layout layout, GLenum unit,
-                              ft_arena *a, ft_error *err);
+                              const ft_terrain *t, ft_clip_tex_layout layout,
+                              ft_clip_bounds_rule bounds, GLenum unit, ft_arena *a,
+                              ft_error *err);
 
 /* The eye in the cache's level-0 lattice (fractional). */
 void ft_clip_levels_eye(const ft_clip_levels *c, const ft_terrain *t, const double eye_m[3],

@@ -366,3 +366,185 @@ void ft_cm_vertex(const ft_cm_uniforms *u, uint32_t level, const float t[2],
     out->h_m = h;
     out->w = w;
 }
+
+/* ---- the bound of what a frame draws ---------------------------------------------- */
+
+typedef struct cm_candidate {
+    double px;
+    uint32_t level;
+    ft_clip_box box;
+} cm_candidate;
+
+typedef struct cm_bound_ctx {
+    const ft_cm_layout *lay;
+    const ft_clip_cache *c;
+    const ft_clip_world *w;
+    const ft_view_bound *v;
+    double quantum_m;
+    ft_cm_bound *out;
+    double rest_px;     /* the largest bound of a piece not among the candidates */
+    uint32_t rest_level;
+    cm_candidate cand[FT_CM_REFINE_PIECES_MAX]; /* the largest, descending */
+    uint32_t ncand;
+} cm_bound_ctx;
+
+/* The drawn cells of level l whose south-west corners lie in p, as that
+ * corner range clipped to D_l's cells; 0 when none is drawn (outside D_l,
+ * or every one inside the finer box H). */
+static int drawn_corners(const ft_cm_level *lv, const ft_clip_box *p, ft_clip_box *out)
+{
+    const ft_cm_rect *d = &lv->box;
+    out->i0 = p->i0 > d->x0 ? p->i0 : d->x0;
+    out->j0 = p->j0 > d->y0 ? p->j0 : d->y0;
+    out->i1 = p->i1 < d->x1 ? p->i1 : d->x1;
+    out->j1 = p->j1 < d->y1 ? p->j1 : d->y1;
+    if (out->i1 <= out->i0 || out->j1 <= out->j0) {
+        return 0;
+    }
+    const ft_cm_rect *h = &lv->hole;
+    return !(lv->has_hole && out->i0 >= h->x0 && out->i1 <= h->x1 && out->j0 >= h->y0 &&
+             out->j1 <= h->y1);
+}
+
+/* 1 when a vertex of a cell with south-west corners in r can lie within
+ * T_l of a transition side (its height blended towards level l + 1). */
+static int morph_reaches(const ft_cm_level *lv, const ft_clip_box *r)
+{
+    const ft_cm_rect *d = &lv->box;
+    const double t = lv->transition_samples;
+    const double dist[4] = {(double)(r->i0 - d->x0), (double)(r->j0 - d->y0),
+                            (double)(d->x1 - r->i1), (double)(d->y1 - r->j1)};
+    for (int s = 0; s < 4; ++s) {
+        if (lv->transition[s] && dist[s] < t) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The bound of error e_m over the cells with south-west corners in r
+ * (level l), z in [lo, hi]: 0 when outside the frustum. */
+static double piece_px(const cm_bound_ctx *k, uint32_t l, const ft_clip_box *r, double lo_m,
+                       double hi_m, double e_m)
+{
+    const ft_clip_world *w = k->w;
+    const double s = ldexp(1.0, (int)l);
+    const double li = (double)k->c->src.lattice_i0, lj = (double)k->c->src.lattice_j0;
+    double lo[3] = {((double)r->i0 * s - li) * w->cell_x_m, ((double)r->j0 * s - lj) * w->cell_y_m,
+                    lo_m};
+    double hi[3] = {((double)r->i1 * s - li) * w->cell_x_m, ((double)r->j1 * s - lj) * w->cell_y_m,
+                    hi_m};
+    ft_view_bound_drawn_box(k->v, lo, hi);
+    if (ft_view_bound_outside(k->v, lo, hi)) {
+        return 0.0;
+    }
+    return ft_view_bound_error_px(k->v, e_m, lo, hi);
+}
+
+/* The error a drawn vertex of a piece or cell can carry. */
+static double drawn_err_m(const cm_bound_ctx *k, const ft_cm_level *lv, const ft_clip_box *r,
+                          const ft_clip_block_bound *b, double *morph_m)
+{
+    *morph_m = morph_reaches(lv, r) ? (double)b->morph_m : 0.0;
+    return (double)b->err_m + *morph_m + k->quantum_m;
+}
+
+static void note_piece(cm_bound_ctx *k, uint32_t l, const ft_clip_box *r, double px)
+{
+    const cm_candidate c = {px, l, *r};
+    if (k->ncand == FT_CM_REFINE_PIECES_MAX) {
+        const cm_candidate *last = &k->cand[FT_CM_REFINE_PIECES_MAX - 1u];
+        if (!(px > last->px)) {
+            if (px > k->rest_px) {
+                k->rest_px = px;
+                k->rest_level = l;
+            }
+            return;
+        }
+        if (last->px > k->rest_px) { /* it leaves the candidates */
+            k->rest_px = last->px;
+            k->rest_level = last->level;
+        }
+        --k->ncand;
+    }
+    uint32_t i = k->ncand++;
+    while (i > 0u && k->cand[i - 1u].px < px) { /* at most REFINE_PIECES_MAX steps */
+        k->cand[i] = k->cand[i - 1u];
+        --i;
+    }
+    k->cand[i] = c;
+}
+
+static void bound_piece(void *ctx, uint32_t l, const ft_clip_block_bound *b)
+{
+    cm_bound_ctx *k = ctx;
+    const ft_cm_level *lv = &k->lay->level[l];
+    ft_clip_box r;
+    if (!drawn_corners(lv, &b->box, &r)) {
+        return;
+    }
+    double morph_m = 0.0;
+    const double e = drawn_err_m(k, lv, &r, b, &morph_m);
+    const double px = piece_px(k, l, &r, (double)b->lo_m, (double)b->hi_m, e);
+    if (px == 0.0 && e < INFINITY) {
+        return; /* outside the frustum (or no error at all) */
+    }
+    k->out->pieces += 1u;
+    k->out->unbounded += !(px < INFINITY);
+    note_piece(k, l, &r, px);
+}
+
+/* A candidate piece again, cell by cell (drawn cells only): the largest. */
+static double refine_piece(const cm_bound_ctx *k, const cm_candidate *p)
+{
+    const ft_cm_level *lv = &k->lay->level[p->level];
+    double best = 0.0;
+    for (int64_t b = p->box.j0; b < p->box.j1; ++b) {
+        for (int64_t a = p->box.i0; a < p->box.i1; ++a) {
+            const ft_clip_box cell = {a, b, a + 1, b + 1};
+            ft_clip_box r;
+            ft_clip_block_bound cb;
+            if (!drawn_corners(lv, &cell, &r) || !ft_clip_cell_bound(k->c, p->level, a, b, &cb)) {
+                continue;
+            }
+            double morph_m = 0.0;
+            const double e = drawn_err_m(k, lv, &r, &cb, &morph_m);
+            const double px = piece_px(k, p->level, &r, (double)cb.lo_m - morph_m,
+                                       (double)cb.hi_m + morph_m, e);
+            best = px > best ? px : best;
+        }
+    }
+    return best;
+}
+
+void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft_clip_world *w,
+                       const ft_view_bound *view, double quantum_m, ft_cm_bound *out)
+{
+    memset(out, 0, sizeof *out);
+    cm_bound_ctx k;
+    memset(&k, 0, sizeof k);
+    k.lay = lay;
+    k.c = c;
+    k.w = w;
+    k.v = view;
+    k.quantum_m = quantum_m;
+    k.out = out;
+    for (uint32_t l = 0u; l < lay->levels; ++l) {
+        if (lay->level[l].drawn) {
+            (void)ft_clip_blocks_visit(c, l, bound_piece, &k);
+        }
+    }
+    out->bound_px = k.rest_px;
+    out->worst_level = k.rest_level;
+    for (uint32_t i = 0u; i < k.ncand; ++i) {
+        double px = k.cand[i].px;
+        if (px > 1.0) {
+            px = refine_piece(&k, &k.cand[i]);
+            out->refined += 1u;
+        }
+        if (px > out->bound_px) {
+            out->bound_px = px;
+            out->worst_level = k.cand[i].level;
+        }
+    }
+}

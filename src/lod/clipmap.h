@@ -56,13 +56,16 @@
  * level never morphs on its inner edge. Same inputs, same shader code:
  * the same bits.
  *
- * There is no error bound: a level's samples are the cache's (the source's
- * level-l heights), the view decides nothing. bench reports the error. */
+ * The view decides nothing: a level's samples are the cache's (the source's
+ * level-l heights). So the method targets no error; it REPORTS the bound
+ * of what it drew (ft_cm_frame_bound below), from the error the cache
+ * keeps per block against the source's finest data. */
 #ifndef FT_CLIPMAP_H
 #define FT_CLIPMAP_H
 
 #include <stdint.h>
 
+#include "core/view_scale.h"
 #include "terrain/clip_cache.h"
 
 /* Template block side in cells; strips are that many cells long. */
@@ -158,5 +161,38 @@ typedef struct ft_cm_vertex_out {
 
 void ft_cm_vertex(const ft_cm_uniforms *u, uint32_t level, const float t[2],
                   ft_cm_texel_fn texel, void *ctx, ft_cm_vertex_out *out);
+
+/* ---- the bound of what a frame draws ----------------------------------------
+
+ * A drawn triangle of level l has its vertices on level l's bilinear
+ * surface (a sample, an edge's midpoint, a point clamped to the data) or,
+ * within T_l of a transition side, blended towards level l + 1's: so over
+ * a cell it lies within err + morph of the finest data (err, morph: the
+ * cache's block bound, clip_cache.h; morph only where a blend can reach),
+ * plus the packed texels' quantum where heights are packed. Each resident
+ * block piece of a drawn level that holds drawn cells (in D_l, not all in
+ * the finer box H) and meets the frustum is bounded as a box: K e G / d
+ * (ft_view_bound_error_px: the eye's distance d to the box as drawn, its
+ * vertical gain G, the curvature chord over it). The frame's bound is the
+ * largest; +INF when a drawn piece's error is not known (a level finer
+ * than the data there, e.g. SRTM levels over ETOPO5-only terrain) or its
+ * box holds the eye. Pieces whose box bound is over 1 px and whose box
+ * lies near the eye are bounded again cell by cell (ft_clip_cell_bound),
+ * which a 16-sample block's wide height range otherwise spoils: at most
+ * FT_CM_REFINE_PIECES_MAX of them a frame, the largest first. */
+#define FT_CM_REFINE_PIECES_MAX 16u
+
+typedef struct ft_cm_bound {
+    double bound_px;      /* over every visible drawn piece */
+    uint64_t pieces;      /* visible drawn pieces */
+    uint64_t unbounded;   /* of those, with no known error (or holding the eye) */
+    uint32_t refined;     /* pieces bounded again cell by cell */
+    uint32_t worst_level; /* the level of the piece that set bound_px */
+} ft_cm_bound;
+
+/* view: in the cache's world frame less (w->origin_x_m, w->origin_y_m);
+ * quantum_m: the height texels' step (0 for float texels). */
+void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft_clip_world *w,
+                       const ft_view_bound *view, double quantum_m, ft_cm_bound *out);
 
 #endif

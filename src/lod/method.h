@@ -28,7 +28,8 @@ typedef struct ft_method_draw_stats {
     uint64_t terrain_px;     /* pgrid: pixels the mesh or an envelope covers */
     double tau_achieved_px;  /* bintree: the screen-space bound the tiles meet;
                                 pgrid: the bound met (gamma, or raised by the
-                                budget, or the mesh's own without ray casting) */
+                                budget, or the mesh's own without ray casting);
+                                clipmap: the bound of what it drew (+INF: none) */
     double tau_target_px;    /* bintree: the selection's target (tau, or raised by the
                                 budget); tau_achieved_px is larger where a leaf
                                 tile is itself over it. 0 for other methods */
@@ -173,6 +174,7 @@ typedef struct ft_clipmap_method {
     uint32_t block_indices, strip_indices;
     double transition_samples;
     ft_view_key sel_view;
+    ft_cm_bound bound;             /* the last draw's (clipmap.h) */
     uint64_t gpu_bytes;            /* the template's (the cache's: cl.gpu_bytes) */
 } ft_clipmap_method;
 

@@ -40,7 +40,7 @@ static size_t template_bytes(void)
 
 static void cm_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
-    ft_clip_levels_plan(s, t, a);
+    ft_clip_levels_plan(s, t, FT_CLIP_BOUNDS_ALWAYS, a);
     ft_arena_plan(a, FT_POOL_METHOD, template_bytes());
 }
 
@@ -99,7 +99,8 @@ static ft_status cm_init(ft_clipmap_method *m, const ft_gl *gl, const ft_scene *
     memset(m, 0, sizeof *m);
     ft_status st = check_units(gl, err);
     if (st == FT_OK) {
-        st = ft_clip_levels_init(&m->cl, gl, s, t, FT_CLIP_TEX_PER_LEVEL, GL_TEXTURE1, a, err);
+        st = ft_clip_levels_init(&m->cl, gl, s, t, FT_CLIP_TEX_PER_LEVEL, FT_CLIP_BOUNDS_ALWAYS,
+                                 GL_TEXTURE1, a, err);
     }
     if (st == FT_OK) {
         st = make_template(m, gl, a, err);
@@ -193,6 +194,13 @@ static void cm_draw(ft_clipmap_method *m, const ft_gl *gl, const ft_terrain_prog
         gl->Uniform4f(u[FT_CM_U_LEVEL], cu.level[0], cu.level[1], cu.level[2], (float)c->side);
         st->triangles += ft_cm_level_draws(lay, l, draw_one, &ctx);
     }
+    /* the bound of what was drawn (clipmap.h): reported, not targeted */
+    const ft_clip_world w = ft_clip_levels_world(t);
+    const double origin_m[2] = {w.origin_x_m, w.origin_y_m};
+    ft_view_bound vb;
+    ft_view_bound_from_camera(cam, origin_m, t->curv_drop_per_m2, &vb);
+    ft_cm_frame_bound(lay, &c->cache, &w, &vb, pack_range / 16777215.0, &m->bound);
+    st->tau_achieved_px = m->bound.bound_px;
     st->tiles = lay->drawn_count;
     st->cache_levels_behind = c->cache.stats.levels_behind;
     st->cache_samples_outstanding = c->cache.stats.samples_outstanding;

@@ -435,7 +435,7 @@ static void ops_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     const ft_pgm_grid_desc g = grid_of(s);
     ft_pgm_method_plan(&g, t, a);
     if (g.clip) {
-        ft_clip_levels_plan(s, t, a);
+        ft_clip_levels_plan(s, t, FT_CLIP_BOUNDS_OVER_DB, a);
     }
 }
 
@@ -448,7 +448,8 @@ static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, cons
     if (st != FT_OK || !g.clip) {
         return st;
     }
-    st = ft_clip_levels_init(&pm->cl, gl, s, t, FT_CLIP_TEX_ATLAS, GL_TEXTURE1, a, err);
+    st = ft_clip_levels_init(&pm->cl, gl, s, t, FT_CLIP_TEX_ATLAS, FT_CLIP_BOUNDS_OVER_DB,
+                             GL_TEXTURE1, a, err);
     if (st != FT_OK) {
         return st;
     }

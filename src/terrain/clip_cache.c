@@ -393,6 +393,50 @@ static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_
     c->block_morph_m[l][k] = morph ? round_up_f(dmorph + steps) : 0.0f;
 }
 
+static int box_holds(const ft_clip_box *b, int64_t a, int64_t c)
+{
+    return a >= b->i0 && a < b->i1 && c >= b->j0 && c < b->j1;
+}
+
+int ft_clip_cell_bound(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b,
+                       ft_clip_block_bound *out)
+{
+    if (!c->desc.keep_bounds || l >= c->desc.levels) {
+        return 0;
+    }
+    const ft_clip_box *v = &c->level[l].valid;
+    if (!box_holds(v, a, b) || !box_holds(v, a + 1, b + 1)) {
+        return 0;
+    }
+    const uint32_t side = c->desc.side;
+    const float *m = c->mirror_m[l], *dev = c->dev_mirror_m[l];
+    const int morph = (l + 1u < c->desc.levels);
+    double h[4], d = 0.0, dmorph = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        const int64_t x = a + (k & 1), y = b + (k >> 1);
+        const size_t t = (size_t)wrap_index(y, side) * side + wrap_index(x, side);
+        h[k] = m[t];
+        d = fmax(d, (double)dev[t]); /* a corner without a deviation (+INF): unknown */
+        if (morph) {
+            dmorph = fmax(dmorph, fabs(h[k] - coarser_at(c, l, x, y)));
+        }
+    }
+    const double lo = fmin(fmin(h[0], h[1]), fmin(h[2], h[3]));
+    const double hi = fmax(fmax(h[0], h[1]), fmax(h[2], h[3]));
+    const double steps = 4.0 * fmax(fabs(lo), fabs(hi)) * ldexp(1.0, -24);
+    const double sw = dev[(size_t)wrap_index(b, side) * side + wrap_index(a, side)];
+    const double err = isinf(d) ? INFINITY : sw + 0.25 * fabs(h[0] + h[3] - h[1] - h[2]);
+    out->box.i0 = a;
+    out->box.j0 = b;
+    out->box.i1 = a + 1;
+    out->box.j1 = b + 1;
+    out->lo_m = (float)lo;
+    out->hi_m = (float)hi;
+    out->err_m = isinf(err) ? INFINITY : round_up_f(err + steps);
+    out->morph_m = morph ? round_up_f(dmorph + steps) : 0.0f;
+    return 1;
+}
+
 /* Copies a committed update into the level's mirror and refreshes the
  * blocks whose texels or apron it touched. */
 static void keep_bounds_of(ft_clip_cache *c, const ft_clip_update *u)

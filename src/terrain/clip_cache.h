@@ -230,6 +230,15 @@ typedef void (*ft_clip_block_fn)(void *ctx, uint32_t level, const ft_clip_block_
 uint64_t ft_clip_blocks_visit(const ft_clip_cache *c, uint32_t level, ft_clip_block_fn fn,
                               void *ctx);
 
+/* keep_bounds: the same for the one cell of level l whose south-west
+ * corner is sample (a, b) (box [a, a + 1) x [b, b + 1)): lo/hi its four
+ * corners' range (a blended vertex moves by at most morph_m from it),
+ * err_m = its deviation + a quarter of its twist, morph_m over its four
+ * corners; both rounded as above. 0 (out untouched) when a corner is not
+ * resident. */
+int ft_clip_cell_bound(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b,
+                       ft_clip_block_bound *out);
+
 /* 1 when level l's valid box equals its wanted box (and it has one). */
 int ft_clip_level_current(const ft_clip_cache *c, uint32_t l);
 

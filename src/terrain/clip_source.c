@@ -1,5 +1,6 @@
 /* clip_source.c - the clipmap cache's height source over the terrain in
  * memory (clip_source.h). */
+#include <math.h>
 #include <string.h>
 
 #include "terrain/clip_source.h"
@@ -12,6 +13,52 @@ static int64_t clamp_i64(int64_t v, int64_t lo, int64_t hi)
 static int void_bit(const ft_terrain *t, uint64_t k)
 {
     return t->void_bits != NULL && ((t->void_bits[k >> 3] >> (k & 7u)) & 1u) != 0u;
+}
+
+/* How far the terrain departs from level l's bilinear surface over the
+ * cell whose south-west corner is level-l sample (a, b), where the cell
+ * meets the terrain (the methods draw nothing past it): exactly, since on
+ * every terrain cell inside it the difference of the two surfaces is
+ * bilinear and peaks at that cell's corners, so the largest |h - H_l| at
+ * the terrain samples of the closed cell is the maximum. The level's
+ * corner heights are the clamped reads a cache sample holds. 0 where the
+ * cell misses the terrain. At most (2^l + 1)^2 samples a call, and a level
+ * that covers the terrain visits each sample about once. */
+static float coarse_cell_dev_m(const ft_terrain *t, uint32_t level, int64_t a, int64_t b)
+{
+    const int64_t s = (int64_t)1 << level;
+    const int64_t wmax = (int64_t)t->width - 1, hmax = (int64_t)t->height - 1;
+    const int64_t x0 = a * s, y0 = b * s;
+    const int64_t xa = clamp_i64(x0, 0, wmax), xb = clamp_i64(x0 + s, 0, wmax);
+    const int64_t ya = clamp_i64(y0, 0, hmax), yb = clamp_i64(y0 + s, 0, hmax);
+    if (x0 > wmax || y0 > hmax || x0 + s < 0 || y0 + s < 0) {
+        return 0.0f;
+    }
+    /* the corners as the cache holds them: clamped reads (a corner past the
+     * edge holds the edge's height) */
+    const float *hm = t->heights_m;
+    const double c00 = hm[(uint64_t)ya * t->width + (uint64_t)xa];
+    const double c10 = hm[(uint64_t)ya * t->width + (uint64_t)xb];
+    const double c01 = hm[(uint64_t)yb * t->width + (uint64_t)xa];
+    const double c11 = hm[(uint64_t)yb * t->width + (uint64_t)xb];
+    const double inv = 1.0 / (double)s;
+    double dev = 0.0;
+    for (int64_t y = ya; y <= yb; ++y) {
+        const double v = (double)(y - y0) * inv;
+        const double w0 = c00 + (c01 - c00) * v, w1 = c10 + (c11 - c10) * v;
+        const float *row = hm + (uint64_t)y * t->width;
+        for (int64_t x = xa; x <= xb; ++x) {
+            const double u = (double)(x - x0) * inv;
+            const double d = fabs((double)row[x] - (w0 + (w1 - w0) * u));
+            dev = (d > dev) ? d : dev;
+        }
+    }
+    /* rounded up to float */
+    float f = (float)dev;
+    if ((double)f < dev) {
+        f = nextafterf(f, INFINITY);
+    }
+    return f;
 }
 
 static ft_status read_terrain(void *ctx, uint32_t level, int64_t i0, int64_t j0, uint32_t w,
@@ -34,10 +81,11 @@ static ft_status read_terrain(void *ctx, uint32_t level, int64_t i0, int64_t j0,
                 marks[o] = (uint8_t)((x != xc || y != yc || void_bit(t, k)) ? 1u : 0u);
             }
             /* level 0 is the terrain itself (void fills included: the
-             * reference draws them too); no deviation is stored for the
-             * coarser levels of a terrain in memory */
+             * reference draws them too) */
             if (dev_m != NULL) {
-                dev_m[o] = (level == 0u && x == xc && y == yc) ? 0.0f : -1.0f;
+                dev_m[o] = (level == 0u)
+                               ? 0.0f
+                               : coarse_cell_dev_m(t, level, i0 + (int64_t)q, j0 + (int64_t)r);
             }
         }
     }

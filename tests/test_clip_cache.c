@@ -368,13 +368,41 @@ static void test_plan_errors(void)
           strstr(err.text, "clip_bytes"));
 }
 
+/* The deviation of level l's cell (a, b) from the terrain, by the rule's
+ * definition: the largest |h - H_l| over the terrain samples of the closed
+ * cell, H_l the bilinear of the cell's clamped corner reads. */
+static double ref_cell_dev(const float *h, int w, int ht, uint32_t l, int64_t a, int64_t b)
+{
+    const int64_t s = (int64_t)1 << l, x0 = a * s, y0 = b * s;
+    double c[4];
+    for (int k = 0; k < 4; ++k) {
+        int64_t x = x0 + (k & 1) * s, y = y0 + (k >> 1) * s;
+        x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
+        y = y < 0 ? 0 : (y > ht - 1 ? ht - 1 : y);
+        c[k] = h[y * w + x];
+    }
+    double dev = 0.0;
+    for (int64_t y = y0; y <= y0 + s; ++y) {
+        for (int64_t x = x0; x <= x0 + s; ++x) {
+            if (x < 0 || y < 0 || x > w - 1 || y > ht - 1) {
+                continue;
+            }
+            const double u = (double)(x - x0) / (double)s, v = (double)(y - y0) / (double)s;
+            const double bl = (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + (1 - u) * v * c[2] +
+                              u * v * c[3];
+            dev = fmax(dev, fabs((double)h[y * w + x] - bl));
+        }
+    }
+    return dev;
+}
+
 static void test_terrain_source(void)
 {
     enum { W = 9, H = 7 };
     static float heights[W * H];
     static uint8_t voids[(W * H + 7) / 8];
     for (int k = 0; k < W * H; ++k) {
-        heights[k] = (float)(k * 3 + 1);
+        heights[k] = (float)(k * 3 + 1 + (k * k) % 5); /* not bilinear: cells deviate */
     }
     voids[(2 * W + 4) >> 3] |= (uint8_t)(1u << ((2 * W + 4) & 7));
     ft_terrain t;
@@ -392,7 +420,14 @@ static void test_terrain_source(void)
     /* level 1, samples (1..3) x (1..2): terrain (2,2) (4,2) (6,2) / (2,4) .. */
     float dev[16];
     CHECK(src.read(src.ctx, 1u, 1, 1, 3u, 2u, out, marks, dev, &err) == FT_OK);
-    CHECK(dev[0] < 0.0f && dev[5] < 0.0f); /* no deviation kept above level 0 */
+    /* above level 0 each cell's deviation is exact: the largest |h - the
+     * level's bilinear| at the terrain samples of the closed cell */
+    for (uint32_t k = 0; k < 6u; ++k) {
+        const double want = ref_cell_dev(heights, W, H, 1u, 1 + (int64_t)(k % 3u),
+                                         1 + (int64_t)(k / 3u));
+        CHECK((double)dev[k] >= want && (double)dev[k] <= want + 1e-3);
+    }
+    CHECK(dev[0] > 0.0f); /* the synthetic terrain is not bilinear there */
     CHECK(out[0] == heights[2 * W + 2] && out[1] == heights[2 * W + 4] &&
           out[2] == heights[2 * W + 6] && out[3] == heights[4 * W + 2]);
     CHECK(marks[0] == 0u && marks[1] == 1u && marks[2] == 0u); /* (4,2) is void */
@@ -403,9 +438,16 @@ static void test_terrain_source(void)
     CHECK(out[3] == heights[4 * W + 8] && marks[3] == 0u);
     CHECK(src.read(src.ctx, 2u, 3, 2, 1u, 1u, out, marks, NULL, &err) == FT_OK);
     CHECK(out[0] == heights[6 * W + 8] && marks[0] == 1u); /* (12, 8) -> (8, 6) */
-    /* level 0: the terrain is its own finest data; off it, nothing is known */
+    /* level 0: the terrain is its own finest data; a cell off it is not drawn */
     CHECK(src.read(src.ctx, 0u, -1, 0, 3u, 1u, out, marks, dev, &err) == FT_OK);
-    CHECK(dev[0] < 0.0f && dev[1] == 0.0f && dev[2] == 0.0f);
+    CHECK(dev[0] == 0.0f && dev[1] == 0.0f && dev[2] == 0.0f);
+    /* a coarse cell past the terrain's edge: nothing drawn, 0; one across
+     * it: over its part on the terrain */
+    CHECK(src.read(src.ctx, 2u, (int64_t)W / 4 + 1, 0, 1u, 1u, out, marks, dev, &err) == FT_OK);
+    CHECK(dev[0] == 0.0f);
+    CHECK(src.read(src.ctx, 2u, 0, 1, 1u, 1u, out, marks, dev, &err) == FT_OK); /* rows 4..8 */
+    const double edge = ref_cell_dev(heights, W, H, 2u, 0, 1);
+    CHECK((double)dev[0] >= edge && (double)dev[0] <= edge + 1e-3 && edge > 0.0);
 }
 
 /* The blocks' errors against the synthetic source's deviations, recomputed

@@ -22,8 +22,10 @@
  *    grid; 1.0% at FOV 170);
  *  - pgm (no error bound of its own): <= max(16 px, 12%) (measured 10.2%
  *    from 20 km outside the grid, <= 1% elsewhere);
- *  - clipmap (no error bound either): pgm's tolerance (measured: at most
- *    1638 px of 69923, 2.3%, for the predicted poses low over the terrain).
+ *  - clipmap (targets no error either): pgm's tolerance (measured: at most
+ *    1638 px of 69923, 2.3%, for the predicted poses low over the terrain),
+ *    and max error <= the bound it reports + 0.05 px where that is finite
+ *    (not on the curved sea horizon, where it is not kept: printed).
  * The max/mean errors of brute, bintree and pgm are recorded in the table
  * printed at the end: each is a triangulation of the samples, whose error
  * against the bilinear surface near the camera has no bound (126 px for
@@ -174,7 +176,7 @@ static int init_app(const char *method, const char *dem, uint32_t template_k, in
                    "[metric]\nenabled = 1\n[bintree]\ntiles_max = 16384\ntemplate_k = %u\n"
                    "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
                    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 4M\n"
-                   "metric_bytes = 1M\ngpu_staging_bytes = 8M\nmethod_bytes = 16M\nclip_bytes = 96K\n",
+                   "metric_bytes = 1M\ngpu_staging_bytes = 8M\nmethod_bytes = 16M\nclip_bytes = 3M\n",
                    method, dem, sphere ? "sphere" : "auto", template_k);
     ft_scene_defaults(&s);
     ft_status st = ft_scene_parse(&s, g_text, "extreme scene", &err);
@@ -249,9 +251,11 @@ typedef struct result {
 #define PGRID_GAMMA_PX 1.0 /* the scene default */
 #define PGRID_TOL_PX 0.10
 #define PGRID_COVER_MAX_PX 16u
+#define CLIPMAP_BOUND_SLACK_PX 0.05
 
 /* The case's bounds (see the top); 1 when met. */
-static int within_bounds(ft_method_kind m, const ft_frame_stats *fs, const ft_error_stats *es)
+static int within_bounds(ft_method_kind m, terrain_id tid, const ft_frame_stats *fs,
+                         const ft_error_stats *es)
 {
     const uint32_t mismatch = es->only_method_px + es->only_ref_px;
     const uint32_t ref_px = es->terrain_px - es->only_method_px + es->only_ref_px;
@@ -262,7 +266,22 @@ static int within_bounds(ft_method_kind m, const ft_frame_stats *fs, const ft_er
             ok &= mismatch <= PGRID_COVER_MAX_PX;
         }
     } else {
-        /* pgm and clipmap have no error bound: the wider coverage share */
+        /* clipmap reports the bound of what it drew: kept wherever it is
+         * finite, except on the curved sea horizon, where it is not (FOV 4:
+         * 0.87 px reported, 11.7 px measured on a band along the horizon
+         * of a flat sea; the cause is not found yet), printed instead */
+        if (m == FT_METHOD_CLIPMAP && isfinite(fs->tau_achieved_px)) {
+            const int kept = es->max_px <= fmax(fs->tau_achieved_px, FT_METRIC_FLIP_PX) +
+                                              CLIPMAP_BOUND_SLACK_PX;
+            if (tid == T_OCEAN) {
+                printf("clipmap on the curved sea horizon: reported bound %.3f px, measured "
+                       "%.3f px (%s; not asserted)\n",
+                       fs->tau_achieved_px, es->max_px, kept ? "kept" : "NOT kept");
+            } else {
+                ok &= kept;
+            }
+        }
+        /* pgm and clipmap target no error: the wider coverage share */
         const double share = (m == FT_METHOD_PGM || m == FT_METHOD_CLIPMAP) ? 0.12 : 0.025;
         const double allowed = fmax(16.0, share * (double)ref_px);
         ok &= (double)mismatch <= allowed;
@@ -346,15 +365,17 @@ static void run_cases(ft_method_kind m, terrain_id tid, const char *dem)
         r->terrain_px = es.terrain_px;
         r->mismatch_px = es.only_method_px + es.only_ref_px;
         r->nonfinite_px = es.nonfinite_px;
-        int bounded = within_bounds(m, &fs, &es);
+        int bounded = within_bounds(m, tid, &fs, &es);
         if (tid == T_OCEAN) bounded &= horizon_ok(&cam, ft_method_name(m));
         r->ok = finite && es.nonfinite_px == 0u && r->frame_ms < FT_EXTREME_FRAME_MS_MAX &&
                 bounded;
         if (!r->ok) {
             fprintf(stderr, "%s / %s: finite camera %d, non-finite pixels %u, %.1f ms, "
-                    "bounds met %d (max %.3f px, mismatch %u+%u px of %u, budget hit %d)\n",
+                    "bounds met %d (max %.3f px, mismatch %u+%u px of %u, budget hit %d, "
+                    "reported bound %.3f px)\n",
                     k->name, ft_method_name(m), finite, es.nonfinite_px, r->frame_ms, bounded,
-                    es.max_px, es.only_method_px, es.only_ref_px, es.terrain_px, fs.budget_hit);
+                    es.max_px, es.only_method_px, es.only_ref_px, es.terrain_px, fs.budget_hit,
+                    fs.tau_achieved_px);
         }
         CHECK(r->ok);
     }
@@ -403,7 +424,7 @@ int main(int argc, char **argv)
                 ft_scene_defaults(&s);
                 (void)snprintf(s.dem_path, sizeof s.dem_path, "%s", paths[T_VOID]);
                 s.method = (ft_method_kind)m;
-                s.budget_bytes[FT_POOL_CLIP] = 96u * 1024u; /* clipmap's cache (default 0) */
+                s.budget_bytes[FT_POOL_CLIP] = 3u << 20; /* clipmap's cache (default 0) */
                 ft_status st = ft_app_init(&g_app, &s, &err);
                 const int refused = (st == FT_ERR_FORMAT && strstr(err.text, "void") != NULL) ||
                                     (st == FT_ERR_UNSUPPORTED &&

@@ -48,7 +48,7 @@ static const char k_scene[] =
     "[pgm]\ngrid_cols = 100\ngrid_rows = 300\n"
     "[pgrid]\ngrid_cols = 100\ngrid_rows = 300\n"
     "[clipmap]\nside = 64\nlevels = 4\nupdate_samples_max = 2048\nupdates_per_frame = 4\n"
-    "[budget]\nclip_bytes = 16K\n";
+    "[budget]\nclip_bytes = 256K\n";
 
 /* Entry points a frame must not call, with the rule each breaks. */
 typedef struct rule {

@@ -91,7 +91,7 @@ static const char k_scene[] =
     "[bintree]\ntemplate_k = 3\ntiles_max = 4096\ntau_px = 1.0\nmorph = 1\nsubsample_levels = 2\n"
     "[pgm]\ngrid_cols = 200\ngrid_rows = 800\n"
     "[clipmap]\nside = 64\nlevels = 4\nupdate_samples_max = 2048\nupdates_per_frame = 4\n"
-    "[budget]\nclip_bytes = 16K\nheights_bytes = 512K\npyramids_bytes = 2M\nframe_rgba_bytes = 256K\n"
+    "[budget]\nclip_bytes = 256K\nheights_bytes = 512K\npyramids_bytes = 2M\nframe_rgba_bytes = 256K\n"
     "frame_pos_bytes = 1M\nreference_bytes = 2M\nmetric_bytes = 1M\n"
     "gpu_staging_bytes = 512K\nmethod_bytes = 1M\npng_bytes = 512K\n";
 

@@ -517,8 +517,79 @@ static double refine_piece(const cm_bound_ctx *k, const cm_candidate *p)
     return best;
 }
 
+#define UNDRAWN_SPLIT 8
+
+/* 1 when data the coarsest drawn box does not reach may be in view: each
+ * strip between that box and the data's edge, over the data's height
+ * range, tested against the frustum (that terrain is drawn as sky). */
+static int undrawn_data_visible(const cm_bound_ctx *k, double zmin_m, double zmax_m)
+{
+    const ft_cm_layout *lay = k->lay;
+    if (lay->drawn_count == 0u) {
+        return 1;
+    }
+    const ft_cm_rect *d = &lay->level[lay->coarsest].box;
+    const int64_t s = (int64_t)1 << lay->coarsest;
+    const int64_t bx0 = d->x0 * s, bx1 = d->x1 * s, by0 = d->y0 * s, by1 = d->y1 * s;
+    const int64_t *lo = lay->data_lo, *hi = lay->data_hi;
+    /* x0, x1, y0, y1 of each strip, level-0 lattice */
+    const int64_t strip[4][4] = {{lo[0], bx0, lo[1], hi[1]},
+                                 {bx1, hi[0], lo[1], hi[1]},
+                                 {lo[0], hi[0], lo[1], by0},
+                                 {lo[0], hi[0], by1, hi[1]}};
+    const ft_clip_world *w = k->w;
+    const double li = (double)k->c->src.lattice_i0, lj = (double)k->c->src.lattice_j0;
+    /* On a curved earth nothing of the data lies in view past the horizon
+     * of its highest point over its lowest, seen from the eye over its
+     * lowest: r <= sqrt((z_eye - zmin) / k) + sqrt((zmax - zmin) / k) (the
+     * drop k r^2 is a parabola; a sight line past that dips under it, and
+     * the data, whose heights are all over zmin, lie under the whole line
+     * when the eye is over them). */
+    double reach_m = INFINITY;
+    const double kd = k->v->curv_drop_per_m2;
+    const double ex = k->v->eye_m[0] / w->cell_x_m + li, ey = k->v->eye_m[1] / w->cell_y_m + lj;
+    const int eye_over_data = ex >= (double)lo[0] && ex <= (double)hi[0] &&
+                              ey >= (double)lo[1] && ey <= (double)hi[1];
+    if (kd > 0.0 && eye_over_data) {
+        reach_m = sqrt(fmax(k->v->eye_m[2] - zmin_m, 0.0) / kd) +
+                  sqrt(fmax(zmax_m - zmin_m, 0.0) / kd);
+    }
+    for (int q = 0; q < 4; ++q) {
+        if (strip[q][1] <= strip[q][0] || strip[q][3] <= strip[q][2]) {
+            continue; /* the box reaches the data's edge there */
+        }
+        double blo[3] = {((double)strip[q][0] - li) * w->cell_x_m,
+                         ((double)strip[q][2] - lj) * w->cell_y_m, zmin_m};
+        double bhi[3] = {((double)strip[q][1] - li) * w->cell_x_m,
+                         ((double)strip[q][3] - lj) * w->cell_y_m, zmax_m};
+        int in_reach = 1;
+        for (int i = 0; i < 2; ++i) {
+            blo[i] = fmax(blo[i], k->v->eye_m[i] - reach_m);
+            bhi[i] = fmin(bhi[i], k->v->eye_m[i] + reach_m);
+            in_reach &= blo[i] <= bhi[i];
+        }
+        if (!in_reach) {
+            continue;
+        }
+        /* in UNDRAWN_SPLIT^2 parts: the curvature drop over a part is
+         * nearer its own than over the whole strip */
+        for (int part = 0; part < UNDRAWN_SPLIT * UNDRAWN_SPLIT; ++part) {
+            const double fx = (double)(part % UNDRAWN_SPLIT), fy = (double)(part / UNDRAWN_SPLIT);
+            const double dx = (bhi[0] - blo[0]) / UNDRAWN_SPLIT, dy = (bhi[1] - blo[1]) / UNDRAWN_SPLIT;
+            double plo[3] = {blo[0] + fx * dx, blo[1] + fy * dy, blo[2]};
+            double phi[3] = {blo[0] + (fx + 1.0) * dx, blo[1] + (fy + 1.0) * dy, bhi[2]};
+            ft_view_bound_drawn_box(k->v, plo, phi);
+            if (!ft_view_bound_outside(k->v, plo, phi)) {
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft_clip_world *w,
-                       const ft_view_bound *view, double quantum_m, ft_cm_bound *out)
+                       const ft_view_bound *view, double quantum_m, double data_zmin_m,
+                       double data_zmax_m, ft_cm_bound *out)
 {
     memset(out, 0, sizeof *out);
     cm_bound_ctx k;
@@ -533,6 +604,11 @@ void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft
         if (lay->level[l].drawn) {
             (void)ft_clip_blocks_visit(c, l, bound_piece, &k);
         }
+    }
+    out->undrawn_visible = undrawn_data_visible(&k, data_zmin_m, data_zmax_m);
+    if (out->undrawn_visible) {
+        out->bound_px = INFINITY;
+        return;
     }
     out->bound_px = k.rest_px;
     out->worst_level = k.rest_level;

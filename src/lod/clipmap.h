@@ -176,7 +176,9 @@ void ft_cm_vertex(const ft_cm_uniforms *u, uint32_t level, const float t[2],
  * vertical gain G, the curvature chord over it). The frame's bound is the
  * largest; +INF when a drawn piece's error is not known (a level finer
  * than the data there, e.g. SRTM levels over ETOPO5-only terrain) or its
- * box holds the eye. Pieces whose box bound is over 1 px and whose box
+ * box holds the eye, and when data the coarsest drawn box does not reach
+ * may be in view (over the data's height range data_z*: terrain there is
+ * drawn as sky, which no vertical bound covers). Pieces whose box bound is over 1 px and whose box
  * lies near the eye are bounded again cell by cell (ft_clip_cell_bound),
  * which a 16-sample block's wide height range otherwise spoils: at most
  * FT_CM_REFINE_PIECES_MAX of them a frame, the largest first. */
@@ -188,11 +190,15 @@ typedef struct ft_cm_bound {
     uint64_t unbounded;   /* of those, with no known error (or holding the eye) */
     uint32_t refined;     /* pieces bounded again cell by cell */
     uint32_t worst_level; /* the level of the piece that set bound_px */
+    int undrawn_visible;  /* data past the coarsest drawn box may be in view: no bound */
 } ft_cm_bound;
 
 /* view: in the cache's world frame less (w->origin_x_m, w->origin_y_m);
- * quantum_m: the height texels' step (0 for float texels). */
+ * quantum_m: the height texels' step (0 for float texels); data_z*: the
+ * source's height range. No memory; at most levels x (side / 16)^2 x 4
+ * pieces and FT_CM_REFINE_PIECES_MAX x 18^2 cells. */
 void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft_clip_world *w,
-                       const ft_view_bound *view, double quantum_m, ft_cm_bound *out);
+                       const ft_view_bound *view, double quantum_m, double data_zmin_m,
+                       double data_zmax_m, ft_cm_bound *out);
 
 #endif

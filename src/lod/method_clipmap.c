@@ -199,7 +199,9 @@ static void cm_draw(ft_clipmap_method *m, const ft_gl *gl, const ft_terrain_prog
     const double origin_m[2] = {w.origin_x_m, w.origin_y_m};
     ft_view_bound vb;
     ft_view_bound_from_camera(cam, origin_m, t->curv_drop_per_m2, &vb);
-    ft_cm_frame_bound(lay, &c->cache, &w, &vb, pack_range / 16777215.0, &m->bound);
+    const double zmin = (t->db != NULL) ? (double)t->db->hdr.min_height_m : t->min_height_m;
+    const double zmax = (t->db != NULL) ? (double)t->db->hdr.max_height_m : t->max_height_m;
+    ft_cm_frame_bound(lay, &c->cache, &w, &vb, pack_range / 16777215.0, zmin, zmax, &m->bound);
     st->tau_achieved_px = m->bound.bound_px;
     st->tiles = lay->drawn_count;
     st->cache_levels_behind = c->cache.stats.levels_behind;

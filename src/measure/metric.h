@@ -62,6 +62,11 @@
 #include "measure/reference.h"
 #include "terrain/terrain.h"
 
+/* The metric's resolution at an edge: a pixel that any sub-pixel shift of
+ * a silhouette or occlusion boundary flips scores this much (above), so a
+ * bound under it is checked against it. */
+#define FT_METRIC_FLIP_PX 0.5
+
 typedef struct ft_error_stats {
     double max_px, p999_px, mean_px;
     double occlusion_max_px;  /* worst occlusion error (0 without any) */

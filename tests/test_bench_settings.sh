@@ -61,7 +61,7 @@ fi
 # only the measured frames' selections move it and it is behind (the counts
 # are the CSV's cache columns).
 { cat "$src/config/default.ini"
-  printf '[budget]\nclip_bytes = 256K\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n'; } > "$out/cache.ini"
+  printf '[budget]\nclip_bytes = 1M\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n'; } > "$out/cache.ini"
 # cache_col FILE METHOD SETTING COLUMN: the value of COLUMN in that row
 cache_col() {
   awk -F, -v m="$2" -v st="$3" -v c="$4" 'NR == 1 { for (i = 1; i <= NF; ++i) h[$i] = i; next }

@@ -36,6 +36,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "core/platform_api.h"
 #include "test_app_util.h"
 
 #define W_PX 320u
@@ -452,6 +453,8 @@ typedef struct bound_tally {
     double ratio_min, ratio_max, err_max, bound_max;
 } bound_tally;
 
+static ft_camera g_bound_cam; /* the last bound frame's */
+
 static void bound_frame(const ft_pose *p, bound_tally *t)
 {
     ft_camera cam;
@@ -460,6 +463,7 @@ static void bound_frame(const ft_pose *p, bound_tally *t)
     ft_test_frame(&g_app, p, &cam, &fs);
     ft_test_measure(&g_app, &cam, &es);
     CHECK(g_app.renderer.gl_errors == 0u);
+    g_bound_cam = cam;
     const double b = fs.tau_achieved_px;
     t->frames += 1u;
     if (!isfinite(b)) {
@@ -527,6 +531,25 @@ static void bound_check(const char *dem)
         bound_frame(&p, &t);
     }
     const ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
+    /* what the bound costs a frame (printed, not asserted): the last view
+     * again, 200 times */
+    {
+        const ft_clip_world w = ft_clip_levels_world(tr);
+        const double origin_m[2] = {w.origin_x_m, w.origin_y_m};
+        ft_view_bound vb;
+        ft_view_bound_from_camera(&g_bound_cam, origin_m, tr->curv_drop_per_m2, &vb);
+        ft_cm_bound again;
+        const uint64_t t0 = ft_plat_monotonic_ns();
+        for (int k = 0; k < 200; ++k) {
+            ft_cm_frame_bound(&cm->layout, &cm->cl.cache, &w, &vb, 0.0, tr->min_height_m,
+                              tr->max_height_m, &again);
+        }
+        const double us = (double)(ft_plat_monotonic_ns() - t0) * 1e-3 / 200.0;
+        printf("clipmap bound of the last view: %.1f us a frame (%llu pieces, %u bounded "
+               "cell by cell; side 128, 5 levels)\n",
+               us, (unsigned long long)again.pieces, again.refined);
+        CHECK(again.bound_px == cm->bound.bound_px); /* the same inputs, the same bound */
+    }
     printf("clipmap bound: %u frames, %u without a bound (%u of them with the cache "
            "current), %u over it; measured max %.3f px, bound max %.3f px, bound / measured "
            "%.2f .. %.2f; last frame %llu pieces, %u bounded cell by cell\n",

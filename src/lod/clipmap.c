@@ -486,8 +486,8 @@ static void bound_piece(void *ctx, uint32_t l, const ft_clip_block_bound *b)
     double morph_m = 0.0;
     const double e = drawn_err_m(k, lv, &r, b, &morph_m);
     const double px = piece_px(k, l, &r, (double)b->lo_m, (double)b->hi_m, e);
-    if (px == 0.0 && e < INFINITY) {
-        return; /* outside the frustum (or no error at all) */
+    if (px == 0.0) {
+        return; /* outside the frustum, or no error at all */
     }
     k->out->pieces += 1u;
     k->out->unbounded += !(px < INFINITY);
@@ -592,14 +592,7 @@ void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft
                        double data_zmax_m, ft_cm_bound *out)
 {
     memset(out, 0, sizeof *out);
-    cm_bound_ctx k;
-    memset(&k, 0, sizeof k);
-    k.lay = lay;
-    k.c = c;
-    k.w = w;
-    k.v = view;
-    k.quantum_m = quantum_m;
-    k.out = out;
+    cm_bound_ctx k = {.lay = lay, .c = c, .w = w, .v = view, .quantum_m = quantum_m, .out = out};
     for (uint32_t l = 0u; l < lay->levels; ++l) {
         if (lay->level[l].drawn) {
             (void)ft_clip_blocks_visit(c, l, bound_piece, &k);
@@ -614,8 +607,8 @@ void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft
     out->worst_level = k.rest_level;
     for (uint32_t i = 0u; i < k.ncand; ++i) {
         double px = k.cand[i].px;
-        if (px > 1.0) {
-            px = refine_piece(&k, &k.cand[i]);
+        if (px > 1.0) { /* both bound the piece: the smaller */
+            px = fmin(px, refine_piece(&k, &k.cand[i]));
             out->refined += 1u;
         }
         if (px > out->bound_px) {

@@ -460,7 +460,8 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "raycast_fraction_max", "oracle_median_ms", "x_oracle", "tau_achieved_max_px",
         "bound_short_frames", "raycast_fraction_max_measured",
         "raycast_fraction_max_measured_view", "raycast_small_terrain_frames",
-        "cache_coarser_frames", "cache_behind_frames", "err_max_fine_px"};
+        "cache_coarser_frames", "cache_behind_frames", "err_max_fine_px", "bound_over_frames",
+        "bound_none_frames"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);
@@ -478,7 +479,9 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
               c_rc_max = col(H, nh, "raycast_fraction_max"),
               c_or = col(H, nh, "oracle_median_ms"), c_xo = col(H, nh, "x_oracle"),
               c_coarse = col(H, nh, "cache_coarser_frames"),
-              c_fine = col(H, nh, "err_max_fine_px");
+              c_fine = col(H, nh, "err_max_fine_px"),
+              c_bover = col(H, nh, "bound_over_frames"),
+              c_bnone = col(H, nh, "bound_none_frames");
     CHECK(nl - 1 == nrows);
     for (int r = 0; r < nrows; ++r) {
         char want_method[64];
@@ -523,6 +526,14 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         if (strcmp(want_method, "clipmap") != 0) CHECK(num(c[c_coarse]) == 0.0);
         CHECK(num(c[c_fine]) >= 0.0 && num(c[c_fine]) <= emax);
         if (num(c[c_coarse]) == 0.0) CHECK(num(c[c_fine]) == emax);
+        /* measured frames over a reported bound, or without one: brute
+         * force reports none; a bintree row keeps its bound */
+        CHECK(num(c[c_bover]) >= 0.0 && num(c[c_bover]) <= measured);
+        CHECK(num(c[c_bnone]) >= 0.0 && num(c[c_bnone]) <= measured);
+        if (strcmp(want_method, "brute") == 0) {
+            CHECK(num(c[c_bover]) == 0.0 && num(c[c_bnone]) == 0.0);
+        }
+        if (strcmp(want_method, "bintree") == 0) CHECK(num(c[c_bover]) == 0.0);
         if (strcmp(want_method, "brute") == 0) CHECK_NEAR(num(c[c_ratio]), 1.0, 1e-9);
         else CHECK(num(c[c_ratio]) > 0.0);
         /* the oracle (bintree rows only): its median frame time and the row's

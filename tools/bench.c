@@ -31,6 +31,7 @@
 #include "app/frame.h"
 #include "bench_oracle.h"
 #include "core/platform_api.h"
+#include "measure/metric.h"
 #include "terrain/default_view.h"
 #include "flight_path.h"
 #include "plot.h"
@@ -50,6 +51,9 @@
  * tops of a far ridge along the image's edge) is its silhouette band: such
  * frames (terrain under 2% of the image) are counted apart */
 #define BENCH_RC_SHARE_MIN 0.02
+/* a frame is over its reported bound by more than the metric's rounding
+ * (the bound tests' own margin) */
+#define BENCH_BOUND_SLACK_PX 0.05
 #define BENCH_ROWS_MAX 256
 #define BENCH_LABEL_LEN 96
 #define BENCH_INI_LEN 512
@@ -163,6 +167,12 @@ typedef struct bench_row {
      * was over the selection's target: a leaf tile near the eye over tau */
     double tau_achieved_max_px;
     int bound_short_frames;
+    /* a method that reports a bound (bintree, pgrid, clipmap: > 0): the
+     * measured frames whose max error is over it (by the metric's
+     * resolution: over max(bound, FT_METRIC_FLIP_PX) + BENCH_BOUND_SLACK_PX),
+     * and those whose bound is infinite (none: a clipmap level finer than
+     * the data, a lagging cache) */
+    int bound_over_frames, bound_none_frames;
 } bench_row;
 
 typedef struct bench_path {
@@ -873,6 +883,13 @@ static void run_one(const bench_opts *o, const ft_scene *base, const bench_metho
             if (!st.cache_coarser) {
                 row->err_max_fine_px = fmax(row->err_max_fine_px, es.max_px);
             }
+            if (st.tau_achieved_px > 0.0 && isinf(st.tau_achieved_px)) {
+                row->bound_none_frames += 1;
+            } else if (st.tau_achieved_px > 0.0 &&
+                       es.max_px > fmax(st.tau_achieved_px, FT_METRIC_FLIP_PX) +
+                                       BENCH_BOUND_SLACK_PX) {
+                row->bound_over_frames += 1;
+            }
             if (row->measured == 0 || es.max_px > row->err_max_px) {
                 row->err_max_px = es.max_px;
                 (void)snprintf(row->err_max_where, sizeof row->err_max_where, "%.32s frame %d",
@@ -971,7 +988,8 @@ static int write_csv(const char *path)
           "raycast_fraction_mean,raycast_fraction_max,oracle_median_ms,x_oracle,"
           "tau_achieved_max_px,bound_short_frames,raycast_fraction_max_measured,"
           "raycast_fraction_max_measured_view,raycast_small_terrain_frames,"
-          "cache_coarser_frames,cache_behind_frames,err_max_fine_px\n",
+          "cache_coarser_frames,cache_behind_frames,err_max_fine_px,bound_over_frames,"
+          "bound_none_frames\n",
           f);
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
@@ -1008,6 +1026,7 @@ static int write_csv(const char *path)
         fprintf(f, ",%d", w->rc_small_frames);
         fprintf(f, ",%d,%d", w->coarser_frames, w->behind_frames);
         csv_num(f, w->err_max_fine_px, 4);
+        fprintf(f, ",%d,%d", w->bound_over_frames, w->bound_none_frames);
         fputc('\n', f);
     }
     int ok = fclose(f) == 0;
@@ -1150,8 +1169,9 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
     }
     fprintf(f, "\n| method | setting | median ms | p99 ms | max ms | x brute | oracle ms (x) | "
                "max px | p99.9 px | mean px | coverage px | occlusion px | triangles | ray cast "
-               "%% mean / max | coarser frames (max px without) | worst frame |\n"
-               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+               "%% mean / max | coarser frames (max px without) | bound: largest px, frames over "
+               "/ without | worst frame |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int r = 0; r < g_row_count; ++r) {
         const bench_row *w = &g_rows[r];
         if (!w->ok) continue;
@@ -1160,14 +1180,19 @@ static int write_report(const bench_opts *o, const ft_scene *base, const char *p
             (void)snprintf(oracle, sizeof oracle, "%.2f (%.2fx)", w->oracle_med_ms,
                            w->t_med_ms / w->oracle_med_ms);
         }
+        char bound[64] = "none reported";
+        if (w->tau_achieved_max_px > 0.0) {
+            (void)snprintf(bound, sizeof bound, "%.3f, %d / %d", w->tau_achieved_max_px,
+                           w->bound_over_frames, w->bound_none_frames);
+        }
         fprintf(f,
                 "| %s | %s | %.2f | %.2f | %.2f | %.2f | %s | %.3f | %.3f | %.4f | %u | %u | %.0f "
-                "| %.1f / %.1f | %d (%.3f) | %s |\n",
+                "| %.1f / %.1f | %d (%.3f) | %s | %s |\n",
                 w->method, w->setting.label, w->t_med_ms, w->t_p99_ms, w->t_max_ms,
                 bm > 0.0 ? w->t_med_ms / bm : NAN, oracle, w->err_max_px, w->err_p999_px,
                 w->err_mean_px, w->cov_max_px, w->occl_max_px, w->tri_mean,
                 100.0 * w->rc_frac_mean, 100.0 * w->rc_frac_max, w->coarser_frames,
-                w->err_max_fine_px, w->err_max_where);
+                w->err_max_fine_px, bound, w->err_max_where);
     }
     if (g_path_count > 1) {
         fprintf(f, "\nPer path: median frame time ms / max error px / p99.9 px\n\n"

@@ -54,7 +54,14 @@
  *     boundary every few seconds (measured: one frame in 73 on the clipmap
  *     orbit), a single sample that lands on one measures that block, and an
  *     odd frame's larger transient (minute 11 of the bintree orbit, 1 MiB)
- *     raises a minute's highest value once;
+ *     raises a minute's highest value once. Over a database (the heap kept
+ *     untrimmed, below) RSS is the heap's high water, and llvmpipe's
+ *     binning memory depends on how many scenes are in flight, which
+ *     depends on the load on the machine: beside another soak on 2 cores
+ *     the pgm soak's RSS rose by 4 x 1028 KiB in minutes 3-6 with the heap
+ *     in use flat (25,418 -> 25,419 KiB, measured on a fresh Debian 12
+ *     run), alone it stays within 1 MiB; so those soaks allow
+ *     RSS_MARGIN_DB_KIB, and the heap check above is their leak test;
  *   - arena high water unchanged after warm-up (and the arena stays locked);
  *   - deadline misses in the last 5 minutes <= those in the first 5 minutes +
  *     MISS_MARGIN (the first 5 include shader JIT and cache warm-up). */
@@ -76,6 +83,7 @@
 #define WARMUP_MIN 5u
 #define WINDOW_MIN 5u
 #define RSS_MARGIN_KIB 1024u
+#define RSS_MARGIN_DB_KIB 6144u
 #define HEAP_MARGIN_KIB 256u
 #define HEAP_WINDOW_MIN 4u
 /* misses: 1% of a 5-minute window's frames, at least 10 (the machine is
@@ -434,6 +442,7 @@ int main(int argc, char **argv)
         minmax_kib(g_soak.heap_lo_kib[whole - 1u - k], &heap_floor_end_kib, &unused_kib);
     }
     const long rss_floor_end_kib = g_soak.rss_lo_kib[whole - 1u];
+    const unsigned rss_margin_kib = (db != NULL) ? RSS_MARGIN_DB_KIB : RSS_MARGIN_KIB;
     printf("heap in use, lowest: %ld KiB in minutes %u-%u, %ld KiB in minutes %u-%u "
            "(margin %u KiB)\n",
            heap_floor_warm_kib, WARMUP_MIN + 1u - HEAP_WINDOW_MIN, WARMUP_MIN, heap_floor_end_kib,
@@ -441,7 +450,7 @@ int main(int argc, char **argv)
     printf("RSS: %ld KiB before init, at most %ld KiB in minutes 0-%u, at least %ld KiB in "
            "minute %u (margin %u KiB); %u failed reads; arena high water %zu -> %zu bytes\n",
            rss_before_init, rss_ceil_warm_kib, WARMUP_MIN, rss_floor_end_kib, whole - 1u,
-           RSS_MARGIN_KIB, g_soak.rss_read_failures, g_soak.hw_warm, g_soak.hw_end);
+           rss_margin_kib, g_soak.rss_read_failures, g_soak.hw_warm, g_soak.hw_end);
     printf("heap in use per minute, lowest..highest (KiB):");
     for (uint32_t m = 0u; m < whole; ++m) {
         printf(" %ld..%ld", g_soak.heap_lo_kib[m], g_soak.heap_hi_kib[m]);
@@ -455,7 +464,7 @@ int main(int argc, char **argv)
     CHECK(heap_floor_warm_kib > 0 && heap_floor_end_kib > 0);
     CHECK(heap_floor_end_kib <= heap_floor_warm_kib + (long)HEAP_MARGIN_KIB);
     CHECK(rss_ceil_warm_kib > 0 && rss_floor_end_kib > 0);
-    CHECK(rss_floor_end_kib <= rss_ceil_warm_kib + (long)RSS_MARGIN_KIB);
+    CHECK(rss_floor_end_kib <= rss_ceil_warm_kib + (long)rss_margin_kib);
     CHECK(g_soak.hw_end == g_soak.hw_warm);
     CHECK(g_app.arena.locked);
 

@@ -1,17 +1,24 @@
 /* pgrid_rc.frag.glsl - method 'pgrid': ray casting of the pixels whose
  * (3 x 3 dilated) error code reaches u_rc_thr (src/lod/pgrid.h 4), GLES 3 only.
+ * Drawn per screen tile (shaders/pgrid_rc.vert.glsl): only the tiles that
+ * hold such a pixel reach this shader.
  *
  * The ray through the pixel centre is cast against the bilinear height
  * field in grid coordinates (x, y in cells from sample (0, 0), z metres),
  * the same surface src/measure/reference.c intersects: a max-mip traversal of the
- * max pyramid (levels >= 2 from the min/max atlas, level 1 = max of 3 x 3
- * samples, level 0 = the cell's 4 samples) skips every texel box the ray
- * passes above; at level 0 the ray's height minus the bilinear patch along
- * it is a quadratic in t, solved in closed form for its first root in the
- * cell. Output: colour (shade.glsl, as terrain.frag.glsl) or the
- * position (xyz rel. eye, w 1) and gl_FragDepth of the hit; a miss writes
- * the sky (u_rc_sky, depth 1). Pixels under the threshold are discarded, so
- * the mesh stays there. Bounded loop (FT_RC_STEPS visits).
+ * max pyramid (levels >= 1 from the ray caster's max atlas, level 0 = the
+ * cell's 4 samples) skips every texel box the ray passes above; at level 0
+ * the ray's height minus the bilinear patch along it is a quadratic in t,
+ * solved in closed form for its first root in the cell. Output: colour
+ * (shade.glsl, as terrain.frag.glsl) or the position (xyz rel. eye, w 1)
+ * and gl_FragDepth of the hit; a miss writes the sky (u_rc_sky, depth 1).
+ * Pixels under the threshold are discarded, so the mesh stays there.
+ * Bounded loop (FT_RC_STEPS visits).
+ * The loop is written for a SIMD rasteriser (llvmpipe) that runs every
+ * branch of a loop body under a lane mask whether or not a lane takes it:
+ * each visit makes the same 5 fetches (the cell's 4 samples, which are the
+ * level-0 texel and the cell solve's input, and one atlas texel), and the
+ * rare bisection of a root lost to round-off runs once, after the loop.
  * Earth curvature (src/terrain/terrain.h): the terrain r metres from the eye is
  * drawn k r^2 lower; the ray is bent up by the same amount instead,
  * z(t) = o.z + d.z t + bend t^2 with bend = k |dw.xy|^2, as
@@ -34,10 +41,10 @@ uniform float u_rc_thr;           /* code threshold (0..255) */
 uniform sampler2D u_heights;
 uniform vec2 u_pack;
 uniform vec2 u_grid_size;
-uniform sampler2D u_pgrid_mm;
-uniform vec4 u_pgrid_mm_info;     /* (half width, height, pack min, pack range or 0) */
-uniform vec4 u_pgrid_mm_level[FT_LEVELS];
-uniform float u_pgrid_mm_levels;
+uniform sampler2D u_rc_max;       /* max pyramid levels >= 1 (src/lod/pgrid.h 4) */
+uniform vec2 u_rc_max_pack;       /* its scalar format (as u_pack) */
+uniform vec4 u_rc_max_level[FT_LEVELS]; /* origin xy, size zw per level (level 0: size) */
+uniform float u_rc_levels;
 uniform vec3 u_rc_eye_g;          /* eye in grid coordinates (x, y cells, z m) */
 uniform vec2 u_cell_m;
 uniform vec3 u_rc_fwd, u_rc_right, u_rc_up; /* camera frame (world) */
@@ -71,38 +78,27 @@ float hbil(vec2 g)
     return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
 
-/* max of level L texel (i, j) (L >= 0) */
-float texmax(float level, vec2 ij)
+/* max of level L >= 1 texel (i, j), from the atlas (L clamped to >= 1: the
+ * caller takes level 0 from the cell's samples) */
+float atlas_max(float level, vec2 ij)
 {
-    if (level < 0.5) {
-        return max(max(hs(ij), hs(ij + vec2(1.0, 0.0))), max(hs(ij + vec2(0.0, 1.0)), hs(ij + 1.0)));
-    }
-    if (level < 1.5) {
-        float m = -1e30;
-        for (int y = 0; y < 3; ++y) {
-            for (int x = 0; x < 3; ++x) {
-                m = max(m, hs(2.0 * ij + vec2(float(x), float(y))));
-            }
-        }
-        return m;
-    }
-    vec4 lv = u_pgrid_mm_level[int(level)];
-    vec2 o = lv.xy + clamp(ij, vec2(0.0), lv.zw - 1.0) + vec2(u_pgrid_mm_info.x, 0.0);
-    return ft_decode(texelFetch(u_pgrid_mm, ivec2(o), 0), u_pgrid_mm_info.zw);
+    vec4 lv = u_rc_max_level[int(max(level, 1.0))];
+    vec2 o = lv.xy + clamp(ij, vec2(0.0), lv.zw - 1.0);
+    return ft_decode(texelFetch(u_rc_max, ivec2(o), 0), u_rc_max_pack);
 }
 
-/* first t in [ta, tb] where o + t d meets cell (i, j)'s bilinear patch.
- * Solved in the segment's own frame (origin: the ray at ta, s = t - ta), so
- * the patch is never extrapolated out to the eye: the coefficients stay of
- * the order of the cell's heights and float keeps millimetres. A sign change
- * the closed form loses to round-off is refined by bisection. */
-bool solve_cell(vec2 ij, vec3 o, vec3 d, float bend, float ta, float tb, bool entry_hit,
-                out float th)
+/* first t in [ta, tb] where o + t d meets cell (i, j)'s bilinear patch
+ * (h = its samples h00, h10, h01, h11). Solved in the segment's own frame
+ * (origin: the ray at ta, s = t - ta), so the patch is never extrapolated
+ * out to the eye: the coefficients stay of the order of the cell's heights
+ * and float keeps millimetres. Returns 1 with th set for a root; 2 for a
+ * sign change the closed form lost to round-off, with f(s) = (q.x s + q.y) s
+ * + q.z over [0, q.w] for the caller to bisect (after its loop); else 0. */
+int solve_cell(vec2 ij, vec4 h, vec3 o, vec3 d, float bend, float ta, float tb, bool entry_hit,
+               out float th, out vec4 q)
 {
-    float h00 = hs(ij), h10 = hs(ij + vec2(1.0, 0.0));
-    float h01 = hs(ij + vec2(0.0, 1.0)), h11 = hs(ij + 1.0);
     /* local u = u0 + s d.x, v likewise; H = h00 + a u + b v + c u v */
-    float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
+    float a = h.y - h.x, b = h.z - h.x, c = h.x - h.y - h.z + h.w;
     vec3 pa = o + ta * d;
     pa.z += bend * ta * ta;
     float u0 = pa.x - ij.x, v0 = pa.y - ij.y;
@@ -110,10 +106,12 @@ bool solve_cell(vec2 ij, vec3 o, vec3 d, float bend, float ta, float tb, bool en
     /* f(s) = pa.z + s d.z - H(u0 + s dx, v0 + s dy) = A s^2 + B s + C */
     float A = bend - c * d.x * d.y;
     float B = (d.z + 2.0 * bend * ta) - a * d.x - b * d.y - c * (u0 * d.y + v0 * d.x);
-    float C = pa.z - (h00 + a * u0 + b * v0 + c * u0 * v0);
+    float C = pa.z - (h.x + a * u0 + b * v0 + c * u0 * v0);
     float fa = C;
     float fb = (A * len + B) * len + C;
     float best = 1e30;
+    q = vec4(A, B, C, len);
+    th = ta;
     if (entry_hit && fa <= 0.0) {
         /* already under the (continuous) surface where the ray enters the
          * cell: the crossing was at the entry, within the round-off of the
@@ -122,8 +120,7 @@ bool solve_cell(vec2 ij, vec3 o, vec3 d, float bend, float ta, float tb, bool en
          * for a ray that starts under the surface (an eye under the
          * terrain): that one looks for its crossing from below, as the
          * reference does. */
-        th = ta;
-        return true;
+        return 1;
     }
     if (abs(A) * len < 1e-6 * max(abs(B), 1e-30)) {
         if (B != 0.0) {
@@ -134,30 +131,36 @@ bool solve_cell(vec2 ij, vec3 o, vec3 d, float bend, float ta, float tb, bool en
         float disc = B * B - 4.0 * A * C;
         if (disc >= 0.0) {
             float sq = sqrt(disc);
-            float q = -0.5 * (B + (B >= 0.0 ? sq : -sq));
-            float s1 = q / A;
-            float s2 = (q != 0.0) ? C / q : s1;
+            float qq = -0.5 * (B + (B >= 0.0 ? sq : -sq));
+            float s1 = qq / A;
+            float s2 = (qq != 0.0) ? C / qq : s1;
             if (s1 >= 0.0 && s1 <= len) best = min(best, s1);
             if (s2 >= 0.0 && s2 <= len) best = min(best, s2);
         }
     }
-    if (best > 1e29 && fa * fb <= 0.0) {
-        /* round-off at an end: bisect the sign change */
-        float lo = 0.0, hi = len, flo = fa;
-        for (int k = 0; k < 24; ++k) {
-            float mid = 0.5 * (lo + hi);
-            float fm = (A * mid + B) * mid + C;
-            if ((fm <= 0.0) == (flo <= 0.0) && fm != 0.0) {
-                lo = mid;
-                flo = fm;
-            } else {
-                hi = mid;
-            }
-        }
-        best = (fa == 0.0) ? 0.0 : hi;
+    if (best < 1e29) {
+        th = ta + best;
+        return 1;
     }
-    th = ta + best;
-    return best < 1e29;
+    return (fa * fb <= 0.0) ? 2 : 0;
+}
+
+/* the sign change of f(s) = (q.x s + q.y) s + q.z on [0, q.w], bisected */
+float bisect(vec4 q)
+{
+    float lo = 0.0, hi = q.w, flo = q.z;
+    if (q.z == 0.0) return 0.0;
+    for (int k = 0; k < 24; ++k) {
+        float mid = 0.5 * (lo + hi);
+        float fm = (q.x * mid + q.y) * mid + q.z;
+        if ((fm <= 0.0) == (flo <= 0.0) && fm != 0.0) {
+            lo = mid;
+            flo = fm;
+        } else {
+            hi = mid;
+        }
+    }
+    return hi;
 }
 
 void main()
@@ -193,7 +196,7 @@ void main()
             t1 = min(t1, max(ta, tb));
         }
     }
-    float top = u_pgrid_mm_levels - 1.0;
+    float top = u_rc_levels - 1.0;
     bool hit = false;
     float th = 0.0;
     bool entry_hit = true; /* false: the ray starts under the surface */
@@ -201,9 +204,13 @@ void main()
         vec3 p0 = o + t0 * d;
         entry_hit = p0.z + bend * t0 * t0 >= hbil(p0.xy);
     }
+    vec4 lost = vec4(0.0); /* a root to bisect: f's coefficients and length */
+    float lost_ta = 0.0;
+    bool bisect_lost = false;
     if (t0 <= t1) {
         float t = t0;
         float level = top;
+        vec2 cellmax0 = max(gmax - 1.0, vec2(0.0));
         for (int step = 0; step < FT_RC_STEPS; ++step) {
             if (t > t1) break;
             float sc = exp2(level);
@@ -221,7 +228,13 @@ void main()
             float ty = d.y > 0.0 ? (hi.y - o.y) / d.y : (d.y < 0.0 ? (lo.y - o.y) / d.y : 1e30);
             float te = min(min(tx, ty), t1);
             te = max(te, t);
-            float zmax = texmax(level, c);
+            /* the same fetches on every visit: the samples of cell c (the
+             * level-0 texel; at higher levels a cell of the texel, unused)
+             * and the atlas texel */
+            vec2 c0 = min(c, cellmax0);
+            vec4 h = vec4(hs(c0), hs(c0 + vec2(1.0, 0.0)), hs(c0 + vec2(0.0, 1.0)), hs(c0 + 1.0));
+            float zatlas = atlas_max(level, c);
+            float zmax = (level < 0.5) ? max(max(h.x, h.y), max(h.z, h.w)) : zatlas;
             float zlo = min(p.z + bend * t * t, o.z + te * (d.z + bend * te));
             float t_low = -d.z / max(2.0 * bend, 1e-30); /* the bent ray's lowest point */
             if (bend > 0.0 && t_low > t && t_low < te) {
@@ -238,13 +251,25 @@ void main()
                 continue;
             }
             float tt;
-            if (solve_cell(c, o, d, bend, t, te, entry_hit, tt)) {
+            vec4 q;
+            int r = solve_cell(c, h, o, d, bend, t, te, entry_hit, tt, q);
+            if (r == 1) {
                 th = tt;
                 hit = true;
                 break;
             }
+            if (r == 2) {
+                lost = q;
+                lost_ta = t;
+                bisect_lost = true;
+                break;
+            }
             t = te + max(abs(te), 1.0) * 1e-7;
         }
+    }
+    if (bisect_lost) {
+        th = lost_ta + bisect(lost);
+        hit = true;
     }
     if (!hit) {
         o_color = (u_rc_mode > 0.5) ? vec4(0.0) : u_rc_sky;

@@ -27,6 +27,11 @@
  *    terrain's highest sample (src/lod/pgrid.h 3); on views where the rule
  *    leaves it out, drawing it changes no pixel's ray-cast decision, and
  *    leaving it out where the rule draws it changes some.
+ * 6. Ray-cast tiles: the tile pass's texels equal each tile's largest code
+ *    over the tile and a one-pixel border, computed from the error buffer
+ *    read back, at tile sides 4, 13 (tiles cut by the image's edges) and 64;
+ *    the pictures are the same byte for byte at every side, and some tiles
+ *    are left out and some drawn on every frame (the test is not vacuous).
  * es2 (run with MESA_GLES_VERSION_OVERRIDE=2.0, backend egl-gles2):
  *    init with ray_casting = 1 succeeds and runs without ray casting (no
  *    pixel ray cast, budget not hit), the reported bound is the mesh's own
@@ -57,7 +62,7 @@ static const char k_scene_fmt[] =
     "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[pgrid]\ngrid_cols = %u\ngrid_rows = %u\ndistribution = %s\nray_casting = %d\n"
-    "gamma_px = %.3f\nraycast_max_px = %u\nerror_bound = %s\n"
+    "gamma_px = %.3f\nraycast_max_px = %u\nerror_bound = %s\nraycast_tile_px = %u\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 16M\npng_bytes = 512K\n";
@@ -70,6 +75,7 @@ typedef struct setup {
     double gamma;
     int metric;
     int residual; /* pgrid.error_bound = residual (src/lod/pgrid.h 6) */
+    uint32_t tile_px; /* pgrid.raycast_tile_px; 0: 16 */
 } setup;
 
 static void app_init(const setup *c)
@@ -77,7 +83,7 @@ static void app_init(const setup *c)
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, W_PX, H_PX,
                    c->fovy_deg, c->dem, c->metric, c->cols, c->rows,
                    c->view_dist ? "view" : "uniform", c->ray_casting, c->gamma, W_PX * H_PX,
-                   c->residual ? "residual" : "relief");
+                   c->residual ? "residual" : "relief", c->tile_px ? c->tile_px : 16u);
     ft_test_app_init(&g_app, g_text, c->method);
 }
 
@@ -182,7 +188,7 @@ static ft_pose path_pose(int f)
 static void test_error_bound(const char *dem, int residual)
 {
     double brute_max[PATH_FRAMES], brute_mean[PATH_FRAMES];
-    setup cb = {"brute", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 0, 1.0, 1, 0};
+    setup cb = {"brute", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 0, 1.0, 1, 0, 0u};
     app_init(&cb);
     for (int f = 0; f < PATH_FRAMES; ++f) {
         ft_camera cam;
@@ -203,7 +209,7 @@ static void test_error_bound(const char *dem, int residual)
     for (size_t gi = 0; gi < sizeof gammas / sizeof gammas[0]; ++gi) {
         const double gamma = gammas[gi];
         setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, gamma, 1,
-                   residual};
+                   residual, 0u};
         app_init(&c);
         CHECK(g_app.renderer.method.u.pgrid.tight == residual);
         double worst_over = -INFINITY;
@@ -254,7 +260,7 @@ static void test_distribution(const char *dem)
         double mean[2][PATH_FRAMES], maxe[2][PATH_FRAMES], sum[2] = {0.0, 0.0};
         for (int d = 0; d < 2; ++d) {
             setup c = {"pgrid", "egl-gles3", dem, 60.0, grids[g][0], grids[g][1], d, 0, 1.0, 1,
-                       0};
+                       0, 0u};
             app_init(&c);
             for (int f = 0; f < PATH_FRAMES; ++f) {
                 ft_camera cam;
@@ -304,7 +310,7 @@ static void test_sweep(const char *dem, double lat, double lon)
     for (int rc = 0; rc <= 1; ++rc) {
         for (size_t fi = 0; fi < sizeof fovs / sizeof fovs[0]; ++fi) {
             setup c = {"pgrid", "egl-gles3", dem, fovs[fi], GRID_COLS, GRID_ROWS, 1, rc, 1.0, 1,
-                       0};
+                       0, 0u};
             app_init(&c);
             /* the ground under the eye, from a probe frame's camera */
             ft_camera cam;
@@ -377,7 +383,7 @@ static void test_cracks(const char *backend, const char *dem)
                 /* the residual bound with the view rows (GLES 3), the relief
                  * bound with uniform rows */
                 setup c = {"pgrid", backend, dem, 60.0, grids[g][0], grids[g][1], d, rc, gamma,
-                           !es2, d};
+                           !es2, d, 0u};
                 app_init(&c);
                 if (es2) CHECK(strstr(g_app.gpu.version, "OpenGL ES 2.0") != NULL);
                 ft_test_clear_magenta(&g_app);
@@ -457,7 +463,7 @@ static float g_quad[4u * GRID_COLS * GRID_ROWS];
 
 static void test_residual_mirror(const char *dem)
 {
-    setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, 1};
+    setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, 1, 0u};
     app_init(&c);
     const ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
     REQUIRE(m->tight);
@@ -559,7 +565,7 @@ static void error_codes(int ray_casting, int mrt, int f, uint8_t *codes)
 static void test_error_buffer_mrt(const char *dem)
 {
     for (int rc = 0; rc <= 1; ++rc) {
-        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, rc, 1.0, 0, rc};
+        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, rc, 1.0, 0, rc, 0u};
         app_init(&c);
         CHECK(g_app.renderer.method.u.pgrid.mrt == 1);
         for (int f = 0; f < MRT_FRAMES; ++f) {
@@ -652,7 +658,7 @@ static uint32_t lower_decisions(const ft_pose *p, int force, uint8_t *decide,
 static void test_lower_envelope(const char *dem)
 {
     for (int residual = 0; residual <= 1; ++residual) {
-        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, residual};
+        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, residual, 0u};
         app_init(&c);
         uint32_t skipped = 0u, drawn = 0u, lost = 0u;
         for (int v = 0; v < LOWER_VIEWS; ++v) {
@@ -692,6 +698,79 @@ static void test_lower_envelope(const char *dem)
     }
 }
 
+/* ---- 6. the ray caster's tiles (src/lod/pgrid.h 4) ---------------------------- */
+
+#define TILE_FRAMES 4
+#define TILE_SIDES 3
+
+static uint8_t g_tile_pic[TILE_SIDES][TILE_FRAMES][W_PX * H_PX * 4u];
+static uint8_t g_err_rgba[W_PX * H_PX * 4u];
+static uint8_t g_tile_rgba[W_PX * H_PX * 4u]; /* at most W x H tiles */
+
+static void test_tiles(const char *dem)
+{
+    static const uint32_t sides[TILE_SIDES] = {4u, 13u, 64u};
+    for (int k = 0; k < TILE_SIDES; ++k) {
+        setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, 1,
+                   sides[k]};
+        app_init(&c);
+        const ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
+        REQUIRE(m->tile_px == sides[k]);
+        REQUIRE(m->tiles_w == (W_PX + sides[k] - 1u) / sides[k]);
+        const ft_gl *gl = &g_app.gpu.gl;
+        for (int f = 0; f < TILE_FRAMES; ++f) {
+            ft_camera cam;
+            ft_frame_stats fs;
+            ft_pose p = path_pose(2 * f);
+            ft_test_frame(&g_app, &p, &cam, &fs);
+            memcpy(g_tile_pic[k][f], g_app.renderer.rgba, sizeof g_tile_pic[k][f]);
+            gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
+            gl->ReadPixels(0, 0, (GLsizei)W_PX, (GLsizei)H_PX, GL_RGBA, GL_UNSIGNED_BYTE,
+                           g_err_rgba);
+            gl->BindFramebuffer(GL_FRAMEBUFFER, m->tile_fbo);
+            gl->ReadPixels(0, 0, (GLsizei)m->tiles_w, (GLsizei)m->tiles_h, GL_RGBA,
+                           GL_UNSIGNED_BYTE, g_tile_rgba);
+            gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+            CHECK(ft_gl_check(gl, "reading the error buffer and the tiles back", NULL) == FT_OK);
+            uint32_t wrong = 0u, drawn = 0u;
+            for (uint32_t ty = 0; ty < m->tiles_h; ++ty) {
+                for (uint32_t tx = 0; tx < m->tiles_w; ++tx) {
+                    uint32_t want = 0u;
+                    const int x0 = (int)(tx * m->tile_px) - 1, y0 = (int)(ty * m->tile_px) - 1;
+                    for (int y = y0; y <= y0 + (int)m->tile_px + 1; ++y) {
+                        for (int x = x0; x <= x0 + (int)m->tile_px + 1; ++x) {
+                            const int cx = x < 0 ? 0 : (x >= (int)W_PX ? (int)W_PX - 1 : x);
+                            const int cy = y < 0 ? 0 : (y >= (int)H_PX ? (int)H_PX - 1 : y);
+                            const uint32_t code = g_err_rgba[4u * ((uint32_t)cy * W_PX +
+                                                                   (uint32_t)cx) + 1u];
+                            if (code > want) want = code;
+                        }
+                    }
+                    const uint32_t got = g_tile_rgba[4u * (ty * m->tiles_w + tx)];
+                    wrong += (got != want);
+                    drawn += (got >= m->thr);
+                }
+            }
+            const uint32_t tiles = m->tiles_w * m->tiles_h;
+            printf("ray-cast tiles of %u px, frame %d: %u of %u drawn (threshold %u), %u wrong\n",
+                   m->tile_px, f, drawn, tiles, m->thr, wrong);
+            CHECK(wrong == 0u);
+            if (m->tile_px < 64u) {
+                CHECK(drawn > 0u && drawn < tiles);
+            }
+            if (k > 0) {
+                uint32_t differ = 0u;
+                for (uint32_t i = 0; i < W_PX * H_PX * 4u; ++i) {
+                    differ += (g_tile_pic[k][f][i] != g_tile_pic[0][f][i]);
+                }
+                printf("  picture against tiles of %u px: %u bytes differ\n", sides[0], differ);
+                CHECK(differ == 0u);
+            }
+        }
+        ft_app_shutdown(&g_app);
+    }
+}
+
 int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
@@ -718,5 +797,6 @@ int main(int argc, char **argv)
     if (only == NULL || strcmp(only, "dist") == 0) test_distribution(dem);
     if (only == NULL || strcmp(only, "sweep") == 0) test_sweep(dem, 42.45, 1.55);
     if (only == NULL || strcmp(only, "cracks") == 0) test_cracks("egl-gles3", dem);
+    if (only == NULL || strcmp(only, "tiles") == 0) test_tiles(dem);
     return ft_test_result("test_pgrid_gl es3");
 }

@@ -62,6 +62,7 @@ int main(void)
     CHECK(a.pgrid_ray_casting == b.pgrid_ray_casting);
     CHECK_NEAR(a.pgrid_gamma_px, b.pgrid_gamma_px, 0.0);
     CHECK(a.pgrid_raycast_max_px == b.pgrid_raycast_max_px);
+    CHECK(a.pgrid_raycast_tile_px == b.pgrid_raycast_tile_px);
     CHECK_NEAR(a.frame_period_ms, b.frame_period_ms, 0.0);
     CHECK_NEAR(a.frame_budget_ms, b.frame_budget_ms, 0.0);
     CHECK(a.frame_degrade == b.frame_degrade);

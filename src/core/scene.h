@@ -137,6 +137,7 @@ typedef struct ft_scene {
     int pgrid_ray_casting;       /* pgrid.ray_casting */
     double pgrid_gamma_px;       /* pgrid.gamma_px */
     uint32_t pgrid_raycast_max_px; /* pgrid.raycast_max_px */
+    uint32_t pgrid_raycast_tile_px; /* pgrid.raycast_tile_px */
     uint32_t clipmap_side;         /* clipmap.side */
     uint32_t clipmap_levels;       /* clipmap.levels */
     uint32_t clipmap_update_samples_max; /* clipmap.update_samples_max */
@@ -273,6 +274,8 @@ typedef struct ft_scene {
       "screen-space error bound")                                                                \
     X(pgrid, raycast_max_px, U32, pgrid_raycast_max_px, 0, 67108864, NULL, "262144", "px",       \
       "most pixels ray cast per frame; above it gamma is raised for that frame and reported")    \
+    X(pgrid, raycast_tile_px, U32, pgrid_raycast_tile_px, 4, 64, NULL, "16", "px",               \
+      "side of the screen tiles the ray caster runs on: only tiles with a pixel to ray cast")    \
     X(clipmap, side, U32, clipmap_side, 16, 4096, NULL, "256", "samples",                         \
       "samples per clipmap level side (a power of two)")                                         \
     X(clipmap, levels, U32, clipmap_levels, 1, 16, NULL, "5", "levels",                          \

@@ -29,6 +29,10 @@
 /* The unmeasured-cell texture's unit: above every unit a method uses (0-7),
  * so it stays bound from init on. */
 #define FT_TEX_UNIT_VOID 8
+/* pgrid's ray caster: its max atlas and its tile texture (units of their own,
+ * bound at init and left there) */
+#define FT_TEX_UNIT_RC_MAX 9
+#define FT_TEX_UNIT_RC_TILES 10
 
 /* The colour uniforms of shaders/shade.glsl (-1 where a program lacks them:
  * position passes; a part's outside its variant, and always in a build

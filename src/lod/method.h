@@ -116,6 +116,14 @@ typedef struct ft_pgrid_method {
     float mm_level_px[FT_PYRAMID_LEVELS_MAX][4];
     ft_scalar_format mm_fmt;
     GLuint err_tex, err_depth, err_fbo, rc_prog, quad_vbo;
+    /* the ray caster (GLES 3, src/lod/pgrid.h 4): the max atlas its traversal
+     * reads (levels >= 1; level 0 comes from the heights), and the tile pass
+     * that lets it run only on the screen tiles holding a pixel to ray cast
+     * (tile_tex: a tile's largest dilated code, tiles_w x tiles_h) */
+    GLuint rc_max_tex, tile_tex, tile_fbo, tile_prog;
+    float rc_max_level_px[FT_PYRAMID_LEVELS_MAX][4];
+    uint32_t tile_px, tiles_w, tiles_h;
+    GLint ut_err, ut_size, ut_tile_px;
     ft_terrain_program *err_prog; /* in FT_POOL_METHOD */
     int err_prog_built;
     /* GLES 3: the picture pass writes the error buffer as its second colour

@@ -51,10 +51,10 @@ _Static_assert(FT_PGRID_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgrid's uniforms fit
  * the error pass's program, right after it: m->err_prog points at the first
  * member of this struct. */
 typedef struct pgrid_rc_locs {
-    GLint err, heights, mm, thr, pack, grid_size, mm_info, mm_levels, eye_g, cell_m, drop;
-    GLint fwd, right, up, tan, size, view_proj, mode, sky;
+    GLint err, heights, rc_max, thr, pack, grid_size, max_pack, levels, eye_g, cell_m, drop;
+    GLint fwd, right, up, tan, size, view_proj, mode, sky, tiles, tile_px, tiles_w;
     ft_shade_locs shade;
-    GLint mm_level[FT_PYRAMID_LEVELS_MAX];
+    GLint max_level[FT_PYRAMID_LEVELS_MAX];
 } pgrid_rc_locs;
 
 typedef struct pgrid_programs {
@@ -79,12 +79,15 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
 #define U(field, name) u->field = gl->GetUniformLocation(prog, name)
     U(err, "u_err");
     U(heights, "u_heights");
-    U(mm, "u_pgrid_mm");
+    U(rc_max, "u_rc_max");
     U(thr, "u_rc_thr");
     U(pack, "u_pack");
     U(grid_size, "u_grid_size");
-    U(mm_info, "u_pgrid_mm_info");
-    U(mm_levels, "u_pgrid_mm_levels");
+    U(max_pack, "u_rc_max_pack");
+    U(levels, "u_rc_levels");
+    U(tiles, "u_rc_tiles");
+    U(tile_px, "u_rc_tile_px");
+    U(tiles_w, "u_rc_tiles_w");
     U(eye_g, "u_rc_eye_g");
     U(cell_m, "u_cell_m");
     U(drop, "u_earth_drop_per_m2");
@@ -100,8 +103,8 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
     ft_program_shade_locate(gl, prog, &u->shade);
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
         char name[40];
-        (void)snprintf(name, sizeof name, "u_pgrid_mm_level[%u]", l);
-        u->mm_level[l] = gl->GetUniformLocation(prog, name);
+        (void)snprintf(name, sizeof name, "u_rc_max_level[%u]", l);
+        u->max_level[l] = gl->GetUniformLocation(prog, name);
     }
 }
 
@@ -351,6 +354,85 @@ static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     return st;
 }
 
+/* The ray caster's max atlas (src/lod/pgrid.h 4): the max pyramid's levels
+ * >= 1 in the residual atlas's layout (level 0 is the cell's 4 samples, which
+ * the traversal reads anyway), so each visit of its loop makes one atlas
+ * fetch whatever the level. Its staging is the residual atlas's (planned). */
+static ft_status upload_rc_max(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                               ft_arena *a, ft_error *err)
+{
+    uint32_t origin[FT_PYRAMID_LEVELS_MAX][2];
+    uint32_t w = 1u, h = 1u;
+    const ft_pyramid *p = &t->pyr;
+    ft_pgrid_rc_max_layout(t, origin, &w, &h);
+    memset(m->rc_max_level_px, 0, sizeof m->rc_max_level_px);
+    if (w > (uint32_t)gl->caps.max_texture_size || h > (uint32_t)gl->caps.max_texture_size) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "pgrid: the ray caster's max atlas %ux%u exceeds GL_MAX_TEXTURE_SIZE %d",
+                       w, h, gl->caps.max_texture_size);
+    }
+    const size_t mark = ft_arena_mark(a, FT_POOL_METHOD);
+    float *img = NULL;
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, (size_t)w * h * sizeof(float),
+                                 (void **)&img, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    for (size_t i = 0; i < (size_t)w * h; ++i) {
+        img[i] = t->min_height_m;
+    }
+    for (uint32_t l = 1u; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+        const ft_pyramid_level *lv = &p->minmax[l];
+        for (uint32_t y = 0; y < lv->height; ++y) {
+            memcpy(img + (size_t)(origin[l][1] + y) * w + origin[l][0],
+                   lv->max_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
+        }
+        m->rc_max_level_px[l][0] = (float)origin[l][0];
+        m->rc_max_level_px[l][1] = (float)origin[l][1];
+        m->rc_max_level_px[l][2] = (float)lv->width;
+        m->rc_max_level_px[l][3] = (float)lv->height;
+    }
+    m->rc_max_level_px[0][2] = (float)p->minmax[0].width;
+    m->rc_max_level_px[0][3] = (float)p->minmax[0].height;
+    st = ft_gpu_upload_scalar(gl, &m->mm_fmt, img, w, h, GL_TEXTURE0 + FT_TEX_UNIT_RC_MAX, a,
+                              &m->rc_max_tex, &m->gpu_bytes, err);
+    gl->ActiveTexture(GL_TEXTURE0);
+    ft_arena_reset(a, FT_POOL_METHOD, mark);
+    return st;
+}
+
+/* The tile pass's target (one R8 texel a tile: its largest dilated code) and
+ * program. */
+static ft_status init_tiles(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
+                            ft_error *err)
+{
+    m->tile_px = s->pgrid_raycast_tile_px;
+    m->tiles_w = (m->w_px + m->tile_px - 1u) / m->tile_px;
+    m->tiles_h = (m->h_px + m->tile_px - 1u) / m->tile_px;
+    const ft_texture_desc d = {GL_TEXTURE0 + FT_TEX_UNIT_RC_TILES, m->tiles_w, m->tiles_h,
+                               GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1u};
+    ft_gpu_texture_create(gl, &d, NULL, &m->tile_tex, &m->gpu_bytes);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->GenFramebuffers(1, &m->tile_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->tile_fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m->tile_tex, 0);
+    const GLenum fst = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (fst != GL_FRAMEBUFFER_COMPLETE) {
+        return ft_fail(err, FT_ERR_GPU, "pgrid: ray-cast tile target %ux%u incomplete: 0x%04x",
+                       m->tiles_w, m->tiles_h, (unsigned)fst);
+    }
+    ft_status st = ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_rc_tiles.frag.glsl", NULL,
+                                   "a_uv", &m->tile_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->ut_err = gl->GetUniformLocation(m->tile_prog, "u_err");
+    m->ut_size = gl->GetUniformLocation(m->tile_prog, "u_rc_size");
+    m->ut_tile_px = gl->GetUniformLocation(m->tile_prog, "u_rc_tile_px");
+    return FT_OK;
+}
+
 static ft_status make_error_target(ft_pgrid_method *m, const ft_gl *gl, ft_error *err)
 {
     const GLsizei w = (GLsizei)m->w_px, h = (GLsizei)m->h_px;
@@ -467,6 +549,13 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
             return st;
         }
         locate_rc(gl, m->rc_prog, rc_locs(m));
+        st = upload_rc_max(m, gl, t, a, err);
+        if (st == FT_OK) {
+            st = init_tiles(m, gl, s, err);
+        }
+        if (st != FT_OK) {
+            return st;
+        }
         gl->GenBuffers(1, &m->quad_vbo);
         gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof corners, corners, GL_STATIC_DRAW);
@@ -700,31 +789,54 @@ static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
     remember_view(m, cam);
 }
 
+/* The tile pass (src/lod/pgrid.h 4): each tile's largest code over the tile
+ * and a one-pixel border, from the error buffer, into tile_tex. */
+static void mark_tiles(ft_pgrid_method *m, const ft_gl *gl)
+{
+    GLint fb = 0, vp[4];
+    gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
+    gl->GetIntegerv(GL_VIEWPORT, vp);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->tile_fbo);
+    gl->Viewport(0, 0, (GLsizei)m->tiles_w, (GLsizei)m->tiles_h);
+    gl->UseProgram(m->tile_prog);
+    gl->Uniform1i(m->ut_err, 3);
+    gl->Uniform2f(m->ut_size, (float)m->w_px, (float)m->h_px);
+    gl->Uniform1f(m->ut_tile_px, (float)m->tile_px);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4); /* no depth attachment: every tile drawn */
+    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    gl->Viewport(vp[0], vp[1], vp[2], vp[3]);
+}
+
 static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p,
                      const ft_terrain *t, const ft_camera *cam)
 {
     const GLuint prog = m->rc_prog;
     const int pos_pass = (p->shade.ramp_h < 0);
-    gl->UseProgram(prog);
-    const pgrid_rc_locs *u = rc_locs(m);
     gl->ActiveTexture(GL_TEXTURE3);
     gl->BindTexture(GL_TEXTURE_2D, m->err_tex);
-    gl->ActiveTexture(GL_TEXTURE2);
-    gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
     gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    mark_tiles(m, gl);
+    gl->UseProgram(prog);
+    const pgrid_rc_locs *u = rc_locs(m);
     gl->Uniform1i(u->err, 3);
     gl->Uniform1i(u->heights, 0);
-    gl->Uniform1i(u->mm, 2);
+    gl->Uniform1i(u->rc_max, FT_TEX_UNIT_RC_MAX);
+    gl->Uniform1i(u->tiles, FT_TEX_UNIT_RC_TILES);
+    gl->Uniform1f(u->tile_px, (float)m->tile_px);
+    gl->Uniform1f(u->tiles_w, (float)m->tiles_w);
     gl->Uniform1f(u->thr, (float)m->thr);
     gl->Uniform2f(u->pack, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
     gl->Uniform2f(u->grid_size, (float)t->width, (float)t->height);
-    gl->Uniform4f(u->mm_info, (float)m->mm_half_w, (float)m->mm_h, m->mm_fmt.pack_min,
+    gl->Uniform2f(u->max_pack, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
-    gl->Uniform1f(u->mm_levels, (float)m->mm_levels);
+    gl->Uniform1f(u->levels, (float)m->mm_levels);
     for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        gl->Uniform4f(u->mm_level[l], m->mm_level_px[l][0], m->mm_level_px[l][1],
-                      m->mm_level_px[l][2], m->mm_level_px[l][3]);
+        gl->Uniform4f(u->max_level[l], m->rc_max_level_px[l][0], m->rc_max_level_px[l][1],
+                      m->rc_max_level_px[l][2], m->rc_max_level_px[l][3]);
     }
     gl->Uniform3f(u->eye_g, (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
                   (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
@@ -749,10 +861,7 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     }
     gl->Uniform4f(u->sky, sky[0], sky[1], sky[2], 1.0f);
     gl->DepthFunc(GL_ALWAYS);
-    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
-    gl->EnableVertexAttribArray(0);
-    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)(m->tiles_w * m->tiles_h));
     gl->DepthFunc(GL_LESS);
 }
 
@@ -922,6 +1031,11 @@ static void pgrid_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     m->vtx_fbo = m->quad_fbo = 0u;
     m->vtx_prog_built = 0;
     m->tight = 0;
+    if (m->rc_max_tex) gl->DeleteTextures(1, &m->rc_max_tex);
+    if (m->tile_tex) gl->DeleteTextures(1, &m->tile_tex);
+    if (m->tile_fbo) gl->DeleteFramebuffers(1, &m->tile_fbo);
+    if (m->tile_prog) gl->DeleteProgram(m->tile_prog);
+    m->rc_max_tex = m->tile_tex = m->tile_fbo = m->tile_prog = 0u;
     m->mm_tex = m->err_tex = m->err_depth = m->err_fbo = m->rc_prog = m->quad_vbo = 0u;
     m->err_prog_built = m->env_prog_built = 0;
     m->mrt = 0;

@@ -191,6 +191,12 @@ void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32
     atlas_layout(t, FT_PGRID_ATLAS_L0, origin_px, half_w, height_px);
 }
 
+void ft_pgrid_rc_max_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
+                            uint32_t *height_px)
+{
+    atlas_layout(t, 1u, origin_px, width_px, height_px);
+}
+
 /* ---- 6. the tight bound ---------------------------------------------------- */
 
 void ft_pgrid_residual_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,

@@ -75,6 +75,16 @@
  *    (the mesh edge there may be off by up to rho px); sky next to terrain
  *    under gamma is within gamma (<= 1 px for gamma <= 1). code_thr =
  *    code(gamma_px) unless the budget says otherwise (5).
+ *    The ray caster runs per screen tile of raycast_tile_px^2: a tile pass
+ *    writes each tile's largest code over the tile and a one-pixel border
+ *    around it (every code a pixel of the tile dilates from), and the ray
+ *    caster draws only the tiles whose largest code reaches code_thr, so a
+ *    tile it leaves out holds no pixel of the set. The reason is the
+ *    rasteriser: a SIMD shader core such as llvmpipe's runs the whole
+ *    fragment shader, every branch and one visit of every loop, for a
+ *    block of pixels even when all of them are discarded at its first line
+ *    (measured: a full-screen pass that discarded every pixel took 13-20
+ *    ms a frame at 640x480).
  *
  * 5. Budget: the histogram of dilated codes of an error buffer gives the
  *    count for every threshold. The smallest threshold >= code(gamma) whose
@@ -153,6 +163,12 @@ void ft_pgrid_histogram(const uint8_t *rgba, uint32_t w, uint32_t h, uint8_t *wo
  * there are no such levels. */
 #define FT_PGRID_ATLAS_L0 2u
 void ft_pgrid_minmax_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *half_w,
+                            uint32_t *height_px);
+/* The ray caster's max atlas (4): the max pyramid's levels 1.. (level 0 is
+ * the cell's 4 samples, which its traversal fetches on every visit anyway),
+ * in the residual atlas's layout (6): level 1 at (0, 0), levels 2.. in a
+ * column right of it; 1 x 1 when there are none. */
+void ft_pgrid_rc_max_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32_t *width_px,
                             uint32_t *height_px);
 
 /* 6. The tight bound (GLES 3 with ray casting): what the error buffer needs

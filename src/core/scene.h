@@ -266,7 +266,7 @@ typedef struct ft_scene {
       "error-bounded projective grid: vertices from near to far")                                \
     X(pgrid, distribution, ENUM, pgrid_view_distribution, 0, 0, "uniform|view|", "view", "",     \
       "grid rows evenly on the image plane, or evenly in asinh(ground distance / height)")       \
-    X(pgrid, error_bound, ENUM, pgrid_residual_bound, 0, 0, "relief|residual|", "relief", "",    \
+    X(pgrid, error_bound, ENUM, pgrid_residual_bound, 0, 0, "relief|residual|", "residual", "",  \
       "which bound marks the pixels to ray cast (src/lod/pgrid.h)")                              \
     X(pgrid, ray_casting, FLAG, pgrid_ray_casting, 0, 1, NULL, "1", "",                          \
       "ray cast the pixels whose error bound exceeds gamma_px (GLES 3 only)")                    \

@@ -42,7 +42,6 @@ uniform sampler2D u_heights;
 uniform vec2 u_pack;
 uniform vec2 u_grid_size;
 uniform sampler2D u_rc_max;       /* max pyramid levels >= 1 (src/lod/pgrid.h 4) */
-uniform vec2 u_rc_max_pack;       /* its scalar format (as u_pack) */
 uniform vec4 u_rc_max_level[FT_LEVELS]; /* origin xy, size zw per level (level 0: size) */
 uniform float u_rc_levels;
 uniform vec3 u_rc_eye_g;          /* eye in grid coordinates (x, y cells, z m) */
@@ -84,7 +83,7 @@ float atlas_max(float level, vec2 ij)
 {
     vec4 lv = u_rc_max_level[int(max(level, 1.0))];
     vec2 o = lv.xy + clamp(ij, vec2(0.0), lv.zw - 1.0);
-    return ft_decode(texelFetch(u_rc_max, ivec2(o), 0), u_rc_max_pack);
+    return ft_decode(texelFetch(u_rc_max, ivec2(o), 0), u_pack); /* the same format */
 }
 
 /* first t in [ta, tb] where o + t d meets cell (i, j)'s bilinear patch

@@ -51,7 +51,7 @@ _Static_assert(FT_PGRID_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgrid's uniforms fit
  * the error pass's program, right after it: m->err_prog points at the first
  * member of this struct. */
 typedef struct pgrid_rc_locs {
-    GLint err, heights, rc_max, thr, pack, grid_size, max_pack, levels, eye_g, cell_m, drop;
+    GLint err, heights, rc_max, thr, pack, grid_size, levels, eye_g, cell_m, drop;
     GLint fwd, right, up, tan, size, view_proj, mode, sky, tiles, tile_px, tiles_w;
     ft_shade_locs shade;
     GLint max_level[FT_PYRAMID_LEVELS_MAX];
@@ -83,7 +83,6 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
     U(thr, "u_rc_thr");
     U(pack, "u_pack");
     U(grid_size, "u_grid_size");
-    U(max_pack, "u_rc_max_pack");
     U(levels, "u_rc_levels");
     U(tiles, "u_rc_tiles");
     U(tile_px, "u_rc_tile_px");
@@ -304,6 +303,17 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
                        err);
 }
 
+/* Copies a w x h level into a row-major atlas atlas_w texels wide, its
+ * corner at (x0, y0). */
+static void atlas_put(float *atlas, uint32_t atlas_w, uint32_t x0, uint32_t y0, const float *src,
+                      uint32_t w, uint32_t h)
+{
+    for (uint32_t y = 0; y < h; ++y) {
+        memcpy(atlas + (size_t)(y0 + y) * atlas_w + x0, src + (size_t)y * w,
+               (size_t)w * sizeof(float));
+    }
+}
+
 static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_scene *s,
                                const ft_terrain *t, ft_arena *a, ft_error *err)
 {
@@ -333,11 +343,9 @@ static ft_status upload_minmax(ft_pgrid_method *m, const ft_gl *gl, const ft_sce
     }
     for (uint32_t l = FT_PGRID_ATLAS_L0; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
         const ft_pyramid_level *lv = &p->minmax[l];
-        for (uint32_t y = 0; y < lv->height; ++y) {
-            float *row = img + (size_t)(origin[l][1] + y) * hw * 2u + origin[l][0];
-            memcpy(row, lv->min_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
-            memcpy(row + hw, lv->max_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
-        }
+        atlas_put(img, hw * 2u, origin[l][0], origin[l][1], lv->min_m, lv->width, lv->height);
+        atlas_put(img, hw * 2u, origin[l][0] + hw, origin[l][1], lv->max_m, lv->width,
+                  lv->height);
         m->mm_level_px[l][0] = (float)origin[l][0];
         m->mm_level_px[l][1] = (float)origin[l][1];
         m->mm_level_px[l][2] = (float)lv->width;
@@ -383,10 +391,7 @@ static ft_status upload_rc_max(ft_pgrid_method *m, const ft_gl *gl, const ft_ter
     }
     for (uint32_t l = 1u; l < p->minmax_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
         const ft_pyramid_level *lv = &p->minmax[l];
-        for (uint32_t y = 0; y < lv->height; ++y) {
-            memcpy(img + (size_t)(origin[l][1] + y) * w + origin[l][0],
-                   lv->max_m + (size_t)y * lv->width, (size_t)lv->width * sizeof(float));
-        }
+        atlas_put(img, w, origin[l][0], origin[l][1], lv->max_m, lv->width, lv->height);
         m->rc_max_level_px[l][0] = (float)origin[l][0];
         m->rc_max_level_px[l][1] = (float)origin[l][1];
         m->rc_max_level_px[l][2] = (float)lv->width;
@@ -831,8 +836,6 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     gl->Uniform2f(u->pack, m->mm_fmt.pack_min,
                   m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
     gl->Uniform2f(u->grid_size, (float)t->width, (float)t->height);
-    gl->Uniform2f(u->max_pack, m->mm_fmt.pack_min,
-                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
     gl->Uniform1f(u->levels, (float)m->mm_levels);
     for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
         gl->Uniform4f(u->max_level[l], m->rc_max_level_px[l][0], m->rc_max_level_px[l][1],

@@ -1,12 +1,14 @@
 /* bintree.vert.glsl - one triangular tile of the bintree, drawn from the one
  * template every tile shares (the unit right triangle bisected 2k times).
  *
- * a_uv are the template vertex's leg coordinates (a, b), multiples of 2^-k:
+ * a_uv.xy are the template vertex's leg coordinates (a, b), multiples of 2^-k:
  *   grid = apex + a * (left - apex) + b * (right - apex)
  * an exact integer grid coordinate for every tile the selection emits, so
  * every tile that holds a grid vertex computes the same coordinate. The CPU
- * sends only the three corner grid coordinates per tile (instanced on GLES 3,
- * as uniforms per draw on GLES 2).
+ * sends two corners a tile, u_bt_tiles[slot] = (apex, left) with slot =
+ * a_uv.z, a batch of tiles a draw (src/lod/method_bintree.c); every tile is a
+ * right isosceles triangle with the roots' counter-clockwise turn, so
+ * right - apex is left - apex turned a quarter counter-clockwise (exact).
  *
  * Geomorphing is a function of the grid vertex alone (src/lod/bintree.c,
  * ft_bt_diamond_q and ft_bt_morph_weight, is the same rule on the CPU): the
@@ -54,6 +56,9 @@ precision highp float;
 #ifndef FT_BT_VTX
 #define FT_BT_VTX 0 /* bintree.vertex_table (GLES 3) */
 #endif
+#ifndef FT_BT_BATCH
+#define FT_BT_BATCH 64 /* tiles a draw */
+#endif
 
 #include "curvature.glsl"
 
@@ -80,16 +85,8 @@ uniform vec2 u_bt_twist_off[9]; /* atlas origin of each twist level */
 uniform highp sampler2D u_bt_vtx; /* the one-fetch vertex table (src/lod/bintree.h) */
 #endif
 
-FT_IN_VS vec2 a_uv;
-#if FT_ES3
-in vec4 i_tile0; /* apex.xy, left.xy (fine units) */
-in vec2 i_tile1; /* right.xy */
-#else
-uniform vec4 u_tile0;
-uniform vec2 u_tile1;
-#define i_tile0 u_tile0
-#define i_tile1 u_tile1
-#endif
+FT_IN_VS vec3 a_uv; /* (a, b, slot) */
+uniform vec4 u_bt_tiles[FT_BT_BATCH]; /* per slot: apex.xy, left.xy (fine units) */
 
 FT_OUT_VS vec3 v_pos_rel_eye_m;
 FT_OUT_VS vec3 v_normal;
@@ -411,8 +408,10 @@ void ft_general_vertex(vec2 g_raw, vec2 g, vec2 gs, bool on_sample)
 
 void main()
 {
-    vec2 apex = i_tile0.xy;
-    vec2 g_raw = apex + a_uv.x * (i_tile0.zw - apex) + a_uv.y * (i_tile1 - apex);
+    vec4 tile = u_bt_tiles[int(a_uv.z)];
+    vec2 apex = tile.xy;
+    vec2 leg = tile.zw - apex;
+    vec2 g_raw = apex + a_uv.x * leg + a_uv.y * vec2(-leg.y, leg.x);
     float f = u_bt_sub.x;
     vec2 g = min(g_raw, (u_grid_size - 1.0) * f); /* padding collapses onto the grid edge */
     vec2 gs = g / f;                              /* grid coordinates */

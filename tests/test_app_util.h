@@ -97,13 +97,43 @@ static inline int ft_test_have_data(const char *path)
     return 1;
 }
 
+/* The bintree's template expanded to triangle lists (flat: tmpl_verts x
+ * (a, b)) in the method's batch layout: batch_tiles copies, each vertex
+ * (a, b, slot), as the capture below draws it (GLES 3 transform feedback
+ * takes DrawArrays only). The caller deletes the buffer. */
+static inline GLuint ft_test_bintree_flat_vbo(const ft_app *app, const float *flat,
+                                              uint32_t tmpl_verts)
+{
+    const ft_gl *gl = app->renderer.gl;
+    const uint32_t batch = app->renderer.method.u.bintree.batch_tiles;
+    REQUIRE(batch > 0u);
+    const size_t n = (size_t)batch * tmpl_verts;
+    float *v = (float *)malloc(n * 3u * sizeof(float));
+    REQUIRE(v != NULL);
+    for (uint32_t s = 0; s < batch; ++s) {
+        for (uint32_t i = 0; i < tmpl_verts; ++i) {
+            float *o = v + 3u * ((size_t)s * tmpl_verts + i);
+            o[0] = flat[2u * i];
+            o[1] = flat[2u * i + 1u];
+            o[2] = (float)s;
+        }
+    }
+    GLuint vbo = 0;
+    gl->GenBuffers(1, &vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * 3u * sizeof(float)), v, GL_STATIC_DRAW);
+    free(v);
+    return vbo;
+}
+
 /* Transform feedback of the bintree's last frame: its selected tiles drawn
- * again as triangle lists (tmpl_vbo: the template expanded to tmpl_verts
- * vertices) into tfb (bytes long, floats_per_vertex floats a vertex, in tile
- * order), each tile through the program the frame drew it with: the coarse
- * tiles through the pass's coarse program when it has one, the rest through
- * the colour program (both still hold the frame's uniforms). Returns the
- * primitives the GPU reports written, or the expected count without queries. */
+ * again as triangle lists (tmpl_vbo from ft_test_bintree_flat_vbo) into tfb
+ * (bytes long, floats_per_vertex floats a vertex, in tile order), in the
+ * method's batches, each tile through the program the frame drew it with:
+ * the coarse tiles through the pass's coarse program when it has one, the
+ * rest through the colour program (both still hold the frame's uniforms).
+ * Returns the primitives the GPU reports written, or the expected count
+ * without queries. */
 static inline uint64_t ft_test_bintree_capture(const ft_app *app, GLuint tfb, size_t bytes,
                                                GLuint tmpl_vbo, uint32_t tmpl_verts,
                                                uint32_t floats_per_vertex)
@@ -118,7 +148,6 @@ static inline uint64_t ft_test_bintree_capture(const ft_app *app, GLuint tfb, si
     } groups[2] = {{p->coarse != NULL ? p->coarse->program : 0u, 0u, n_coarse},
                    {p->program, n_coarse, bm->sel.tiles - n_coarse}};
     const size_t vertex_bytes = (size_t)floats_per_vertex * sizeof(float);
-    const GLsizei stride = (GLsizei)(6u * sizeof(float)); /* the method's instance layout */
     GLuint query = 0;
     if (gl->GenQueries != NULL) {
         gl->GenQueries(1, &query);
@@ -127,35 +156,29 @@ static inline uint64_t ft_test_bintree_capture(const ft_app *app, GLuint tfb, si
     gl->Enable(GL_RASTERIZER_DISCARD);
     gl->BindBuffer(GL_ARRAY_BUFFER, tmpl_vbo);
     gl->EnableVertexAttribArray(FT_ATTRIB_UV);
-    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    gl->BindBuffer(GL_ARRAY_BUFFER, bm->inst_vbo);
-    gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
-    gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 3, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     for (int g = 0; g < 2; ++g) {
         if (groups[g].count == 0u) {
             continue;
         }
-        const size_t at = (size_t)groups[g].first * (size_t)stride; /* no base instance */
         const size_t out = (size_t)groups[g].first * tmpl_verts * vertex_bytes;
         REQUIRE(out < bytes);
         gl->UseProgram(groups[g].program);
-        gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)at);
-        gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
-                                (const void *)(at + 4u * sizeof(float)));
+        const GLint tiles_u = gl->GetUniformLocation(groups[g].program, "u_bt_tiles");
+        REQUIRE(tiles_u >= 0);
         gl->BindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, tfb, (GLintptr)out,
                             (GLsizeiptr)(bytes - out));
         gl->BeginTransformFeedback(GL_TRIANGLES);
-        gl->DrawArraysInstanced(GL_TRIANGLES, 0, (GLsizei)tmpl_verts, (GLsizei)groups[g].count);
+        for (uint32_t done = 0; done < groups[g].count; done += bm->batch_tiles) {
+            const uint32_t left = groups[g].count - done;
+            const uint32_t n = left < bm->batch_tiles ? left : bm->batch_tiles;
+            gl->Uniform4fv(tiles_u, (GLsizei)n, bm->inst + 4u * (size_t)(groups[g].first + done));
+            gl->DrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * tmpl_verts));
+        }
         gl->EndTransformFeedback();
     }
     gl->UseProgram(p->program);
     gl->Disable(GL_RASTERIZER_DISCARD);
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
-    gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
-    gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
-    gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
     gl->BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     uint64_t prims = (uint64_t)bm->sel.tiles * tmpl_verts / 3u;
     if (query != 0u) {

@@ -307,6 +307,20 @@ static int check_partition(const ft_bintree *bt, const ft_bt_select_stats *ss)
     return bad;
 }
 
+/* The method sends a tile as (apex, left) and the shader takes right = apex
+ * + (left - apex) turned a quarter counter-clockwise: every tile must be a
+ * right isosceles triangle with that turn. Returns the tiles that are not. */
+static int check_right_from_left(const ft_bintree *bt, const ft_bt_select_stats *ss)
+{
+    int bad = 0;
+    for (uint32_t i = 0; i < ss->tiles; ++i) {
+        const ft_bt_tile *t = &bt->tiles[i];
+        const int32_t lx = t->left[0] - t->apex[0], ly = t->left[1] - t->apex[1];
+        bad += (t->right[0] != t->apex[0] - ly || t->right[1] != t->apex[1] + lx);
+    }
+    return bad;
+}
+
 /* The vertex table (ft_bt_sample_texel) against the rules it packs: the
  * sample, the morph's coarse height in float, the selection's error of the
  * inserting diamond, and the normal within its 12-bit quantisation. */
@@ -460,6 +474,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         ft_bintree_select(&bt, &v, tau, &ss);
         CHECK(ss.tiles <= tiles_max);
         CHECK(check_partition(&bt, &ss) == 0);
+        CHECK(check_right_from_left(&bt, &ss) == 0);
         CHECK(!ss.budget_hit);
         CHECK(ss.tau_used_px == tau);
         CHECK(ss.tau_achieved_px == fmax(tau, ss.leaf_px_max));
@@ -625,6 +640,7 @@ static void run_case(uint32_t w, uint32_t h, uint32_t k, uint32_t sub, uint32_t 
         ft_bt_view_from_camera(&cam, &t, 1, morph, &v);
         ft_bintree_select(&bt, &v, tau, &ss);
         CHECK(check_partition(&bt, &ss) == 0);
+        CHECK(check_right_from_left(&bt, &ss) == 0);
         bad_tjunctions += count_t_junctions(&bt, ss.tiles, pts);
         for (uint32_t i = 0; i < ss.tiles; ++i) {
             if (bsearch(&bt.tiles[i], nocull, n_nocull, sizeof *nocull, tile_key_cmp) == NULL) {

@@ -319,11 +319,7 @@ static void test_watertight(const char *dem)
             flat[2u * i + 1u] = uv[2u * idx[i] + 1u];
         }
         const ft_gl *gl = g_app.renderer.gl;
-        GLuint vbo = 0;
-        gl->GenBuffers(1, &vbo);
-        gl->BindBuffer(GL_ARRAY_BUFFER, vbo);
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)nt * 6u * sizeof(float)), flat,
-                       GL_STATIC_DRAW);
+        GLuint vbo = ft_test_bintree_flat_vbo(&g_app, flat, nt * 3u);
         const ft_pose views[] = {
             ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
             ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
@@ -402,12 +398,18 @@ static void test_cracks(const char *backend, const char *dem)
                 const uint32_t n = ft_test_clear_pixels(&g_app);
                 tiles_sum += fs.tiles;
                 CHECK(fs.tiles > 0u);
-                /* GLES 3: one instanced draw, two with sub-sample levels (coarse
-                 * tiles through their own program) when both kinds are selected */
-                const ft_bt_select_stats *sel = &g_app.renderer.method.u.bintree.sel;
-                const uint32_t kinds = (sel->tiles_coarse > 0u && sel->tiles > sel->tiles_coarse &&
-                                        g_app.renderer.prog_color.coarse != NULL) ? 2u : 1u;
-                CHECK(es2 ? fs.draw_calls == fs.tiles : fs.draw_calls == kinds);
+                /* a draw per batch of batch_tiles, the coarse tiles (every
+                 * vertex on a sample) in batches of their own when they have
+                 * their own program (GLES 3 with sub-sample levels) */
+                const ft_bintree_method *bm = &g_app.renderer.method.u.bintree;
+                const ft_bt_select_stats *sel = &bm->sel;
+                const uint32_t b = bm->batch_tiles;
+                const uint32_t coarse =
+                    (g_app.renderer.prog_color.coarse != NULL) ? sel->tiles_coarse : 0u;
+                const uint32_t draws = (coarse + b - 1u) / b + (sel->tiles - coarse + b - 1u) / b;
+                CHECK(b == (es2 ? 64u : 192u) || b == 65536u / ft_bt_template_vertices(ks[ki]));
+                CHECK(fs.draw_calls == draws);
+                CHECK(fs.draw_calls < fs.tiles);
                 if (n > 0u) {
                     fprintf(stderr, "k=%u tau=%.1f view %u: %u clear-colour pixels\n", ks[ki],
                             taus[ti], v, n);

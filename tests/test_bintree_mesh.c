@@ -377,10 +377,7 @@ static void run_config(const char *dem, const config *cf)
         flat[2u * i + 1u] = tp.uv[2u * tp.idx[i] + 1u];
     }
     const ft_gl *gl = g_app.renderer.gl;
-    gl->GenBuffers(1, &tp.flat_vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, tp.flat_vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)tp.nt * 6u * sizeof(float)), flat,
-                   GL_STATIC_DRAW);
+    tp.flat_vbo = ft_test_bintree_flat_vbo(&g_app, flat, tp.nt * 3u);
     bench_oracle oracle;
     REQUIRE(bench_oracle_init(&oracle, &g_app.renderer, &err) == FT_OK);
 

@@ -99,8 +99,8 @@ static void restore_renderer_vao(const bench_oracle *o, const ft_renderer *r)
         gl->BindVertexArray(r->vao);
     } else {
         /* no VAO: leave slots 1-2 as the method expects them (off) */
-        gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
-        gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
+        gl->DisableVertexAttribArray(FT_ATTRIB_EXTRA1);
+        gl->DisableVertexAttribArray(FT_ATTRIB_EXTRA2);
     }
 }
 

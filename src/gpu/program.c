@@ -39,7 +39,8 @@ static ft_status compile(const ft_gl *gl, GLenum stage, const char *body_name,
 }
 
 /* Compiles and links vert (after the lines vert_defines, may be NULL) + frag
- * with attribute slots 0, 1, 2 bound to attribs[0..2]. */
+ * with attribute slots 0, 1, 2 bound to attribs[0..2] (slot 0 always, 1 and 2
+ * when named). */
 static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
                                       const char *vert_defines, const char *frag_name,
                                       const char *frag_defines, const char *const attribs[3],
@@ -59,10 +60,14 @@ static ft_status link_program_attribs(const ft_gl *gl, const char *vert_name,
     gl->AttachShader(prog, vs);
     gl->AttachShader(prog, fs);
     /* Fixed attribute slots for every program: 0 the template vertex, 1-2
-     * per-tile instance data (bintree on GLES 3). Unused names are ignored. */
-    gl->BindAttribLocation(prog, 0, attribs[0]);
-    gl->BindAttribLocation(prog, FT_ATTRIB_TILE0, attribs[1]);
-    gl->BindAttribLocation(prog, FT_ATTRIB_TILE1, attribs[2]);
+     * a program's own (the bench's oracle). Unused names are ignored. */
+    gl->BindAttribLocation(prog, FT_ATTRIB_UV, attribs[0]);
+    if (attribs[1] != NULL) {
+        gl->BindAttribLocation(prog, FT_ATTRIB_EXTRA1, attribs[1]);
+    }
+    if (attribs[2] != NULL) {
+        gl->BindAttribLocation(prog, FT_ATTRIB_EXTRA2, attribs[2]);
+    }
     gl->LinkProgram(prog);
     gl->DeleteShader(vs); /* flagged; freed with the program */
     gl->DeleteShader(fs);
@@ -85,7 +90,7 @@ ft_status ft_program_link(const ft_gl *gl, const char *vert_name, const char *fr
                           const char *frag_defines, const char *attr0, GLuint *out,
                           ft_error *err)
 {
-    const char *const attribs[3] = {attr0, "i_tile0", "i_tile1"};
+    const char *const attribs[3] = {attr0, NULL, NULL};
     return link_program_attribs(gl, vert_name, NULL, frag_name, frag_defines, attribs, out,
                                 err);
 }
@@ -157,7 +162,7 @@ ft_status ft_terrain_program_build(const ft_gl *gl, const ft_terrain *t, const f
                                    const ft_terrain_program_desc *d, ft_terrain_program *p,
                                    ft_error *err)
 {
-    static const char *const terrain_attribs[3] = {"a_uv", "i_tile0", "i_tile1"};
+    static const char *const terrain_attribs[3] = {"a_uv", NULL, NULL};
     if (list_slots(d->method_uniforms) > FT_METHOD_UNIFORMS_MAX) {
         return ft_fail(err, FT_ERR_OVERSIZED, "%s: %u method uniform locations (at most %u)",
                        d->vert_name, list_slots(d->method_uniforms), FT_METHOD_UNIFORMS_MAX);

@@ -21,10 +21,10 @@
 #include "terrain/terrain.h"
 
 /* Attribute slots of every program: 0 the template vertex (name per
- * program), 1 and 2 per-tile instance data (bintree on GLES 3). */
+ * program); 1 and 2 only for a program that names them (the bench's oracle). */
 #define FT_ATTRIB_UV 0u
-#define FT_ATTRIB_TILE0 1u
-#define FT_ATTRIB_TILE1 2u
+#define FT_ATTRIB_EXTRA1 1u
+#define FT_ATTRIB_EXTRA2 2u
 
 /* The unmeasured-cell texture's unit: above every unit a method uses (0-7),
  * so it stays bound from init on. */
@@ -107,7 +107,7 @@ ft_status ft_program_link(const ft_gl *gl, const char *vert_name, const char *fr
 typedef struct ft_terrain_program_desc {
     const char *vert_name, *vert_defines; /* embedded name; lines before its body or NULL */
     const char *frag_name, *frag_defines;
-    const char *const *attribs; /* names for slots 0, 1, 2; NULL: a_uv, i_tile0, i_tile1 */
+    const char *const *attribs; /* names for slots 0, 1, 2; NULL: a_uv only */
     const ft_uniform_list *method_uniforms; /* NULL: none */
 } ft_terrain_program_desc;
 

@@ -56,14 +56,17 @@ typedef struct ft_brute {
 
 typedef struct ft_bintree_method {
     ft_bintree bt;
-    GLuint vbo, ibo, inst_vbo;
+    /* vbo: batch_tiles copies of the template, each vertex (a, b, slot);
+     * ibo: their triangles (16-bit) */
+    GLuint vbo, ibo;
     GLuint dia_tex;                /* geomorph: per lattice diamond (err, z0, z1, 0), unit 1 */
     GLuint zb_tex;                 /* geomorph below the samples: height blocks, unit 4 */
     GLuint twist_tex;              /* sub-sample levels: the twist atlas (unit 2) */
     GLuint vtx_tex;                /* GLES 3: the one-fetch vertex table (unit 3, RGBA32F) */
     ft_scalar_format twist_fmt;
-    uint32_t index_count, triangles_per_tile;
-    float *inst; /* tiles_max * 6 corner coordinates (FT_POOL_METHOD) */
+    uint32_t index_count, triangles_per_tile; /* of one tile */
+    uint32_t batch_tiles; /* tiles a draw: the shader's u_bt_tiles, the slots in vbo */
+    float *inst; /* tiles_max * (apex, left) grid coordinates (FT_POOL_METHOD) */
     double tau_px;    /* bintree.tau_px */
     double lod_scale; /* degradation: the selection targets tau_px * lod_scale */
     int morph, es3;
@@ -73,7 +76,6 @@ typedef struct ft_bintree_method {
     uint64_t gpu_bytes;
     /* the last selection and the view it was made for */
     ft_view_key sel_view;
-    int uploaded;
     ft_bt_select_stats sel;
 } ft_bintree_method;
 

@@ -1,13 +1,16 @@
 /* method_bintree.c - draws the tiles the bintree selection (src/lod/bintree.h)
  * picked, every tile with the same template (src/lod/bintree_template.h).
  *
- * GLES 3: one instanced draw; the instance buffer holds the three corner grid
- * coordinates per tile (6 floats, exact integers), rewritten each frame with
- * glBufferSubData from a staging array in the method pool. GLES 2 (no
- * instancing): one draw per tile with the corners as uniforms. Heights and
- * the diamond errors (for geomorphing) are vertex textures; on GLES 3 a
- * vertex on a sample reads all it needs from one texel of the vertex table
- * (bintree.h, ft_bt_sample_texel).
+ * Tiles go to the GPU in batches: the vertex buffer holds batch_tiles copies
+ * of the template, each vertex (a, b, slot), and a draw sets the uniform
+ * array u_bt_tiles[slot] to its tiles' (apex, left) grid coordinates (exact
+ * integers; the right corner follows, shaders/bintree.vert.glsl) and draws
+ * the first count x template indices. The same on GLES 2 and 3. The reason
+ * is measured: llvmpipe runs an instanced draw one instance at a time through
+ * its vertex pipeline, so a tile drawn as an instance of 15 or 45 vertices
+ * costs a pipeline run of its own. Heights and the diamond errors (for
+ * geomorphing) are vertex textures; on GLES 3 a vertex on a sample reads all
+ * it needs from one texel of the vertex table (bintree.h, ft_bt_sample_texel).
  *
  * Grids that are not (2^n+1)^2 are padded by clamping (see bintree.h): the
  * vertex shader clamps grid coordinates into the real grid, so the padded
@@ -22,17 +25,27 @@
 #include "lod/bintree_template.h"
 #include "lod/method.h"
 
-#define FT_BT_FLOATS_PER_TILE 6u
+/* a tile as the shader gets it: apex.xy, left.xy (the right corner is the
+ * apex plus left - apex turned a quarter counter-clockwise) */
+#define FT_BT_FLOATS_PER_TILE 4u
+/* Tiles a draw: the length of the shader's u_bt_tiles (one vec4 a tile). The
+ * vertex shader's other uniforms take about 40 vectors, and the spec's least
+ * GL_MAX_VERTEX_UNIFORM_VECTORS is 128 on GLES 2 and 256 on GLES 3, so these
+ * link on every conforming device (init checks the device's value anyway). */
+#define FT_BT_BATCH_TILES_ES2 64u
+#define FT_BT_BATCH_TILES_ES3 192u
+#define FT_BT_UNIFORM_VECTORS_OTHER 48u
+#define FT_BT_STR_(x) #x
+#define FT_BT_STR(x) FT_BT_STR_(x)
 /* The one-fetch vertex table goes up in strips of this many rows through
  * FT_POOL_GPU_STAGING (width * rows * 16 bytes), not in one copy of the grid. */
 #define FT_BT_VTX_STRIP_ROWS 8u
 
 /* The bintree's uniforms (shaders/bintree.vert.glsl): tile corners per draw
- * on GLES 2, the diamond, height-block and twist textures, the morph, the
+ * (one array), the diamond, height-block and twist textures, the morph, the
  * view axis and the vertical gain's caps (core/view_scale.h). */
 #define FT_BT_UNIFORMS(X)                                      \
-    X(FT_BT_U_TILE0, "u_tile0", 1u)                           \
-    X(FT_BT_U_TILE1, "u_tile1", 1u)                           \
+    X(FT_BT_U_TILES, "u_bt_tiles", 1u)                        \
     X(FT_BT_U_DIA, "u_bt_dia", 1u)                            \
     X(FT_BT_U_ZB, "u_bt_zb", 1u)                              \
     X(FT_BT_U_GAP, "u_bt_gap", 1u)                            \
@@ -78,6 +91,8 @@ static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_vertices(k) * 2u * sizeof(float));
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_triangles(k) * 3u * sizeof(uint16_t));
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_vertices(k) * 3u * sizeof(float));
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_triangles(k) * 3u * sizeof(uint16_t));
     ft_arena_plan(a, FT_POOL_METHOD,
                   (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
     ft_bintree_plan(a, t->width, t->height, k, s->bintree_subsample_levels, s->bintree_tiles_max);
@@ -123,6 +138,16 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
                            (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float),
                            (void **)&m->inst, err);
     }
+    float *slot_v = NULL;
+    uint16_t *slot_i = NULL;
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nv * 3u * sizeof(float), (void **)&slot_v,
+                           err);
+    }
+    if (st == FT_OK) {
+        st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nt * 3u * sizeof(uint16_t),
+                           (void **)&slot_i, err);
+    }
     if (st == FT_OK) {
         st = ft_bt_template_build(k, uv, idx, scratch, err);
     }
@@ -131,22 +156,41 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     }
     m->index_count = nt * 3u;
     m->triangles_per_tile = nt;
+    /* A batch's vertices are addressed by 16-bit indices. */
+    const uint32_t batch_max = m->es3 ? FT_BT_BATCH_TILES_ES3 : FT_BT_BATCH_TILES_ES2;
+    m->batch_tiles = (65536u / nv < batch_max) ? 65536u / nv : batch_max;
+    GLint vectors = 0;
+    gl->GetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &vectors);
+    if (vectors < (GLint)(batch_max + FT_BT_UNIFORM_VECTORS_OTHER)) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "bintree: the vertex shader needs %u uniform vectors (%u tiles a draw); "
+                       "this device has GL_MAX_VERTEX_UNIFORM_VECTORS %d",
+                       batch_max + FT_BT_UNIFORM_VECTORS_OTHER, batch_max, vectors);
+    }
+    const size_t vbytes = (size_t)nv * 3u * sizeof(float);
+    const size_t ibytes = (size_t)nt * 3u * sizeof(uint16_t);
     gl->GenBuffers(1, &m->vbo);
     gl->GenBuffers(1, &m->ibo);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)nv * 2u * sizeof(float)), uv,
-                   GL_STATIC_DRAW);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(vbytes * m->batch_tiles), NULL, GL_STATIC_DRAW);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
-    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)nt * 3u * sizeof(uint16_t)), idx,
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ibytes * m->batch_tiles), NULL,
                    GL_STATIC_DRAW);
-    m->gpu_bytes = (uint64_t)nv * 8u + (uint64_t)nt * 6u;
-    if (m->es3) {
-        const size_t bytes = (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float);
-        gl->GenBuffers(1, &m->inst_vbo);
-        gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
-        m->gpu_bytes += bytes;
+    /* bounded: batch_tiles <= FT_BT_BATCH_TILES_ES3 slots */
+    for (uint32_t slot = 0; slot < m->batch_tiles; ++slot) {
+        for (uint32_t v = 0; v < nv; ++v) {
+            slot_v[3u * v] = uv[2u * v];
+            slot_v[3u * v + 1u] = uv[2u * v + 1u];
+            slot_v[3u * v + 2u] = (float)slot;
+        }
+        for (uint32_t i = 0; i < nt * 3u; ++i) {
+            slot_i[i] = (uint16_t)(slot * nv + idx[i]); /* < 65536 by batch_tiles */
+        }
+        gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)(vbytes * slot), (GLsizeiptr)vbytes, slot_v);
+        gl->BufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)(ibytes * slot), (GLsizeiptr)ibytes,
+                          slot_i);
     }
+    m->gpu_bytes = (uint64_t)(vbytes + ibytes) * m->batch_tiles;
     /* The geomorph reads each diamond's error and height range (its box,
      * bintree.h), and below the samples the height blocks, as float RGBA
      * texels: one fetch a diamond. */
@@ -221,7 +265,7 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
             return st;
         }
     }
-    return ft_gl_check(gl, "bintree init (template, instance buffer, error texture)", err);
+    return ft_gl_check(gl, "bintree init (template batch, error textures)", err);
 }
 
 static void bintree_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
@@ -239,11 +283,8 @@ static void bintree_select(ft_bintree_method *m, const ft_terrain *t, const ft_c
         o[1] = (float)tile->apex[1];
         o[2] = (float)tile->left[0];
         o[3] = (float)tile->left[1];
-        o[4] = (float)tile->right[0];
-        o[5] = (float)tile->right[1];
     }
     ft_view_key_take(&m->sel_view, cam);
-    m->uploaded = 0;
 }
 
 static void bintree_set_lod_scale(ft_bintree_method *m, double scale)
@@ -292,17 +333,21 @@ static void set_uniforms(const ft_bintree_method *m, const ft_gl *gl,
     gl->Uniform2f(p->method_u[FT_BT_U_GAIN_CAP], (float)gain.a_cap, (float)gain.b_cap);
 }
 
-/* GLES 3: tiles [first, first + count) of the instance buffer, instanced. */
-static void draw_instances(const ft_bintree_method *m, const ft_gl *gl, uint32_t first,
-                           uint32_t count)
+/* Tiles [first, first + count) of the selection through program p (current),
+ * batch_tiles a draw: bounded by tiles_max / batch_tiles + 1 draws. */
+static uint32_t draw_tiles(const ft_bintree_method *m, const ft_gl *gl,
+                           const struct ft_terrain_program *p, uint32_t first, uint32_t count)
 {
-    const GLsizei stride = (GLsizei)(FT_BT_FLOATS_PER_TILE * sizeof(float));
-    const size_t base = (size_t)first * (size_t)stride; /* no base instance on GLES 3.0 */
-    gl->VertexAttribPointer(FT_ATTRIB_TILE0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)base);
-    gl->VertexAttribPointer(FT_ATTRIB_TILE1, 2, GL_FLOAT, GL_FALSE, stride,
-                            (const void *)(base + 4u * sizeof(float)));
-    gl->DrawElementsInstanced(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
-                              (const void *)0, (GLsizei)count);
+    uint32_t draws = 0u;
+    for (uint32_t done = 0; done < count; done += m->batch_tiles) {
+        const uint32_t n = (count - done < m->batch_tiles) ? count - done : m->batch_tiles;
+        gl->Uniform4fv(p->method_u[FT_BT_U_TILES], (GLsizei)n,
+                       m->inst + (size_t)(first + done) * FT_BT_FLOATS_PER_TILE);
+        gl->DrawElements(GL_TRIANGLES, (GLsizei)(n * m->index_count), GL_UNSIGNED_SHORT,
+                         (const void *)0);
+        draws += 1u;
+    }
+    return draws;
 }
 
 static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
@@ -340,7 +385,7 @@ static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
     gl->EnableVertexAttribArray(FT_ATTRIB_UV);
-    gl->VertexAttribPointer(FT_ATTRIB_UV, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 3, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     const uint32_t tiles = m->sel.tiles;
     /* every tile keeps the roots' counter-clockwise winding seen from above
      * (a bisection child lists its corners in its parent's turn), and GL's
@@ -350,45 +395,14 @@ static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
         gl->Enable(GL_CULL_FACE);
         gl->CullFace(GL_BACK);
     }
-    if (tiles > 0u && m->es3) {
-        gl->BindBuffer(GL_ARRAY_BUFFER, m->inst_vbo);
-        if (!m->uploaded) {
-            gl->BufferSubData(GL_ARRAY_BUFFER, 0,
-                              (GLsizeiptr)((size_t)tiles * FT_BT_FLOATS_PER_TILE * sizeof(float)),
-                              m->inst);
-            m->uploaded = 1;
-        }
-        gl->EnableVertexAttribArray(FT_ATTRIB_TILE0);
-        gl->EnableVertexAttribArray(FT_ATTRIB_TILE1);
-        gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 1);
-        gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 1);
-        const uint32_t n_coarse = (coarse != NULL) ? m->sel.tiles_coarse : 0u;
-        st->draw_calls = 0u;
-        if (n_coarse > 0u) {
-            gl->UseProgram(coarse->program);
-            draw_instances(m, gl, 0u, n_coarse);
-            gl->UseProgram(p->program);
-            st->draw_calls += 1u;
-        }
-        if (tiles > n_coarse) {
-            draw_instances(m, gl, n_coarse, tiles - n_coarse);
-            st->draw_calls += 1u;
-        }
-        gl->VertexAttribDivisor(FT_ATTRIB_TILE0, 0);
-        gl->VertexAttribDivisor(FT_ATTRIB_TILE1, 0);
-        gl->DisableVertexAttribArray(FT_ATTRIB_TILE0);
-        gl->DisableVertexAttribArray(FT_ATTRIB_TILE1);
-    } else {
-        /* GLES 2: bounded by tiles_max draws */
-        for (uint32_t i = 0; i < tiles; ++i) {
-            const float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
-            gl->Uniform4f(p->method_u[FT_BT_U_TILE0], o[0], o[1], o[2], o[3]);
-            gl->Uniform2f(p->method_u[FT_BT_U_TILE1], o[4], o[5]);
-            gl->DrawElements(GL_TRIANGLES, (GLsizei)m->index_count, GL_UNSIGNED_SHORT,
-                             (const void *)0);
-        }
-        st->draw_calls = tiles;
+    const uint32_t n_coarse = (coarse != NULL) ? m->sel.tiles_coarse : 0u;
+    st->draw_calls = 0u;
+    if (n_coarse > 0u) {
+        gl->UseProgram(coarse->program);
+        st->draw_calls += draw_tiles(m, gl, coarse, 0u, n_coarse);
+        gl->UseProgram(p->program);
     }
+    st->draw_calls += draw_tiles(m, gl, p, n_coarse, tiles - n_coarse);
     if (cull) {
         gl->Disable(GL_CULL_FACE);
     }
@@ -404,26 +418,30 @@ static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)
 {
     if (m->vbo) gl->DeleteBuffers(1, &m->vbo);
     if (m->ibo) gl->DeleteBuffers(1, &m->ibo);
-    if (m->inst_vbo) gl->DeleteBuffers(1, &m->inst_vbo);
     if (m->dia_tex) gl->DeleteTextures(1, &m->dia_tex);
     if (m->zb_tex) gl->DeleteTextures(1, &m->zb_tex);
     if (m->twist_tex) gl->DeleteTextures(1, &m->twist_tex);
     if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
-    m->vbo = m->ibo = m->inst_vbo = m->dia_tex = m->zb_tex = m->twist_tex = m->vtx_tex = 0u;
+    m->vbo = m->ibo = m->dia_tex = m->zb_tex = m->twist_tex = m->vtx_tex = 0u;
 }
 
 /* ---- the method table ---------------------------------------------------------- */
 
 /* The compile-time vertex shader variant: sub-sample levels, vertex table. */
+#define FT_BT_DEF(sub, vtx, batch)                                                        \
+    "#define FT_BT_SUB " #sub "\n#define FT_BT_VTX " #vtx "\n#define FT_BT_BATCH " \
+    FT_BT_STR(batch) "\n"
 static const char *ops_vertex_defines(const ft_scene *s, int es3)
 {
     const int sub = s->bintree_subsample_levels > 0u;
-    const int vtx = es3 && s->bintree_vertex_table;
+    if (!es3) {
+        return sub ? FT_BT_DEF(1, 0, FT_BT_BATCH_TILES_ES2) : FT_BT_DEF(0, 0, FT_BT_BATCH_TILES_ES2);
+    }
     static const char *const k_variant[2][2] = {
-        {"#define FT_BT_SUB 0\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n"},
-        {"#define FT_BT_SUB 1\n#define FT_BT_VTX 0\n", "#define FT_BT_SUB 1\n#define FT_BT_VTX 1\n"},
+        {FT_BT_DEF(0, 0, FT_BT_BATCH_TILES_ES3), FT_BT_DEF(0, 1, FT_BT_BATCH_TILES_ES3)},
+        {FT_BT_DEF(1, 0, FT_BT_BATCH_TILES_ES3), FT_BT_DEF(1, 1, FT_BT_BATCH_TILES_ES3)},
     };
-    return k_variant[sub][vtx];
+    return k_variant[sub][s->bintree_vertex_table != 0];
 }
 
 /* Tiles with every vertex on a sample get a program without sub-sample code
@@ -433,7 +451,7 @@ static const char *ops_vertex_defines_coarse(const ft_scene *s, int es3)
     if (s->bintree_subsample_levels == 0u || !es3 || !s->bintree_vertex_table) {
         return NULL;
     }
-    return "#define FT_BT_SUB 0\n#define FT_BT_VTX 1\n";
+    return FT_BT_DEF(0, 1, FT_BT_BATCH_TILES_ES3);
 }
 
 static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,

@@ -55,6 +55,18 @@
 #include "core/platform_api.h"
 #include "test_app_util.h"
 
+/* An injected clock for the hiccup case: each read moves it 1 us on, and
+ * read number g_fake_jump_at (counted from g_fake_reads = 0) 20 ms more. */
+static uint64_t g_fake_ns, g_fake_reads, g_fake_jump_at;
+static uint64_t fake_now(void)
+{
+    g_fake_ns += 1000u;
+    if (++g_fake_reads == g_fake_jump_at) {
+        g_fake_ns += 20000000u;
+    }
+    return g_fake_ns;
+}
+
 #define TICK_HZ 60.0
 #define GPU_CACHE_MAX_BYTES (64u << 20)
 #define CACHE_P999_MAX_MS 8.0
@@ -431,6 +443,34 @@ int main(int argc, char **argv)
                cl->cache.stats.levels_behind);
         CHECK(cl->spare_updates > before);
         CHECK(cl->cache.stats.levels_behind > 0u); /* the rest waits for later frames */
+
+        /* A hiccup: one update measured at 20 ms (the clock jumps inside
+         * it), longer than the 8 ms of spare time a frame gives. The next
+         * calls leave the updates for later, and within FT_CLIP_COST_CALLS
+         * of them the slow one has left the window and updates run again
+         * (a slowest-ever declaration never ran another one). */
+        g_fake_ns = ft_plat_monotonic_ns();
+        g_fake_reads = 0u;
+        g_fake_jump_at = 3u; /* the loop's check, the update's start, its end */
+        const uint64_t before_hiccup = cl->spare_updates;
+        ft_method_spare(&g_app.renderer.method, fake_now, g_fake_ns + 30000000u);
+        REQUIRE(cl->spare_updates > before_hiccup && cl->cache.stats.levels_behind > 0u);
+        CHECK(cl->update_ns_max >= 20000000u);
+        uint32_t declined = 0u, resumed_after = 0u;
+        for (uint32_t call = 1u; call <= FT_CLIP_COST_CALLS + 1u && resumed_after == 0u; ++call) {
+            const uint64_t n0 = cl->spare_updates;
+            ft_method_spare(&g_app.renderer.method, fake_now, fake_now() + SPARE_NS);
+            if (cl->spare_updates > n0) {
+                resumed_after = call;
+            } else {
+                ++declined;
+            }
+        }
+        printf("a 20 ms update: the next %u spare calls of %.0f ms left the updates for later, "
+               "call %u ran them again (window %u calls)\n", declined, SPARE_NS * 1e-6,
+               resumed_after, FT_CLIP_COST_CALLS);
+        CHECK(declined > 0u);
+        CHECK(resumed_after > 0u && resumed_after <= FT_CLIP_COST_CALLS + 1u);
     }
     CHECK(holes == 0u);
     CHECK(p999 <= CACHE_P999_MAX_MS);

@@ -151,6 +151,8 @@ static int run_one(ft_clip_levels *c, uint64_t (*now)(void), ft_error *err, ft_s
     ft_clip_commit(&c->cache, &u);
     if (now != NULL) {
         const uint64_t dt = now() - t0;
+        uint64_t *slot = &c->cost_ns[c->cost_at];
+        *slot = dt > *slot ? dt : *slot;
         c->update_ns_max = dt > c->update_ns_max ? dt : c->update_ns_max;
     }
     return 1;
@@ -276,8 +278,9 @@ void ft_clip_levels_select(ft_clip_levels *c, const ft_terrain *t, const ft_came
 }
 
 /* Bounded by the updates a level set can need (every level whole, in the
- * smallest pieces). The first call, with nothing measured yet, runs one
- * update and so learns the cost. */
+ * smallest pieces). Updates run while the declared cost (clip_levels.h,
+ * FT_CLIP_COST_CALLS) fits before the deadline; the first call, with nothing
+ * measured yet, runs one update and so learns the cost. */
 void ft_clip_levels_spare(ft_clip_levels *c, uint64_t (*now)(void), uint64_t deadline_ns)
 {
     const uint64_t most = (uint64_t)c->levels * c->side * c->side / (2u * c->side) +
@@ -294,8 +297,21 @@ void ft_clip_levels_spare(ft_clip_levels *c, uint64_t (*now)(void), uint64_t dea
     if (st != FT_OK) {
         c->read_errors += 1u; /* the cache is unchanged: retried later */
     }
+    const int deferred = c->cache.stats.levels_behind > 0u;
     c->spare_updates += n;
-    c->spare_deferred += c->cache.stats.levels_behind > 0u;
+    c->spare_deferred += deferred;
+    /* A call that ran updates or left some for later moves the window on
+     * (a call with nothing to do keeps what was learnt); the declared cost
+     * is the slowest update still in it. */
+    if (n > 0u || deferred) {
+        c->cost_at = (c->cost_at + 1u) % FT_CLIP_COST_CALLS;
+        c->cost_ns[c->cost_at] = 0u;
+        uint64_t m = 0u;
+        for (uint32_t i = 0; i < FT_CLIP_COST_CALLS; ++i) {
+            m = c->cost_ns[i] > m ? c->cost_ns[i] : m;
+        }
+        c->update_ns_max = m;
+    }
 }
 
 ft_clip_world ft_clip_levels_world(const ft_terrain *t)

@@ -39,6 +39,13 @@ typedef enum ft_clip_tex_layout { FT_CLIP_TEX_PER_LEVEL, FT_CLIP_TEX_ATLAS } ft_
  * needs them), or always (a method that bounds its error from them). */
 typedef enum ft_clip_bounds_rule { FT_CLIP_BOUNDS_OVER_DB, FT_CLIP_BOUNDS_ALWAYS } ft_clip_bounds_rule;
 
+/* Spare calls an update's measured cost is remembered for. A slowest-ever
+ * declaration stopped the spare time for good after one slow update (a
+ * preempted read or upload longer than the spare time); with a window, such
+ * an update stops it for at most this many calls (half a second at 60 Hz),
+ * during which the methods draw from the resident coarser levels. */
+#define FT_CLIP_COST_CALLS 32u
+
 typedef struct ft_clip_levels {
     ft_clip_cache cache;
     ft_clip_source src;
@@ -59,9 +66,13 @@ typedef struct ft_clip_levels {
     uint32_t forced_last;          /* of those, run to keep the coarsest level whole */
     uint64_t forced_updates;       /* all such updates since init */
     uint64_t forced_frames;        /* selects that ran some */
-    /* spare time: each update's cost is declared as the slowest seen so far
-     * (init's whole fill measures it first) */
+    /* spare time: an update's declared cost is the slowest update of the
+     * last FT_CLIP_COST_CALLS spare calls that ran updates or had to leave
+     * them for later (cost_ns, one slot a call, cost_at the current one).
+     * The first call, with nothing measured, runs one update to learn it. */
     uint64_t update_ns_max;
+    uint64_t cost_ns[FT_CLIP_COST_CALLS];
+    uint32_t cost_at;
     uint64_t spare_updates;        /* updates run in spare time */
     uint64_t spare_deferred;       /* spare calls that left work for later */
     uint64_t read_errors;          /* source reads that failed (retried) */

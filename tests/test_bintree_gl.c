@@ -52,7 +52,7 @@ static const char k_scene_fmt[] =
     "[gpu]\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[bintree]\ntemplate_k = %u\ntiles_max = %u\ntau_px = %.3f\nmorph = %d\nsubsample_levels = %u\n"
-    "cull_back_faces = %d\n"
+    "cull_back_faces = %d\ntiles_per_draw = %u\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 40M\npng_bytes = 512K\n";
@@ -64,13 +64,15 @@ typedef struct setup {
     int metric, morph;
     uint32_t sub; /* bintree.subsample_levels */
     int no_cull;  /* bintree.cull_back_faces = 0 */
+    uint32_t tiles_per_draw; /* bintree.tiles_per_draw (0: the context's) */
 } setup;
 
 static void app_init(const setup *c)
 {
     char what[64];
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, c->w, c->h, c->dem,
-                   c->metric, c->k, c->tiles_max, c->tau, c->morph, c->sub, !c->no_cull);
+                   c->metric, c->k, c->tiles_max, c->tau, c->morph, c->sub, !c->no_cull,
+                   c->tiles_per_draw);
     (void)snprintf(what, sizeof what, "%s k=%u S=%u", c->method, c->k, c->sub);
     ft_test_app_init(&g_app, g_text, what);
 }
@@ -302,7 +304,7 @@ static void test_watertight(const char *dem)
     static const uint32_t subs[] = {0, 0, 2, 1};
     for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ++ki) {
         const uint32_t k = ks[ki], sub = subs[ki];
-        setup c = {"bintree", "egl-gles3", dem, 256, 192, k, 65536, 1.0, 0, 1, sub, 0};
+        setup c = {"bintree", "egl-gles3", dem, 256, 192, k, 65536, 1.0, 0, 1, sub, 0, 0};
         app_init(&c);
         ft_error err;
         REQUIRE(ft_renderer_enable_capture_of(&g_app.renderer, k_capture, 3u, &err) == FT_OK);
@@ -381,7 +383,7 @@ static void test_cracks(const char *backend, const char *dem)
     uint32_t worst = 0;
     for (size_t ki = 0; ki < sizeof ks / sizeof ks[0]; ++ki) {
         for (size_t ti = 0; ti < sizeof taus / sizeof taus[0]; ++ti) {
-            setup c = {"bintree", backend, dem, 320, 240, ks[ki], 65536, taus[ti], 0, 1, subs[ki], 0};
+            setup c = {"bintree", backend, dem, 320, 240, ks[ki], 65536, taus[ti], 0, 1, subs[ki], 0, 0};
             app_init(&c);
             const int es2 = strcmp(backend, "egl-gles2") == 0;
             if (es2) {
@@ -468,7 +470,7 @@ static void test_back_faces(const char *backend, const char *dem)
     REQUIRE(img != NULL);
     uint32_t culled = 0, differ_px = 0, worst_view_px = 0, wrong_flag = 0, depth_bits = 0;
     for (int pass = 0; pass < 2; ++pass) {
-        setup c = {"bintree", backend, dem, 320, 240, 3, 65536, 1.0, 0, 1, 2, pass};
+        setup c = {"bintree", backend, dem, 320, 240, 3, 65536, 1.0, 0, 1, 2, pass, 0};
         app_init(&c);
         depth_bits = g_app.renderer.depth_bits;
         for (uint32_t v = 0; v < CULL_VIEWS; ++v) {
@@ -548,7 +550,7 @@ static void test_error_bound(const char *dem, uint32_t sub)
 {
     ft_error err;
     double brute_max[PATH_FRAMES];
-    setup cb = {"brute", "egl-gles3", dem, 256, 192, 3, 65536, 1.0, 1, 1, 0, 0};
+    setup cb = {"brute", "egl-gles3", dem, 256, 192, 3, 65536, 1.0, 1, 1, 0, 0, 0};
     app_init(&cb);
     for (int f = 0; f < PATH_FRAMES; ++f) {
         ft_camera cam;
@@ -566,7 +568,7 @@ static void test_error_bound(const char *dem, uint32_t sub)
            "in brackets):\n", PATH_FRAMES, sub);
     for (size_t ti = 0; ti < sizeof taus / sizeof taus[0]; ++ti) {
         const double tau = taus[ti];
-        setup c = {"bintree", "egl-gles3", dem, 256, 192, 3, 65536, tau, 1, 1, sub, 0};
+        setup c = {"bintree", "egl-gles3", dem, 256, 192, 3, 65536, tau, 1, 1, sub, 0, 0};
         app_init(&c);
         double worst_excess = -INFINITY, worst_max = 0.0;
         int held = 0, leaf_short = 0;
@@ -606,6 +608,63 @@ static void test_error_bound(const char *dem, uint32_t sub)
     }
 }
 
+/* ---- tiles per draw ------------------------------------------------------------- */
+
+/* The same views drawn with the context's batches, a tile a draw, and 7
+ * tiles a draw (batches cut short at the end of each kind): the same
+ * triangles in the same order, so the same pixels byte for byte, in
+ * ceil(tiles / batch) draws of each kind. */
+static void test_tiles_per_draw(const char *backend, const char *dem)
+{
+    static const double views[][6] = {
+        {42.50, 1.50, 3600.0, 0.0, -20.0, 0.0},
+        {42.30, 1.50, 1650.0, 30.0, -10.0, 0.0}, /* low: sub-sample tiles too */
+    };
+    const size_t nviews = sizeof views / sizeof views[0];
+    const uint32_t per_draw[3] = {0u, 1u, 7u};
+    uint8_t *img = NULL;
+    size_t px = 0;
+    for (uint32_t b = 0; b < 3u; ++b) {
+        setup c = {"bintree", backend, dem, 320, 240, 3, 65536, 1.0, 0, 1, 2, 0, per_draw[b]};
+        app_init(&c);
+        const ft_bintree_method *bm = &g_app.renderer.method.u.bintree;
+        const uint32_t batch = bm->batch_tiles;
+        CHECK(per_draw[b] == 0u || batch == per_draw[b]);
+        px = (size_t)c.w * c.h;
+        if (img == NULL) {
+            img = malloc(nviews * px * 4u);
+            REQUIRE(img != NULL);
+        }
+        for (size_t v = 0; v < nviews; ++v) {
+            const ft_pose pose = ft_test_pose(views[v][0], views[v][1], views[v][2],
+                                              views[v][3], views[v][4], views[v][5]);
+            ft_camera cam;
+            ft_frame_stats fs;
+            ft_test_frame(&g_app, &pose, &cam, &fs);
+            const uint32_t coarse = (g_app.renderer.prog_color.coarse != NULL)
+                                        ? bm->sel.tiles_coarse : 0u;
+            const uint32_t draws =
+                (coarse + batch - 1u) / batch + (bm->sel.tiles - coarse + batch - 1u) / batch;
+            CHECK(fs.tiles > 0u && fs.draw_calls == draws);
+            const uint8_t *rgba = g_app.renderer.rgba;
+            if (b == 0u) {
+                memcpy(img + v * px * 4u, rgba, px * 4u);
+            } else {
+                uint32_t d = 0;
+                for (size_t i = 0; i < px; ++i) {
+                    d += memcmp(rgba + 4u * i, img + (v * px + i) * 4u, 4u) != 0;
+                }
+                printf("%s, %u tiles a draw, view %zu: %u tiles in %u draws, %u pixels differ "
+                       "from the context's batches\n", backend, batch, v, fs.tiles,
+                       fs.draw_calls, d);
+                CHECK(d == 0u);
+            }
+        }
+        ft_app_shutdown(&g_app);
+    }
+    free(img);
+}
+
 int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
@@ -614,6 +673,7 @@ int main(int argc, char **argv)
     if (strcmp(mode, "es2") == 0) {
         test_cracks("egl-gles2", dem);
         test_back_faces("egl-gles2", dem);
+        test_tiles_per_draw("egl-gles2", dem);
         return ft_test_result("test_bintree_gl es2");
     }
     if (strcmp(mode, "bound-sub") == 0) {
@@ -627,6 +687,7 @@ int main(int argc, char **argv)
     test_watertight(dem);
     test_cracks("egl-gles3", dem);
     test_back_faces("egl-gles3", dem);
+    test_tiles_per_draw("egl-gles3", dem);
     test_error_bound(dem, 0u);
     return ft_test_result("test_bintree_gl es3");
 }

@@ -56,6 +56,7 @@ int main(void)
     CHECK(a.bintree_template_k == b.bintree_template_k && a.bintree_tiles_max == b.bintree_tiles_max);
     CHECK_NEAR(a.bintree_tau_px, b.bintree_tau_px, 0.0);
     CHECK(a.bintree_morph == b.bintree_morph);
+    CHECK(a.bintree_tiles_per_draw == b.bintree_tiles_per_draw);
     CHECK(a.pgm_grid_cols == b.pgm_grid_cols && a.pgm_grid_rows == b.pgm_grid_rows);
     CHECK(a.pgrid_grid_cols == b.pgrid_grid_cols && a.pgrid_grid_rows == b.pgrid_grid_rows);
     CHECK(a.pgrid_view_distribution == b.pgrid_view_distribution);

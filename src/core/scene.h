@@ -127,6 +127,7 @@ typedef struct ft_scene {
     uint32_t bintree_subsample_levels; /* bintree.subsample_levels */
     int bintree_vertex_table;          /* bintree.vertex_table (GLES 3 only) */
     int bintree_cull_back_faces;       /* bintree.cull_back_faces */
+    uint32_t bintree_tiles_per_draw;   /* bintree.tiles_per_draw (0: the context's) */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     int pgm_heights_clipmap;     /* pgm.heights: 0 pyramid, 1 clipmap */
@@ -253,6 +254,9 @@ typedef struct ft_scene {
     X(bintree, cull_back_faces, FLAG, bintree_cull_back_faces, 0, 1, NULL, "1", "",              \
       "cull back faces while the eye is over the grid and above the drawn surface under it "     \
       "(they are hidden then)")                                                                  \
+    X(bintree, tiles_per_draw, U32, bintree_tiles_per_draw, 0, 1024, NULL, "0", "tiles",         \
+      "tiles a draw, a uniform array in the vertex shader (0: 192 on GLES 3, 64 on GLES 2; 1 "  \
+      "is fastest on llvmpipe's GLES 2)")                                                        \
     X(pgm, grid_cols, U32, pgm_grid_cols, 2, 8192, NULL, "430", "vertices",                      \
       "persistent grid: vertices across the view")                                               \
     X(pgm, grid_rows, U32, pgm_grid_rows, 2, 8192, NULL, "430", "vertices",                      \

@@ -28,15 +28,22 @@
 /* a tile as the shader gets it: apex.xy, left.xy (the right corner is the
  * apex plus left - apex turned a quarter counter-clockwise) */
 #define FT_BT_FLOATS_PER_TILE 4u
-/* Tiles a draw: the length of the shader's u_bt_tiles (one vec4 a tile). The
- * vertex shader's other uniforms take about 40 vectors, and the spec's least
- * GL_MAX_VERTEX_UNIFORM_VECTORS is 128 on GLES 2 and 256 on GLES 3, so these
- * link on every conforming device (init checks the device's value anyway). */
+/* Tiles a draw (bintree.tiles_per_draw; 0: these): the length of the
+ * shader's u_bt_tiles (one vec4 a tile). The vertex shader's other uniforms
+ * take under 48 vectors, and the spec's least GL_MAX_VERTEX_UNIFORM_VECTORS
+ * is 128 on GLES 2 and 256 on GLES 3, so the defaults link on every
+ * conforming device (init checks the device's value). */
 #define FT_BT_BATCH_TILES_ES2 64u
 #define FT_BT_BATCH_TILES_ES3 192u
 #define FT_BT_UNIFORM_VECTORS_OTHER 48u
-#define FT_BT_STR_(x) #x
-#define FT_BT_STR(x) FT_BT_STR_(x)
+
+static uint32_t batch_tiles_of(const ft_scene *s, int es3)
+{
+    if (s->bintree_tiles_per_draw > 0u) {
+        return s->bintree_tiles_per_draw;
+    }
+    return es3 ? FT_BT_BATCH_TILES_ES3 : FT_BT_BATCH_TILES_ES2;
+}
 /* The one-fetch vertex table goes up in strips of this many rows through
  * FT_POOL_GPU_STAGING (width * rows * 16 bytes), not in one copy of the grid. */
 #define FT_BT_VTX_STRIP_ROWS 8u
@@ -157,14 +164,15 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     m->index_count = nt * 3u;
     m->triangles_per_tile = nt;
     /* A batch's vertices are addressed by 16-bit indices. */
-    const uint32_t batch_max = m->es3 ? FT_BT_BATCH_TILES_ES3 : FT_BT_BATCH_TILES_ES2;
+    const uint32_t batch_max = batch_tiles_of(s, m->es3);
     m->batch_tiles = (65536u / nv < batch_max) ? 65536u / nv : batch_max;
     GLint vectors = 0;
     gl->GetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &vectors);
     if (vectors < (GLint)(batch_max + FT_BT_UNIFORM_VECTORS_OTHER)) {
         return ft_fail(err, FT_ERR_UNSUPPORTED,
                        "bintree: the vertex shader needs %u uniform vectors (%u tiles a draw); "
-                       "this device has GL_MAX_VERTEX_UNIFORM_VECTORS %d",
+                       "this device has GL_MAX_VERTEX_UNIFORM_VECTORS %d: lower "
+                       "bintree.tiles_per_draw",
                        batch_max + FT_BT_UNIFORM_VECTORS_OTHER, batch_max, vectors);
     }
     const size_t vbytes = (size_t)nv * 3u * sizeof(float);
@@ -428,30 +436,32 @@ static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)
 /* ---- the method table ---------------------------------------------------------- */
 
 /* The compile-time vertex shader variant: sub-sample levels, vertex table. */
-#define FT_BT_DEF(sub, vtx, batch)                                                        \
-    "#define FT_BT_SUB " #sub "\n#define FT_BT_VTX " #vtx "\n#define FT_BT_BATCH " \
-    FT_BT_STR(batch) "\n"
+/* The shader's variant as #define lines, in buf (init only: the programs are
+ * compiled from it before the next call). */
+static const char *vertex_defines(char *buf, size_t cap, int sub, int vtx, const ft_scene *s,
+                                  int es3)
+{
+    (void)snprintf(buf, cap, "#define FT_BT_SUB %d\n#define FT_BT_VTX %d\n#define FT_BT_BATCH %u\n",
+                   sub, vtx, batch_tiles_of(s, es3));
+    return buf;
+}
+
 static const char *ops_vertex_defines(const ft_scene *s, int es3)
 {
-    const int sub = s->bintree_subsample_levels > 0u;
-    if (!es3) {
-        return sub ? FT_BT_DEF(1, 0, FT_BT_BATCH_TILES_ES2) : FT_BT_DEF(0, 0, FT_BT_BATCH_TILES_ES2);
-    }
-    static const char *const k_variant[2][2] = {
-        {FT_BT_DEF(0, 0, FT_BT_BATCH_TILES_ES3), FT_BT_DEF(0, 1, FT_BT_BATCH_TILES_ES3)},
-        {FT_BT_DEF(1, 0, FT_BT_BATCH_TILES_ES3), FT_BT_DEF(1, 1, FT_BT_BATCH_TILES_ES3)},
-    };
-    return k_variant[sub][s->bintree_vertex_table != 0];
+    static char buf[128];
+    return vertex_defines(buf, sizeof buf, s->bintree_subsample_levels > 0u,
+                          es3 && s->bintree_vertex_table, s, es3);
 }
 
 /* Tiles with every vertex on a sample get a program without sub-sample code
  * (GLES 3, sub-sample levels and the vertex table). */
 static const char *ops_vertex_defines_coarse(const ft_scene *s, int es3)
 {
+    static char buf[128];
     if (s->bintree_subsample_levels == 0u || !es3 || !s->bintree_vertex_table) {
         return NULL;
     }
-    return FT_BT_DEF(0, 1, FT_BT_BATCH_TILES_ES3);
+    return vertex_defines(buf, sizeof buf, 0, 1, s, es3);
 }
 
 static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, const ft_terrain *t,

@@ -184,11 +184,13 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
     gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ibytes * m->batch_tiles), NULL,
                    GL_STATIC_DRAW);
-    /* bounded: batch_tiles <= FT_BT_BATCH_TILES_ES3 slots */
+    for (uint32_t v = 0; v < nv; ++v) {
+        slot_v[3u * v] = uv[2u * v];
+        slot_v[3u * v + 1u] = uv[2u * v + 1u];
+    }
+    /* bounded: batch_tiles <= 1024 slots (the key's range) */
     for (uint32_t slot = 0; slot < m->batch_tiles; ++slot) {
         for (uint32_t v = 0; v < nv; ++v) {
-            slot_v[3u * v] = uv[2u * v];
-            slot_v[3u * v + 1u] = uv[2u * v + 1u];
             slot_v[3u * v + 2u] = (float)slot;
         }
         for (uint32_t i = 0; i < nt * 3u; ++i) {
@@ -435,8 +437,8 @@ static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)
 
 /* ---- the method table ---------------------------------------------------------- */
 
-/* The compile-time vertex shader variant: sub-sample levels, vertex table. */
-/* The shader's variant as #define lines, in buf (init only: the programs are
+/* The compile-time vertex shader variant (sub-sample levels, vertex table,
+ * tiles a draw) as #define lines, in buf (init only: the programs are
  * compiled from it before the next call). */
 static const char *vertex_defines(char *buf, size_t cap, int sub, int vtx, const ft_scene *s,
                                   int es3)

@@ -329,10 +329,11 @@ static int cmd_render(int argc, char **argv)
                        "{\"max_px\": %s, \"p999_px\": %.4f, \"mean_px\": %.4f, "
                        "\"terrain_px\": %u, \"only_method_px\": %u, \"only_ref_px\": %u, "
                        "\"occlusion_px\": %u, \"occlusion_max_px\": %.4f, "
+                       "\"vertical_max_px\": %.4f, "
                        "\"behind_eye_px\": %u, \"nonfinite_px\": %u, \"outside_grid_px\": %u}",
                        max_text, es.p999_px, es.mean_px, es.terrain_px, es.only_method_px,
-                       es.only_ref_px, es.occlusion_px, es.occlusion_max_px, es.behind_eye_px,
-                       es.nonfinite_px, es.outside_grid_px);
+                       es.only_ref_px, es.occlusion_px, es.occlusion_max_px, es.vertical_max_px,
+                       es.behind_eye_px, es.nonfinite_px, es.outside_grid_px);
         if (!quiet) {
             printf("screen-space error vs reference: max %.3f px, p99.9 %.3f px, mean %.4f px; "
                    "coverage mismatch %u + %u px; occlusion mismatch %u px (worst %.2f px)\n",

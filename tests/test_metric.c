@@ -171,6 +171,7 @@ static void check_case(const char *name, double ox, double oy, double a, double 
     CHECK(st.outside_grid_px == 0);
     CHECK(st.only_method_px == 0 && st.only_ref_px == 0);
     CHECK_NEAR(st.max_px, es.max, 0.05);
+    CHECK(st.vertical_max_px == st.max_px); /* no reference: no occlusion term */
     CHECK_NEAR(st.mean_px, es.mean, 0.05);
     CHECK_NEAR(st.p999_px, es.p999, 0.05);
     /* much tighter in fact: float positions only */
@@ -416,6 +417,7 @@ static void test_ridge_removed(void)
     CHECK(st.occlusion_px <= below);
     CHECK_NEAR(st.occlusion_max_px, screen_h, 1.0);
     CHECK(st.max_px >= st.occlusion_max_px);
+    CHECK(st.max_px >= st.vertical_max_px);
     CHECK(st.only_method_px == 0u && st.only_ref_px > 0u);
 }
 
@@ -449,6 +451,7 @@ static void test_exact_frame_has_no_occlusion(void)
     CHECK(st.terrain_px > NPX / 3u);
     CHECK(st.occlusion_px == 0u);
     CHECK(st.max_px < 0.01);
+    CHECK(st.vertical_max_px == st.max_px);
 }
 
 /* Eye 10 km over a flat sea with earth curvature: the reference's horizon

@@ -461,7 +461,7 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
         "bound_short_frames", "raycast_fraction_max_measured",
         "raycast_fraction_max_measured_view", "raycast_small_terrain_frames",
         "cache_coarser_frames", "cache_behind_frames", "err_max_fine_px", "bound_over_frames",
-        "bound_none_frames"};
+        "bound_none_frames", "err_max_vertical_px", "bound_over_vertical_frames"};
     const int nh = (int)(sizeof want_head / sizeof want_head[0]);
     CHECK(ncols[0] == nh);
     for (int i = 0; i < nh && i < ncols[0]; ++i) CHECK(strcmp(cells[0][i], want_head[i]) == 0);
@@ -481,7 +481,9 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
               c_coarse = col(H, nh, "cache_coarser_frames"),
               c_fine = col(H, nh, "err_max_fine_px"),
               c_bover = col(H, nh, "bound_over_frames"),
-              c_bnone = col(H, nh, "bound_none_frames");
+              c_bnone = col(H, nh, "bound_none_frames"),
+              c_vmax = col(H, nh, "err_max_vertical_px"),
+              c_vover = col(H, nh, "bound_over_vertical_frames");
     CHECK(nl - 1 == nrows);
     for (int r = 0; r < nrows; ++r) {
         char want_method[64];
@@ -534,6 +536,10 @@ static int check_bench(const char *csv, const char *png, int frames, int measure
             CHECK(num(c[c_bover]) == 0.0 && num(c[c_bnone]) == 0.0);
         }
         if (strcmp(want_method, "bintree") == 0) CHECK(num(c[c_bover]) == 0.0);
+        /* the vertical error alone is inside the max, and a frame over the
+         * bound by it is over the bound */
+        CHECK(num(c[c_vmax]) >= 0.0 && num(c[c_vmax]) <= emax);
+        CHECK(num(c[c_vover]) >= 0.0 && num(c[c_vover]) <= num(c[c_bover]));
         if (strcmp(want_method, "brute") == 0) CHECK_NEAR(num(c[c_ratio]), 1.0, 1e-9);
         else CHECK(num(c[c_ratio]) > 0.0);
         /* the oracle (bintree rows only): its median frame time and the row's

@@ -266,6 +266,7 @@ ft_status ft_metric_compute(const ft_terrain *t, const ft_camera *c, const float
                 }
                 if (!(e <= diag_px)) e = diag_px; /* also a NaN height */
                 ms.err_px[p] = (float)e;
+                if (ms.err_px[p] > s.vertical_max_px) s.vertical_max_px = ms.err_px[p];
                 if (ref_hit && on_other_surface(t, c, pr, &ref[p], fabs(pr[2] - z_true))) {
                     cls = PX_OCCLUDED;
                     ++occluded;

@@ -37,7 +37,8 @@
  *    error is the larger of its vertical and occlusion errors.
  *  - coverage mismatches (terrain here, sky in the reference, and the
  *    reverse) are counted, as before, and not given an error.
- * Per frame: max, 99.9th percentile, mean over terrain pixels.
+ * Per frame: max, 99.9th percentile, mean over terrain pixels, and the
+ * largest vertical error alone (vertical_max_px).
  *
  * Details (tested in tests/test_metric.c):
  *  - terrain pixel: pos_rgba w > 0.5 (a NaN w is sky).
@@ -70,6 +71,9 @@
 typedef struct ft_error_stats {
     double max_px, p999_px, mean_px;
     double occlusion_max_px;  /* worst occlusion error (0 without any) */
+    double vertical_max_px;   /* worst vertical error alone: the screen displacement of
+                                 a drawn point, which a method's bound is about
+                                 (occlusion errors are not in it; max_px has both) */
     uint32_t terrain_px;      /* pixels the method covered */
     uint32_t only_method_px;  /* terrain in the frame, sky in the reference */
     uint32_t only_ref_px;     /* sky in the frame, terrain in the reference */

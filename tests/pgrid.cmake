@@ -33,3 +33,15 @@ if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PG
                       ${CMAKE_SOURCE_DIR} ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out)
   set_tests_properties(pgrid_paths PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
 endif()
+
+# The bound on two more DEMs, Everest (extreme relief) and N52E008 (flat),
+# valley, climb and orbit at 320x240, gamma 0.5/1/2: the vertical error <=
+# gamma + 0.1 px on every row, and on Everest the full error too
+# (tests/test_pgrid_dems.sh says why not on flat terrain). About 60 s.
+if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PGRID
+   AND FIXTERRAIN_WITH_GDAL_TOOLS)
+  add_test(NAME pgrid_dems
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_pgrid_dems.sh $<TARGET_FILE:fixterrain>
+                      ${CMAKE_SOURCE_DIR} ${FT_SHARED_DATA_DIR} ${CMAKE_BINARY_DIR}/test-out)
+  set_tests_properties(pgrid_dems PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endif()

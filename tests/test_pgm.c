@@ -249,6 +249,12 @@ static void test_flat_closed_form(void)
     CHECK_NEAR(s.eps_rad, atan2(h, s.far_m), 1e-15);
     CHECK_NEAR(s.depression_rad, 20.0 * DEG + s.eps_rad, 1e-12);
     CHECK_NEAR(s.rect[3], tan(20.0 * DEG), 1e-12);
+    /* the bottom row is the view's bottom edge (depression 20 deg, eps above
+     * the sampling axis): nothing on flat ground below it can be seen, and
+     * the rows under it would be wasted (half of them, from the sampling
+     * camera's own edge 20 deg below its axis) */
+    CHECK_NEAR(s.gamma_rad, 0.0, 0.0);
+    CHECK_NEAR(s.rect[1], tan(s.eps_rad), 1e-12);
     /* wider than the view (it looks down more), never wider than needed for
      * every view ray below the horizon: tx cos(dep_v) / cos(dep_s) */
     CHECK(s.rect[2] > tan(20.0 * DEG) * 640.0 / 480.0);
@@ -260,6 +266,19 @@ static void test_flat_closed_form(void)
             CHECK_NEAR(v.pos_rel_eye_m[2], -h, 1e-9);
         }
     }
+    /* pitched 10 deg up: the view's bottom edge looks 10 deg down, 10 deg +
+     * eps above the sampling axis; the bottom row's centre ground is where
+     * that edge meets the ground. Pitched 75 deg up, its top edge rises
+     * past the zenith and the sampling camera's own edge is kept. */
+    c = camera(cx, cy, 500.0 + h, 30.0, 10.0, 0.0, 40.0, 640, 480);
+    ft_pgm_setup(&s, &c, &t);
+    CHECK(s.pitched_down);
+    CHECK_NEAR(s.rect[1], tan(10.0 * DEG + s.eps_rad), 1e-12);
+    ft_pgm_vertex_at(&s, &t, cols, rows, (cols - 1u) / 2u, 0, &v);
+    CHECK_NEAR(hypot(v.ground_rel_m[0], v.ground_rel_m[1]), h / tan(10.0 * DEG), 1e-6);
+    c = camera(cx, cy, 500.0 + h, 30.0, 75.0, 0.0, 40.0, 640, 480);
+    ft_pgm_setup(&s, &c, &t);
+    CHECK_NEAR(s.rect[1], -tan(20.0 * DEG), 1e-12);
     free_terrain(&t);
 }
 

@@ -44,10 +44,10 @@ run rainier "$src/config/rainier.ini" "$out/rainier.ftt"
 
 # The ray-cast fraction at the paper's 1024x512 grid, gamma 1, N42E001,
 # climb and orbit at 640x480: ray-cast pixels <= 15% of the error buffer's
-# terrain pixels on every measured frame whose terrain covers at least 2% of
-# the image (the bench's raycast_fraction_max_measured_view); a frame that
-# shows only a sliver of far ridge tops is counted and printed, not held to
-# it (its fraction is its silhouette band). The bound and the budget as above.
+# terrain pixels on every measured frame (the bench's
+# raycast_fraction_max_measured), the frames whose terrain covers under 2%
+# of the image included (the climb's frame 4 shows only far ridge tops along
+# the image's bottom edge). The bound and the budget as above.
 "$bin" bench --scene "$src/config/pyrenees.ini" --dem "$data/N42E001.hgt" --methods pgrid \
   --path climb,orbit --size 640x480 --frames 8 --metric-every 2 \
   --settings 'pgrid.grid=1024x512;pgrid.gamma_px=1;pgrid.error_bound=residual;pgrid.ray_casting=1;pgrid.raycast_max_px=307200' \
@@ -61,10 +61,10 @@ awk -F, '
     mean = $(c["raycast_fraction_mean"]) + 0; all = $(c["raycast_fraction_max_measured"]) + 0
     view = $(c["raycast_fraction_max_measured_view"]) + 0
     small = $(c["raycast_small_terrain_frames"]) + 0
-    printf "1024x512 gamma 1: max error %.4f px, ray cast %.1f%% mean, %.1f%% on the worst measured frame with terrain (%.1f%% with the %d frame(s) under 2%% terrain)\n", err, 100 * mean, 100 * view, 100 * all, small
+    printf "1024x512 gamma 1: max error %.4f px, ray cast %.1f%% mean, %.1f%% on the worst measured frame (%.1f%% without the %d frame(s) under 2%% terrain)\n", err, 100 * mean, 100 * all, 100 * view, small
     if (err > 1.1) { print "FAIL: fraction: error over the bound"; bad = 1 }
     if (hits != 0) { print "FAIL: fraction: the budget was hit"; bad = 1 }
-    if (view > 0.15) { print "FAIL: fraction: a measured frame ray casts over 15% of its terrain"; bad = 1 }
+    if (all > 0.15) { print "FAIL: fraction: a measured frame ray casts over 15% of its terrain"; bad = 1 }
   }
   END { if (rows != 1) { print "FAIL: fraction: " rows " pgrid rows, expected 1"; bad = 1 } exit bad }
 ' "$out/fraction.csv" || status=1

@@ -354,11 +354,28 @@ void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surf
     /* -d_z is smallest on the top edge: -d_z = sin(dep) - y1 cos(dep) > 0 */
     s->min_neg_dz = 0.5 * (sd - y1 * cd);
 
+    /* The bottom edge starts at the VIEW's bottom edge: the two cameras share
+     * their right vector, so the view's roll-free bottom edge (ty_b below its
+     * axis) is the line y = tan(dep_s - dep_v - a) of the sampling image. A
+     * pitched-down sampling camera's own bottom edge (-tan a) lies below
+     * that, on ground the view does not show: a view pitched up at altitude
+     * would spend most of the grid's rows there. Only where that edge is
+     * below the top edge (a view whose bottom edge is flatter than eps shows
+     * no ground but peaks above the eye, at any azimuth of its width) and the
+     * view's top edge does not rise past the zenith (it would see terrain
+     * above the eye behind it, whose base points lie past the nadir, where
+     * the extension does not look): else the sampling camera's own edge. */
+    double y_start = tan(dep - dep_v - a);
+    if (!(y_start < y1 - 0.01 * (y1 + s->half_y_tan)) || !(a - dep_v < 0.5 * FT_PI)) {
+        y_start = -s->half_y_tan;
+    }
+    y_start = (y_start > -s->half_y_tan) ? y_start : -s->half_y_tan;
     /* viewport extension from the rectangle before it (none when mirrored:
      * seen from below, terrain nearer than the steepest ray's plane point is
      * above that ray, so out of the view) */
-    const double beta = dep + a;
+    const double beta = dep - atan(y_start);
     double gamma = 0.0;
+    double y_bot = y_start;
     if (0.5 * FT_PI - beta > 1e-9 && !s->mirrored) {
         const double xc0 = x_cap(dep, s->eps_rad, -s->half_y_tan, y1);
         const double txp = (tx_cov < xc0) ? tx_cov : xc0;
@@ -368,7 +385,7 @@ void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surf
         double col_r[3], dir[3][2];
         for (int k = 0; k < 3; ++k) {
             double g[2];
-            ground_of(s, col_x[k], -s->half_y_tan, g);
+            ground_of(s, col_x[k], y_start, g);
             col_r[k] = hypot(g[0], g[1]);
             dir[k][0] = (col_r[k] > 0.0) ? g[0] / col_r[k] : 0.0;
             dir[k][1] = (col_r[k] > 0.0) ? g[1] / col_r[k] : 0.0;
@@ -453,9 +470,8 @@ void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surf
          * its x_req: along a column the distance falls monotonically from the
          * edge (y = -ty) down to the nadir line y = -cot(dep) (bisection) */
         const double y_nadir = -cd / sd;
-        double y_bot = -s->half_y_tan;
         for (int k = 0; k < 3; ++k) {
-            double hi = -s->half_y_tan, lo = y_nadir;
+            double hi = y_start, lo = y_nadir;
             double g[2];
             ground_of(s, col_x[k], lo, g);
             if (hypot(g[0], g[1]) >= x_req[k]) {
@@ -468,14 +484,14 @@ void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surf
             }
             y_bot = (hi < y_bot) ? hi : y_bot;
         }
-        gamma = atan(-y_bot) - a;
+        gamma = atan(-y_bot) - atan(-y_start);
         gamma = (gamma > 0.0) ? gamma : 0.0;
     }
     s->gamma_rad = gamma;
     /* bottom: extended, but not past the half-angle cap (unless that is
      * needed to reach the nadir, where the sampling camera is nearly level)
      * nor so far past the nadir that it looks flatter than eps behind */
-    double bot_a = a + gamma;
+    double bot_a = atan(-y_start) + gamma;
     const double cap = (0.5 * FT_PI - dep > FT_PGM_HALF_ANGLE_MAX_RAD)
                            ? 0.5 * FT_PI - dep
                            : FT_PGM_HALF_ANGLE_MAX_RAD;
@@ -483,7 +499,12 @@ void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surf
     const double behind = FT_PI - s->eps_rad - dep;
     bot_a = (bot_a < behind) ? bot_a : behind;
     const double y0 = -tan(bot_a);
-    const double xc = x_cap(dep, s->eps_rad, y0, y1);
+    /* the columns as wide as the sampling camera's own rows would make
+     * them: a level or rising view ray can meet terrain whose base point
+     * lies out to the eps line in its azimuth, which bends below the view's
+     * bottom edge at the sides (the extra columns' rays in the upper rows
+     * meet the plane past the far corner: wasted, never a miss) */
+    const double xc = x_cap(dep, s->eps_rad, (y0 < -s->half_y_tan) ? y0 : -s->half_y_tan, y1);
     double tx_s = (tx_cov < xc) ? tx_cov : xc;
     tx_s = (tx_s > 1e-6) ? tx_s : 1e-6;
     s->rect[0] = -tx_s;

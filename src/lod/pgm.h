@@ -49,8 +49,22 @@
  * covers every view ray below the horizon), widened further where a view
  * ray's reachable terrain needs it (a view pitched up: pgm.c,
  * columns_for_view, up to FT_PGM_COLUMNS_WIDEN_MAX tx_b), and cut where
- * rays get flatter than eps; y from -tan(a + gamma) (bottom, extended) to tan(min(a, dep_s -
- * eps)) (top).
+ * rays get flatter than eps (the cap taken over rows down to -tan a at
+ * least, so the columns do not narrow when the bottom edge rises: a level
+ * ray's terrain can lie under the eps line at the sides, below that edge);
+ * y from the bottom edge y_b, extended by gamma, to tan(min(a, dep_s - eps))
+ * (top). y_b is the VIEW's bottom edge, tan(dep_s - dep_v - a): both
+ * cameras share the right vector, so the view's roll-free bottom edge is a
+ * row of the sampling image, and the rows below it (down to the sampling
+ * camera's own edge -tan a, where it is pitched down) hold ground the view
+ * cannot show except through the peaks the extension looks for. A view
+ * pitched up at altitude gave most of the grid to them: a climb frame at
+ * 7 km pitched 14.8 degrees up drew its ridge tops with a third of the rows.
+ * A level view gave them half. Where the view's bottom edge is not below
+ * the top edge (it shows only peaks above the eye) or its top edge rises
+ * past the zenith (it sees terrain above the eye behind it, whose base
+ * points lie past the nadir, where the extension does not look), y_b is
+ * the sampling camera's own edge -tan a.
  *
  * Viewport extension below the sampling camera: a peak of height m (above
  * the base plane) nearer than the bottom rows' ground points can reach into

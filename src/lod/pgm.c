@@ -354,17 +354,10 @@ void ft_pgm_setup_over(ft_pgm_sampling *s, const ft_camera *c, const ft_pgm_surf
     /* -d_z is smallest on the top edge: -d_z = sin(dep) - y1 cos(dep) > 0 */
     s->min_neg_dz = 0.5 * (sd - y1 * cd);
 
-    /* The bottom edge starts at the VIEW's bottom edge: the two cameras share
-     * their right vector, so the view's roll-free bottom edge (ty_b below its
-     * axis) is the line y = tan(dep_s - dep_v - a) of the sampling image. A
-     * pitched-down sampling camera's own bottom edge (-tan a) lies below
-     * that, on ground the view does not show: a view pitched up at altitude
-     * would spend most of the grid's rows there. Only where that edge is
-     * below the top edge (a view whose bottom edge is flatter than eps shows
-     * no ground but peaks above the eye, at any azimuth of its width) and the
-     * view's top edge does not rise past the zenith (it would see terrain
-     * above the eye behind it, whose base points lie past the nadir, where
-     * the extension does not look): else the sampling camera's own edge. */
+    /* The bottom edge starts at the VIEW's bottom edge, a row of the
+     * sampling image (pgm.h, Rectangle), unless the view shows no ground
+     * under the eps line or its top edge rises past the zenith; the clamp
+     * is for round-off only (dep_s >= dep_v puts the row at or above -tan a). */
     double y_start = tan(dep - dep_v - a);
     if (!(y_start < y1 - 0.01 * (y1 + s->half_y_tan)) || !(a - dep_v < 0.5 * FT_PI)) {
         y_start = -s->half_y_tan;

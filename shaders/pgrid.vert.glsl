@@ -8,7 +8,9 @@
  *    the min/max atlas (levels >= 2) or the heights (levels 0, 1), passed on
  *    as v_delta_m (interpolated: a convex bound of the mesh's error);
  *    with FT_PGRID_TIGHT 1 (error_bound = residual, src/lod/pgrid.h 6) the
- *    vertex is read from the vertex pass and delta from the quad bounds.
+ *    vertex is read from the vertex pass and delta from the vertex-bound
+ *    pass; a mesh pixel then takes its quad's bound, flat, and an envelope
+ *    pixel the vertices' delta, interpolated (src/lod/pgrid.h 6).
  * The bound is a compile-time variant, not a uniform branch: a SIMD shader
  * core runs both sides of a branch under a mask (llvmpipe measured: the
  * tight draws took twice as long while the relief code rode along unused).
@@ -25,11 +27,18 @@ uniform vec4 u_pgrid_mm_info;    /* (half width, height, pack min, pack range or
 uniform vec4 u_pgrid_mm_level[FT_PGM_LEVELS]; /* origin xy, size zw per min/max level */
 uniform float u_pgrid_mm_levels;
 uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the upper (lower) envelope */
-uniform highp sampler2D u_pgrid_quad; /* tight bound: e_Q per grid quad (m), src/lod/pgrid.h 6 */
 uniform highp sampler2D u_pgrid_vtx;  /* the vertex pass: (pc.xy, height, level) */
-uniform highp sampler2D u_pgrid_slope; /* ... and (dh/dgx, dh/dgy) */
+uniform highp sampler2D u_pgrid_slope; /* vertex-bound pass: (dh/dgx, dh/dgy, delta, e_Q) */
 
+#if FT_PGRID_TIGHT && FT_ES3
+/* a mesh pixel's bound: its quad's, from the vertex that ends both its
+ * triangles (the fragment shader declares it flat too: FT_PGRID_FLAT_DELTA);
+ * an envelope pixel's: the vertices' delta, interpolated */
+flat out float v_delta_m;
+out float v_env_delta_m;
+#else
 FT_OUT_VS float v_delta_m;
+#endif
 
 
 float ft_height_at(vec2 ij)
@@ -95,14 +104,8 @@ vec2 ft_region_minmax(vec2 a, vec2 b)
     return r;
 }
 
-/* Float margin of the tight bound (m): the quad pass evaluates the surface
- * and the planes through heights in float32 (measured against the CPU rule
- * in double: <= 0.006 m at 2000 m). */
-#define FT_PGRID_TIGHT_EPS_M(h_m) (0.005 + 4e-6 * abs(h_m))
-
-#if FT_PGRID_TIGHT
 /* Texel ij of a float target of size n (the tight variant runs on GLES 3
- * only; the GLSL ES 1.00 form exists so the variant validates in both). */
+ * only; the GLSL ES 1.00 form exists so it validates in both). */
 vec4 ft_target_texel(highp sampler2D tex, vec2 ij, vec2 n)
 {
 #if FT_ES3
@@ -111,21 +114,6 @@ vec4 ft_target_texel(highp sampler2D tex, vec2 ij, vec2 n)
     return texture2DLod(tex, (ij + 0.5) / n, 0.0);
 #endif
 }
-
-/* src/lod/pgrid.h 6: the largest quad bound of the <= 4 quads around ij */
-float ft_tight_delta(vec2 ij, float h_m)
-{
-    float d = 0.0;
-    vec2 last = u_pgm_grid.xy - 1.0;
-    for (int y = 0; y < 2; ++y) {
-        for (int x = 0; x < 2; ++x) {
-            vec2 q = clamp(ij - vec2(float(x), float(y)), vec2(0.0), last);
-            d = max(d, ft_target_texel(u_pgrid_quad, q, u_pgm_grid.xy).r);
-        }
-    }
-    return d + FT_PGRID_TIGHT_EPS_M(h_m);
-}
-#endif
 
 void main()
 {
@@ -141,9 +129,13 @@ void main()
     pc = v.xy;
     morph = v.w;
     s = vec3(v.z, g.xy);
-    v_delta_m = ft_tight_delta(ij, s.x);
-    /* the envelopes: the mesh moved up (down) by its bound encloses H */
-    s.x += u_pgrid_envelope * v_delta_m;
+    v_delta_m = g.w; /* the bound of the quad this vertex ends (src/lod/pgrid.h 6) */
+#if FT_ES3
+    v_env_delta_m = g.z;
+#endif
+    /* the envelopes: the mesh moved up (down) by the vertex's bound, the
+     * largest of its quads', encloses H */
+    s.x += u_pgrid_envelope * g.z;
 #else
     s = ft_pgm_vertex(ij, pc, morph);
     vec2 inv_cell = 1.0 / u_cell_m;

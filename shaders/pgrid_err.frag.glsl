@@ -8,6 +8,9 @@ precision highp float;
 precision mediump float;
 #endif
 
+#ifndef FT_PGRID_FLAT_DELTA
+#define FT_PGRID_FLAT_DELTA 0
+#endif
 #ifndef FT_PGRID_ERR_LOCATION
 #define FT_PGRID_ERR_LOCATION 0
 #endif
@@ -23,9 +26,19 @@ layout(location = FT_PGRID_ERR_LOCATION) out vec4 o_err;
 FT_IN_FS vec3 v_pos_rel_eye_m;
 FT_IN_FS vec3 v_normal;
 FT_IN_FS float v_height_m;
+#if FT_PGRID_FLAT_DELTA && FT_ES3
+/* the tight bound's (src/lod/pgrid.h 6): a mesh pixel's its quad's, an
+ * envelope pixel's the vertices' delta, interpolated */
+flat in float v_delta_m;
+in float v_env_delta_m;
+uniform float u_pgrid_envelope;
+#define FT_PIXEL_DELTA_M (u_pgrid_envelope != 0.0 ? v_env_delta_m : v_delta_m)
+#else
 FT_IN_FS float v_delta_m;
+#define FT_PIXEL_DELTA_M v_delta_m
+#endif
 
 void main()
 {
-    FT_ERR_OUT = ft_pgrid_err_texel(v_pos_rel_eye_m, v_delta_m);
+    FT_ERR_OUT = ft_pgrid_err_texel(v_pos_rel_eye_m, FT_PIXEL_DELTA_M);
 }

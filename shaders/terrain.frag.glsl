@@ -13,10 +13,17 @@ precision mediump float;
 #ifndef FT_PGRID_ERR_OUT
 #define FT_PGRID_ERR_OUT 0
 #endif
+#ifndef FT_PGRID_FLAT_DELTA
+#define FT_PGRID_FLAT_DELTA 0
+#endif
 #if FT_PGRID_ERR_OUT && FT_ES3
 #include "pgrid_err_code.glsl"
 layout(location = 1) out vec4 o_pgrid_err;
+#if FT_PGRID_FLAT_DELTA
+flat in float v_delta_m; /* the tight bound's: one a quad (src/lod/pgrid.h 6) */
+#else
 FT_IN_FS float v_delta_m;
+#endif
 #endif
 
 #include "shade_relative.glsl"

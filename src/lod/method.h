@@ -142,6 +142,9 @@ typedef struct ft_pgrid_method {
      * pass's targets (grid-sized RGBA32F) and programs */
     int tight;
     GLuint res_tex, vtx_tex, slope_tex, vtx_fbo, quad_tex, quad_fbo, quad_prog;
+    /* the vertex-bound pass: per grid vertex its slope, delta and the bound
+     * of the quad it ends (src/lod/pgrid.h 6) */
+    GLuint shape_tex, shape_fbo, shape_prog;
     uint32_t res_levels;
     float res_level_px[FT_PYRAMID_LEVELS_MAX][4];
     ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */

@@ -166,8 +166,11 @@ static ft_status upload_band(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_gri
             /* < 65536 vertices in the band, so every index fits 16 bits */
             const uint16_t v00 = (uint16_t)(y * cols + x), v10 = (uint16_t)(v00 + 1u);
             const uint16_t v01 = (uint16_t)(v00 + cols), v11 = (uint16_t)(v01 + 1u);
+            /* both triangles end at v11: GLES 3 takes a flat output from a
+             * triangle's last vertex, so vertex (x + 1, y + 1) speaks for
+             * exactly this quad (pgrid's per-quad bound, src/lod/pgrid.h 6) */
             idx[k++] = v00; idx[k++] = v10; idx[k++] = v11;
-            idx[k++] = v00; idx[k++] = v11; idx[k++] = v01;
+            idx[k++] = v01; idx[k++] = v00; idx[k++] = v11;
         }
     }
     gl->GenBuffers(1, &m->ibo);

@@ -32,7 +32,6 @@
     X(FT_PGRID_U_MM, "u_pgrid_mm", 1u)                        \
     X(FT_PGRID_U_MM_INFO, "u_pgrid_mm_info", 1u)              \
     X(FT_PGRID_U_MM_LEVELS, "u_pgrid_mm_levels", 1u)          \
-    X(FT_PGRID_U_QUAD, "u_pgrid_quad", 1u)                    \
     X(FT_PGRID_U_VTX, "u_pgrid_vtx", 1u)                      \
     X(FT_PGRID_U_SLOPE, "u_pgrid_slope", 1u)                  \
     X(FT_PGRID_U_ERR, "u_pgrid_err", 1u)                      \
@@ -125,11 +124,15 @@ static const char *pgrid_vertex_defines(const ft_scene *s, int es3)
 /* On GLES 3 the picture pass writes the error buffer too (a second colour
  * attachment, terrain.frag.glsl's FT_PGRID_ERR_OUT): the grid goes through
  * the pipeline once for both, and the envelopes test against the picture's
- * own depth. */
+ * own depth. With the tight bound its pixels take their quad's bound, flat
+ * (src/lod/pgrid.h 6). */
 static const char *pgrid_colour_defines(const ft_scene *s, int es3)
 {
-    (void)s;
-    return es3 ? "#define FT_PGRID_ERR_OUT 1\n" : "";
+    if (!es3) {
+        return "";
+    }
+    return pgrid_tight(s, es3) ? "#define FT_PGRID_ERR_OUT 1\n#define FT_PGRID_FLAT_DELTA 1\n"
+                               : "#define FT_PGRID_ERR_OUT 1\n";
 }
 
 static ft_pgm_grid_desc pgm_grid(const ft_scene *s)
@@ -200,6 +203,13 @@ static ft_status upload_residuals(ft_pgrid_method *m, const ft_gl *gl, const ft_
     return st;
 }
 
+/* The error pass's fragment defines: its error buffer at colour attachment
+ * 1 (the picture's framebuffer) or 0, a mesh pixel's bound its quad's (the
+ * tight bound's, flat) or interpolated. */
+static const char k_flat[] = "#define FT_PGRID_FLAT_DELTA 1\n";
+static const char k_at1[] = "#define FT_PGRID_ERR_LOCATION 1\n";
+static const char k_flat_at1[] = "#define FT_PGRID_FLAT_DELTA 1\n#define FT_PGRID_ERR_LOCATION 1\n";
+
 /* A framebuffer of one or two grid-sized RGBA32F textures (tex1 = NULL: one). */
 static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit0,
                                    GLenum unit1, uint32_t w, uint32_t h, GLuint *tex0,
@@ -247,6 +257,10 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
                                err);
     }
     if (st == FT_OK) {
+        st = make_float_target(m, gl, GL_TEXTURE7, GL_TEXTURE7, m->pgm.cols, m->pgm.rows,
+                               &m->shape_tex, NULL, &m->shape_fbo, "vertex bound", err);
+    }
+    if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program),
                            (void **)&m->vtx_prog, err);
     }
@@ -264,9 +278,19 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
     m->vtx_prog_built = 1;
     st = ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", NULL, "a_uv",
                          &m->quad_prog, err);
+    if (st == FT_OK) {
+        st = ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_shape.frag.glsl", NULL, "a_uv",
+                             &m->shape_prog, err);
+    }
     if (st != FT_OK) {
         return st;
     }
+    const GLuint sp = m->shape_prog;
+    gl->UseProgram(sp);
+    gl->Uniform1i(gl->GetUniformLocation(sp, "u_pgrid_quad"), 5);
+    gl->Uniform1i(gl->GetUniformLocation(sp, "u_pgrid_slope"), 7);
+    gl->Uniform2f(gl->GetUniformLocation(sp, "u_pgrid_cells"), (float)(m->pgm.cols - 1u),
+                  (float)(m->pgm.rows - 1u));
     const GLuint q = m->quad_prog;
     m->uq_vtx = gl->GetUniformLocation(q, "u_pgrid_vtx");
     m->uq_res = gl->GetUniformLocation(q, "u_pgrid_res");
@@ -522,9 +546,11 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
     gt.format = m->mm_fmt.format;
     gt.pack_min_m = m->mm_fmt.pack_min;
     gt.pack_range_m = m->mm_fmt.pack_range;
+    const int tight = pgrid_tight(s, m->es3);
     const ft_terrain_program_desc errd = {.vert_name = "pgrid.vert.glsl",
                                           .vert_defines = pgrid_vertex_defines(s, m->es3),
                                           .frag_name = "pgrid_err.frag.glsl",
+                                          .frag_defines = tight ? k_flat : NULL,
                                           .method_uniforms = &k_pgrid_uniform_list};
     st = ft_terrain_program_build(gl, t, &gt, &errd, m->err_prog, err);
     if (st != FT_OK) {
@@ -536,7 +562,7 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
         const ft_terrain_program_desc envd = {.vert_name = "pgrid.vert.glsl",
                                               .vert_defines = pgrid_vertex_defines(s, m->es3),
                                               .frag_name = "pgrid_err.frag.glsl",
-                                              .frag_defines = "#define FT_PGRID_ERR_LOCATION 1\n",
+                                              .frag_defines = tight ? k_flat_at1 : k_at1,
                                               .method_uniforms = &k_pgrid_uniform_list};
         st = ft_terrain_program_build(gl, t, &gt, &envd, env_prog(m), err);
         if (st != FT_OK) {
@@ -633,14 +659,15 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
         gl->Uniform4f(p->method_u[FT_PGRID_U_MM_LEVEL + l], m->mm_level_px[l][0], m->mm_level_px[l][1],
                       m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
-    gl->Uniform1i(p->method_u[FT_PGRID_U_QUAD], 5);
     gl->Uniform1i(p->method_u[FT_PGRID_U_VTX], 4);
     gl->Uniform1i(p->method_u[FT_PGRID_U_SLOPE], 7);
 }
 
-/* The tight bound's two passes (src/lod/pgrid.h 6), before the grid is drawn:
- * the grid's vertices into vtx_tex, then every quad's bound into quad_tex,
- * which the grid's vertex shader reads (unit 5). */
+/* The tight bound's passes (src/lod/pgrid.h 6), before the grid is drawn:
+ * the grid's vertices into vtx_tex, every quad's bound into quad_tex, every
+ * vertex's slope and delta (the largest bound of its quads) into shape_tex.
+ * The grid's vertex shader then reads vtx_tex (unit 4) and shape_tex (unit
+ * 7). */
 static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
                          const ft_camera *cam, GLint fb)
 {
@@ -673,13 +700,19 @@ static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *
     gl->ActiveTexture(GL_TEXTURE0);
     gl->Uniform3f(m->uq_origin, ox, oy, oz);
     gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
-    gl->Viewport(vp[0], vp[1], vp[2], vp[3]);
+    /* the vertex bounds (vtx_tex on 4, quad_tex on 5, slope_tex on 7) */
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->shape_fbo);
+    gl->Viewport(0, 0, (GLsizei)m->pgm.cols, (GLsizei)m->pgm.rows);
+    gl->UseProgram(m->shape_prog);
     gl->ActiveTexture(GL_TEXTURE5);
     gl->BindTexture(GL_TEXTURE_2D, m->quad_tex);
     gl->ActiveTexture(GL_TEXTURE7);
     gl->BindTexture(GL_TEXTURE_2D, m->slope_tex);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl->BindTexture(GL_TEXTURE_2D, m->shape_tex); /* unit 7 from here on */
     gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
+    gl->Viewport(vp[0], vp[1], vp[2], vp[3]);
 }
 
 static int same_decision_view(const ft_pgrid_method *m, const ft_camera *cam)
@@ -1024,6 +1057,10 @@ static void pgrid_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
     if (m->vtx_prog_built && m->vtx_prog->program) gl->DeleteProgram(m->vtx_prog->program);
     if (m->quad_prog) gl->DeleteProgram(m->quad_prog);
+    if (m->shape_prog) gl->DeleteProgram(m->shape_prog);
+    if (m->shape_tex) gl->DeleteTextures(1, &m->shape_tex);
+    if (m->shape_fbo) gl->DeleteFramebuffers(1, &m->shape_fbo);
+    m->shape_prog = m->shape_tex = m->shape_fbo = 0u;
     if (m->res_tex) gl->DeleteTextures(1, &m->res_tex);
     if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
     if (m->slope_tex) gl->DeleteTextures(1, &m->slope_tex);
@@ -1088,8 +1125,8 @@ static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *
     const uint64_t picture = g->mrt ? 1u : 2u;
     const uint64_t passes = picture + (g->ray_casting ? 2u : 0u);
     const char *what = g->mrt ? "picture with its error buffer" : "picture, error buffer";
-    /* plus 2 triangles a full-target pass: the tight bound's 2, ray casting */
-    w->triangles = grid * passes + (g->tight ? 4u : 0u) + (g->ray_casting ? 2u : 0u);
+    /* plus 2 triangles a full-target pass: the tight bound's 3, ray casting */
+    w->triangles = grid * passes + (g->tight ? 6u : 0u) + (g->ray_casting ? 2u : 0u);
     if (!g->ray_casting) {
         w->raycast_px = 0u;
         (void)snprintf(w->rule, sizeof w->rule, "the grid drawn %llu time(s) (%s); no ray casting",

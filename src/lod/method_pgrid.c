@@ -121,6 +121,12 @@ static const char *pgrid_vertex_defines(const ft_scene *s, int es3)
     return pgrid_tight(s, es3) ? "#define FT_PGRID_TIGHT 1\n" : "#define FT_PGRID_TIGHT 0\n";
 }
 
+/* A mesh pixel's bound is its quad's, flat (the tight bound; every program
+ * that reads v_delta_m says so, the vertex shader from FT_PGRID_TIGHT), and
+ * the error pass's buffer is at colour attachment 1 (src/lod/pgrid.h 6). */
+#define PGRID_FLAT_DEFINE "#define FT_PGRID_FLAT_DELTA 1\n"
+#define PGRID_AT1_DEFINE "#define FT_PGRID_ERR_LOCATION 1\n"
+
 /* On GLES 3 the picture pass writes the error buffer too (a second colour
  * attachment, terrain.frag.glsl's FT_PGRID_ERR_OUT): the grid goes through
  * the pipeline once for both, and the envelopes test against the picture's
@@ -131,7 +137,7 @@ static const char *pgrid_colour_defines(const ft_scene *s, int es3)
     if (!es3) {
         return "";
     }
-    return pgrid_tight(s, es3) ? "#define FT_PGRID_ERR_OUT 1\n#define FT_PGRID_FLAT_DELTA 1\n"
+    return pgrid_tight(s, es3) ? "#define FT_PGRID_ERR_OUT 1\n" PGRID_FLAT_DEFINE
                                : "#define FT_PGRID_ERR_OUT 1\n";
 }
 
@@ -206,9 +212,9 @@ static ft_status upload_residuals(ft_pgrid_method *m, const ft_gl *gl, const ft_
 /* The error pass's fragment defines: its error buffer at colour attachment
  * 1 (the picture's framebuffer) or 0, a mesh pixel's bound its quad's (the
  * tight bound's, flat) or interpolated. */
-static const char k_flat[] = "#define FT_PGRID_FLAT_DELTA 1\n";
-static const char k_at1[] = "#define FT_PGRID_ERR_LOCATION 1\n";
-static const char k_flat_at1[] = "#define FT_PGRID_FLAT_DELTA 1\n#define FT_PGRID_ERR_LOCATION 1\n";
+static const char k_flat[] = PGRID_FLAT_DEFINE;
+static const char k_at1[] = PGRID_AT1_DEFINE;
+static const char k_flat_at1[] = PGRID_FLAT_DEFINE PGRID_AT1_DEFINE;
 
 /* A framebuffer of one or two grid-sized RGBA32F textures (tex1 = NULL: one). */
 static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum unit0,

@@ -9,6 +9,11 @@ float ft_row_y(float t, float y)
     return y;
 }
 
+float ft_col_x(float t, float x)
+{
+    return x;
+}
+
 void main()
 {
     vec2 ij = vec2(a_uv.x, a_uv.y + u_pgm_grid.z);

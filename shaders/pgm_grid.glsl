@@ -188,6 +188,9 @@ vec3 ft_height_sample(float level, vec2 g)
 /* Image-plane height of the row at t = j / (rows - 1), whose uniform
  * placement is y: defined by the including body (pgm: y itself). */
 float ft_row_y(float t, float y);
+/* Image-plane x of the column at t = i / (cols - 1), whose uniform
+ * placement is x: defined by the including body (pgm: x itself). */
+float ft_col_x(float t, float x);
 
 /* Base-plane point of grid point ij, relative to the viewing eye (xy, m). */
 vec2 ft_ground(vec2 ij)
@@ -195,6 +198,7 @@ vec2 ft_ground(vec2 ij)
     vec2 st = ij / u_pgm_grid.xy;
     vec2 xy = mix(u_pgm_rect.xy, u_pgm_rect.zw, st);
     xy.y = ft_row_y(st.y, xy.y);
+    xy.x = ft_col_x(st.x, xy.x);
     vec3 d = u_pgm_fwd + xy.x * u_pgm_right + xy.y * u_pgm_up;
     return (u_pgm_eye.x / max(-d.z, u_pgm_eye.y)) * d.xy;
 }

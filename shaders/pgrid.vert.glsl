@@ -30,6 +30,8 @@ uniform float u_pgrid_envelope;  /* 0 the mesh; 1 (-1): the upper (lower) envelo
 uniform highp sampler2D u_pgrid_vtx;  /* the vertex pass: (pc.xy, height, level) */
 uniform highp sampler2D u_pgrid_slope; /* vertex-bound pass: (dh/dgx, dh/dgy, delta, e_Q) */
 
+FT_OUT_VS float v_col_t; /* the column's t = i / (cols - 1), for the column warp */
+
 #if FT_PGRID_TIGHT && FT_ES3
 /* a mesh pixel's bound: its quad's, from the vertex that ends both its
  * triangles (the fragment shader declares it flat too: FT_PGRID_FLAT_DELTA);
@@ -118,6 +120,7 @@ vec4 ft_target_texel(highp sampler2D tex, vec2 ij, vec2 n)
 void main()
 {
     vec2 ij = vec2(a_uv.x, a_uv.y + u_pgm_grid.z);
+    v_col_t = ij.x / u_pgm_grid.x;
     vec2 pc;
     float morph;
     vec3 s;

@@ -26,6 +26,7 @@ layout(location = FT_PGRID_ERR_LOCATION) out vec4 o_err;
 FT_IN_FS vec3 v_pos_rel_eye_m;
 FT_IN_FS vec3 v_normal;
 FT_IN_FS float v_height_m;
+FT_IN_FS float v_col_t;
 #if FT_PGRID_FLAT_DELTA && FT_ES3
 /* the tight bound's (src/lod/pgrid.h 6): a mesh pixel's its quad's, an
  * envelope pixel's the vertices' delta, interpolated */
@@ -40,5 +41,5 @@ FT_IN_FS float v_delta_m;
 
 void main()
 {
-    FT_ERR_OUT = ft_pgrid_err_texel(v_pos_rel_eye_m, FT_PIXEL_DELTA_M);
+    FT_ERR_OUT = ft_pgrid_err_texel(v_pos_rel_eye_m, FT_PIXEL_DELTA_M, v_col_t);
 }

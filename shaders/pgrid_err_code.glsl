@@ -5,11 +5,12 @@
  * axis (a perspective image stretches an angle by 1 / cos^2 theta radially:
  * 15x at 75 degrees, so at FOV 150 the edges need it); R = normalised error
  * (0 where rho <= gamma, else 1 - gamma / rho), G = 8-bit log code of rho
- * rounded up (>= 1/255 on terrain; the clear value 0 is sky). */
+ * rounded up (>= 1/255 on terrain; the clear value 0 is sky), B = the grid
+ * column's t = i / (cols - 1) (the column warp reads it back). */
 uniform vec2 u_pgrid_err;  /* (K px, gamma px) */
 uniform vec3 u_pgrid_fwd;  /* viewing camera's forward axis (world, unit) */
 
-vec4 ft_pgrid_err_texel(vec3 pos_rel_eye_m, float delta_m)
+vec4 ft_pgrid_err_texel(vec3 pos_rel_eye_m, float delta_m, float col_t)
 {
     float dist = max(length(pos_rel_eye_m), 1e-6);
     float c = max(dot(pos_rel_eye_m, u_pgrid_fwd) / dist, 1e-3);
@@ -18,5 +19,5 @@ vec4 ft_pgrid_err_texel(vec3 pos_rel_eye_m, float delta_m)
     /* code = ceil((log2 rho + 8) * 255 / 16) in [1, 255]; a little more so
      * the 8-bit store never rounds it down */
     float code = clamp(ceil((log2(max(rho, 1e-30)) + 8.0) * (255.0 / 16.0)), 1.0, 255.0);
-    return vec4(e, (code + 0.25) / 255.0, 0.0, 1.0);
+    return vec4(e, (code + 0.25) / 255.0, col_t, 1.0);
 }

@@ -19,6 +19,7 @@ precision mediump float;
 #if FT_PGRID_ERR_OUT && FT_ES3
 #include "pgrid_err_code.glsl"
 layout(location = 1) out vec4 o_pgrid_err;
+FT_IN_FS float v_col_t; /* the grid column's t (the column warp) */
 #if FT_PGRID_FLAT_DELTA
 flat in float v_delta_m; /* the tight bound's: one a quad (src/lod/pgrid.h 6) */
 #else
@@ -39,6 +40,6 @@ void main()
 {
     FT_FRAG_COLOR = ft_colour(v_height_m, v_normal, v_pos_rel_eye_m);
 #if FT_PGRID_ERR_OUT && FT_ES3
-    o_pgrid_err = ft_pgrid_err_texel(v_pos_rel_eye_m, v_delta_m);
+    o_pgrid_err = ft_pgrid_err_texel(v_pos_rel_eye_m, v_delta_m, v_col_t);
 #endif
 }

@@ -60,6 +60,8 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
       if(FIXTERRAIN_WITH_METHOD_PGRID)
         add_test(NAME no_heap_pgrid_egl COMMAND test_no_heap
                  ${CMAKE_BINARY_DIR}/test-out/no_heap_pgrid.png egl-gles3 pgrid)
+        add_test(NAME no_heap_pgrid_columns_egl COMMAND test_no_heap
+                 ${CMAKE_BINARY_DIR}/test-out/no_heap_pgrid_columns.png egl-gles3 pgrid-columns)
       endif()
       add_test(NAME no_heap_bintree_gles2 COMMAND test_no_heap
                ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree_es2.png egl-gles2 bintree)

@@ -14,7 +14,8 @@
  * and a PNG write with counting on, and requires zero calls.
  * Usage: test_no_heap OUT.png [BACKEND [METHOD [replay]]] (METHOD as in
  * scene.method: brute, bintree, pgm, ..., or pgm-cache: pgm with pgm.heights =
- * clipmap; the path changes the view every
+ * clipmap, or pgrid-columns: pgrid with pgrid.columns = error; the path
+ * changes the view every
  * frame, so a LOD method selects anew each frame). With
  * "replay", a candump log with a stall is then replayed too (decoder, pose
  * feed, annunciation overlay, pose CSV, one PNG per frame), counting on. */
@@ -181,6 +182,9 @@ int main(int argc, char **argv)
     if (argc >= 4 && strcmp(argv[3], "pgm-cache") == 0) {
         s.method = FT_METHOD_PGM; /* pgm reading its heights through the clip cache */
         s.pgm_heights_clipmap = 1;
+    } else if (argc >= 4 && strcmp(argv[3], "pgrid-columns") == 0) {
+        s.method = FT_METHOD_PGRID; /* pgrid with its columns moved by the error */
+        s.pgrid_columns_error = 1;
     } else if (argc >= 4) {
         REQUIRE(ft_method_from_name(argv[3], &s.method));
     }

@@ -57,6 +57,61 @@ static void test_rows(void)
     CHECK_NEAR(db / da, dc / db, 1e-6);
 }
 
+/* The column warp (src/lod/pgrid.h 1): the knots' map t -> u keeps the ends,
+ * is the identity for uniform knots and continuous and increasing for any;
+ * the warp gives more columns to the band whose pixels are over gamma, keeps
+ * every share in [1/2, 4] (before the blend with the last one), and an
+ * error buffer with nothing over gamma moves the knots back towards
+ * uniform. */
+static uint32_t g_band_hist[FT_PGRID_COL_BANDS][256];
+
+static void test_columns(void)
+{
+    const uint32_t nb = FT_PGRID_COL_BANDS;
+    float uni[FT_PGRID_COL_BANDS + 1], warped[FT_PGRID_COL_BANDS + 1];
+    for (uint32_t b = 0; b <= nb; ++b) uni[b] = (float)b / (float)nb;
+    for (double t = -0.1; t <= 1.1; t += 0.01) {
+        CHECK_NEAR(ft_pgrid_col_u(uni, t), t, 1e-6);
+    }
+    /* 3000 pixels of band 5 over gamma 1 (code 140: under it at twice the
+     * columns), every band with 100 under it (still under at half) */
+    memset(g_band_hist, 0, sizeof g_band_hist);
+    for (uint32_t b = 0; b < nb; ++b) g_band_hist[b][100] = 100u;
+    g_band_hist[5][140] = 3000u;
+    ft_pgrid_col_warp((const uint32_t (*)[256])g_band_hist, uni, 1.0, warped);
+    CHECK(warped[0] == 0.0f && warped[nb] == 1.0f);
+    for (uint32_t b = 0; b < nb; ++b) {
+        const double share = (double)nb * (warped[b + 1u] - warped[b]);
+        CHECK(share > 0.0);
+        /* blended with the last share 1: sqrt of [1/2, 4], renormalised */
+        CHECK(share >= sqrt(0.5) / 1.5 && share <= 2.0 * 1.5);
+        if (b != 5u) CHECK(share < (double)nb * (warped[6] - warped[5]));
+    }
+    printf("column warp: band 5's share %.3f of a uniform band (the others %.3f)\n",
+           (double)nb * (warped[6] - warped[5]), (double)nb * (warped[1] - warped[0]));
+    CHECK((double)nb * (warped[6] - warped[5]) > 1.3);
+    /* the map through warped knots: ends kept, increasing, continuous */
+    CHECK_NEAR(ft_pgrid_col_u(warped, 0.0), 0.0, 1e-6);
+    CHECK_NEAR(ft_pgrid_col_u(warped, 1.0), 1.0, 1e-6);
+    double prev = -1.0;
+    for (double t = 0.0; t <= 1.0 + 1e-9; t += 1.0 / 1024.0) {
+        const double u = ft_pgrid_col_u(warped, t);
+        CHECK(u > prev);
+        if (prev > -1.0) CHECK(u - prev < 4.0 / 1024.0); /* no jump: share >= 1/4 */
+        prev = u;
+    }
+    for (uint32_t b = 0; b <= nb; ++b) {
+        CHECK_NEAR(ft_pgrid_col_u(warped, warped[b]), (double)b / nb, 1e-6);
+    }
+    /* nothing over gamma: back towards uniform (the square root of the share) */
+    memset(g_band_hist, 0, sizeof g_band_hist);
+    float back[FT_PGRID_COL_BANDS + 1];
+    ft_pgrid_col_warp((const uint32_t (*)[256])g_band_hist, warped, 1.0, back);
+    const double s5 = (double)nb * (warped[6] - warped[5]);
+    const double s5_back = (double)nb * (back[6] - back[5]);
+    CHECK(s5_back < s5 && s5_back > 1.0);
+}
+
 static float g_heights[9 * 9];
 static float g_pyr[4096];
 
@@ -284,6 +339,7 @@ int main(void)
 {
     test_error_terms();
     test_rows();
+    test_columns();
     test_region();
     test_lower_envelope_rule();
     test_budget();

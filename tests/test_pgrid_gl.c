@@ -32,6 +32,9 @@
  *    read back, at tile sides 4, 13 (tiles cut by the image's edges) and 64;
  *    the pictures are the same byte for byte at every side, and some tiles
  *    are left out and some drawn on every frame (the test is not vacuous).
+ * 8. Columns moved by the error (pgrid.columns = error): the bound holds on
+ *    the flight of part 1, the knots leave uniform, and the vertex pass puts
+ *    the bottom row's vertices where the knots say (ft_pgrid_col_u).
  * es2 (run with MESA_GLES_VERSION_OVERRIDE=2.0, backend egl-gles2):
  *    init with ray_casting = 1 succeeds and runs without ray casting (no
  *    pixel ray cast, budget not hit), the reported bound is the mesh's own
@@ -63,6 +66,7 @@ static const char k_scene_fmt[] =
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[pgrid]\ngrid_cols = %u\ngrid_rows = %u\ndistribution = %s\nray_casting = %d\n"
     "gamma_px = %.3f\nraycast_max_px = %u\nerror_bound = %s\nraycast_tile_px = %u\n"
+    "columns = %s\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 16M\npng_bytes = 512K\n";
@@ -78,12 +82,16 @@ typedef struct setup {
     uint32_t tile_px; /* pgrid.raycast_tile_px; 0: 16 */
 } setup;
 
+/* pgrid.columns for the next app_init (part 8 sets it) */
+static int g_columns_error;
+
 static void app_init(const setup *c)
 {
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, c->method, c->backend, W_PX, H_PX,
                    c->fovy_deg, c->dem, c->metric, c->cols, c->rows,
                    c->view_dist ? "view" : "uniform", c->ray_casting, c->gamma, W_PX * H_PX,
-                   c->residual ? "residual" : "relief", c->tile_px ? c->tile_px : 16u);
+                   c->residual ? "residual" : "relief", c->tile_px ? c->tile_px : 16u,
+                   g_columns_error ? "error" : "uniform");
     ft_test_app_init(&g_app, g_text, c->method);
 }
 
@@ -801,6 +809,87 @@ static void test_tiles(const char *dem)
     }
 }
 
+/* ---- 8. columns moved by the error (src/lod/pgrid.h 1) ----------------------- */
+
+/* pgrid.columns = error on the flight of part 1, gamma 1: the bound holds on
+ * every frame as in part 1; the knots leave uniform (some band's share off
+ * by more than 5%); and the vertex pass places the columns where the knots
+ * say: along the grid's bottom row (a base-plane line along the sampling
+ * camera's right vector, so the share of the row's length up to a vertex is
+ * its u) each vertex's u equals ft_pgrid_col_u(knots, i / (cols - 1)). */
+static void test_columns(const char *dem)
+{
+    g_columns_error = 1;
+    setup c = {"pgrid", "egl-gles3", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 1, 1, 0u};
+    app_init(&c);
+    g_columns_error = 0;
+    const ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
+    REQUIRE(m->tight && m->col_warp);
+    const ft_gl *gl = &g_app.gpu.gl;
+    const uint32_t cols = m->pgm.cols, rows = m->pgm.rows;
+    double worst_share = 0.0, worst_u = 0.0;
+    uint32_t rows_checked = 0u;
+    for (int f = 0; f < PATH_FRAMES; ++f) {
+        ft_camera cam;
+        ft_frame_stats fs;
+        ft_error_stats es;
+        ft_pose p = path_pose(f);
+        ft_test_frame(&g_app, &p, &cam, &fs);
+        ft_test_measure(&g_app, &cam, &es);
+        const uint32_t cover = es.only_method_px + es.only_ref_px;
+        double share_off = 0.0;
+        for (uint32_t b = 0; b < FT_PGRID_COL_BANDS; ++b) {
+            const double share = FT_PGRID_COL_BANDS * (double)(m->col_t[b + 1u] - m->col_t[b]);
+            share_off = fmax(share_off, fabs(share - 1.0));
+        }
+        worst_share = fmax(worst_share, share_off);
+        /* the bottom row as the vertex pass placed it */
+        gl->BindFramebuffer(GL_FRAMEBUFFER, m->vtx_fbo);
+        gl->ReadPixels(0, 0, (GLsizei)cols, 1, GL_RGBA, GL_FLOAT, g_vtx);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        const double *r = m->pgm.sampling.right;
+        const double len = (g_vtx[4u * (cols - 1u)] - g_vtx[0]) * r[0] +
+                           (g_vtx[4u * (cols - 1u) + 1u] - g_vtx[1]) * r[1];
+        /* a row clamped into the grid at either end is not on its line */
+        const ft_terrain *t = &g_app.terrain;
+        const double lo_x = t->origin_world_x_m - cam.eye_m[0];
+        const double hi_x = lo_x + (t->width - 1u) * t->cell_x_m;
+        const double lo_y = t->origin_world_y_m - cam.eye_m[1];
+        const double hi_y = lo_y + (t->height - 1u) * t->cell_y_m;
+        int clamped = 0;
+        for (uint32_t i = 0; i < cols; ++i) {
+            const float *v = g_vtx + 4u * i;
+            clamped |= (v[0] <= lo_x + 1.0 || v[0] >= hi_x - 1.0 || v[1] <= lo_y + 1.0 ||
+                        v[1] >= hi_y - 1.0);
+        }
+        double row_worst = 0.0;
+        if (!clamped && fabs(len) > 1.0) {
+            for (uint32_t i = 0; i < cols; ++i) {
+                const float *v = g_vtx + 4u * i;
+                const double u = ((v[0] - g_vtx[0]) * r[0] + (v[1] - g_vtx[1]) * r[1]) / len;
+                const double want = ft_pgrid_col_u(m->col_t, (double)i / (double)(cols - 1u));
+                row_worst = fmax(row_worst, fabs(u - want));
+            }
+            worst_u = fmax(worst_u, row_worst);
+            ++rows_checked;
+        }
+        printf("columns by the error f%d: max %.3f px, cover %u, %.1f%% of the terrain ray cast; "
+               "largest band share off uniform %.3f; bottom row %s, worst |u - knots| %.2g\n",
+               f, es.max_px, cover,
+               fs.terrain_px ? 100.0 * (double)fs.raycast_px / (double)fs.terrain_px : 0.0,
+               share_off, clamped ? "clamped (not checked)" : "on its line", row_worst);
+        CHECK(es.nonfinite_px == 0u);
+        CHECK(!fs.budget_hit);
+        CHECK(es.max_px <= 1.0 + TOL_PX);
+        CHECK(cover <= COVER_PX_PER_GAMMA);
+    }
+    (void)rows;
+    CHECK(worst_share > 0.05);
+    CHECK(rows_checked >= PATH_FRAMES / 2u);
+    CHECK(worst_u < 1e-3);
+    ft_app_shutdown(&g_app);
+}
+
 int main(int argc, char **argv)
 {
     REQUIRE(argc >= 3);
@@ -828,5 +917,6 @@ int main(int argc, char **argv)
     if (only == NULL || strcmp(only, "sweep") == 0) test_sweep(dem, 42.45, 1.55);
     if (only == NULL || strcmp(only, "cracks") == 0) test_cracks("egl-gles3", dem);
     if (only == NULL || strcmp(only, "tiles") == 0) test_tiles(dem);
+    if (only == NULL || strcmp(only, "columns") == 0) test_columns(dem);
     return ft_test_result("test_pgrid_gl es3");
 }

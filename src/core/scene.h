@@ -134,6 +134,7 @@ typedef struct ft_scene {
     uint32_t pgrid_grid_cols;    /* pgrid.grid_cols */
     uint32_t pgrid_grid_rows;    /* pgrid.grid_rows */
     int pgrid_view_distribution; /* pgrid.distribution: 0 uniform, 1 view */
+    int pgrid_columns_error;     /* pgrid.columns: 0 uniform, 1 error (src/lod/pgrid.h 1) */
     int pgrid_residual_bound;    /* pgrid.error_bound: 0 relief, 1 residual (src/lod/pgrid.h 6) */
     int pgrid_ray_casting;       /* pgrid.ray_casting */
     double pgrid_gamma_px;       /* pgrid.gamma_px */
@@ -270,6 +271,9 @@ typedef struct ft_scene {
       "error-bounded projective grid: vertices from near to far")                                \
     X(pgrid, distribution, ENUM, pgrid_view_distribution, 0, 0, "uniform|view|", "view", "",     \
       "grid rows evenly on the image plane, or evenly in asinh(ground distance / height)")       \
+    X(pgrid, columns, ENUM, pgrid_columns_error, 0, 0, "uniform|error|", "uniform", "",          \
+      "grid columns evenly across the view, or moved to where the last frame's error was "       \
+      "(ray casting only; src/lod/pgrid.h 1)")                                                   \
     X(pgrid, error_bound, ENUM, pgrid_residual_bound, 0, 0, "relief|residual|", "residual", "",  \
       "which bound marks the pixels to ray cast (src/lod/pgrid.h)")                              \
     X(pgrid, ray_casting, FLAG, pgrid_ray_casting, 0, 1, NULL, "1", "",                          \

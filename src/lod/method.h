@@ -152,6 +152,14 @@ typedef struct ft_pgrid_method {
     GLint uq_vtx, uq_res, uq_heights, uq_grid_size, uq_cell_m, uq_origin, uq_pack, uq_drop;
     GLint uq_res_levels, uq_res_level[FT_PYRAMID_LEVELS_MAX];
     uint64_t terrain_px;            /* the last decision's terrain pixels (undilated code > 0) */
+    /* the column warp (src/lod/pgrid.h 1; pgrid.columns = error): T_b per
+     * band of the sampling rectangle (FT_PGRID_COL_BANDS + 1 knots), the
+     * knots each pack buffer's frame was drawn with, and the band histograms
+     * of the last buffer's codes */
+    int col_warp;
+    float col_t[FT_PGRID_COL_BANDS + 1], col_t_next[FT_PGRID_COL_BANDS + 1];
+    float col_t_pbo[2][FT_PGRID_COL_BANDS + 1];
+    uint32_t band_hist[FT_PGRID_COL_BANDS][256];
     /* the late decision (GLES 3 with ray casting): the error buffer goes into
      * pixel-pack buffer pack_pbo[pbo_next] without waiting; the next frame
      * maps it (complete by then) and decides from it */

@@ -37,6 +37,8 @@
     X(FT_PGRID_U_ERR, "u_pgrid_err", 1u)                      \
     X(FT_PGRID_U_FWD, "u_pgrid_fwd", 1u)                      \
     X(FT_PGRID_U_ENVELOPE, "u_pgrid_envelope", 1u)            \
+    X(FT_PGRID_U_COLS, "u_pgrid_cols", 1u)                    \
+    X(FT_PGRID_U_COLS_ON, "u_pgrid_cols_on", 1u)              \
     X(FT_PGRID_U_MM_LEVEL, "u_pgrid_mm_level", FT_PYRAMID_LEVELS_MAX)
 enum { FT_PGRID_U_BEFORE_ = FT_PGM_U_COUNT - 1, FT_PGRID_UNIFORMS(FT_UNIFORM_ENUM) FT_PGRID_U_COUNT };
 static const ft_uniform_name k_pgrid_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)
@@ -628,6 +630,12 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
         m->late = 1;
     }
     m->thr = FT_PGRID_CODES;
+    /* uniform columns until a frame's codes say otherwise */
+    for (uint32_t b = 0; b <= FT_PGRID_COL_BANDS; ++b) {
+        const float t_b = (float)b / (float)FT_PGRID_COL_BANDS;
+        m->col_t[b] = m->col_t_next[b] = m->col_t_pbo[0][b] = m->col_t_pbo[1][b] = t_b;
+    }
+    m->col_warp = m->late && s->pgrid_columns_error;
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
 }
@@ -667,6 +675,8 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
     }
     gl->Uniform1i(p->method_u[FT_PGRID_U_VTX], 4);
     gl->Uniform1i(p->method_u[FT_PGRID_U_SLOPE], 7);
+    gl->Uniform1fv(p->method_u[FT_PGRID_U_COLS], (GLsizei)(FT_PGRID_COL_BANDS + 1u), m->col_t);
+    gl->Uniform1f(p->method_u[FT_PGRID_U_COLS_ON], m->col_warp ? 1.0f : 0.0f);
 }
 
 /* The tight bound's passes (src/lod/pgrid.h 6), before the grid is drawn:
@@ -747,6 +757,24 @@ static void remember_view(ft_pgrid_method *m, const ft_camera *cam)
     m->have_decision = 1;
 }
 
+/* The column warp (src/lod/pgrid.h 1) from the codes of pack buffer slot's
+ * frame, in m->readback: the band of a pixel is that of its column t (the
+ * error buffer's B), through the knots that frame was drawn with. */
+static void warp_columns(ft_pgrid_method *m, uint32_t slot, double gamma)
+{
+    memset(m->band_hist, 0, sizeof m->band_hist);
+    const float *knots = m->col_t_pbo[slot];
+    for (size_t k = 0; k < (size_t)m->w_px * m->h_px; ++k) {
+        const uint8_t code = m->readback[4u * k + 1u];
+        if (code == 0u) continue;
+        const double u = ft_pgrid_col_u(knots, (double)m->readback[4u * k + 2u] / 255.0);
+        double bf = floor(u * (double)FT_PGRID_COL_BANDS);
+        bf = bf < 0.0 ? 0.0 : (bf > FT_PGRID_COL_BANDS - 1.0 ? FT_PGRID_COL_BANDS - 1.0 : bf);
+        m->band_hist[(uint32_t)bf][code] += 1u;
+    }
+    ft_pgrid_col_warp((const uint32_t (*)[256])m->band_hist, knots, gamma, m->col_t_next);
+}
+
 /* The late decision (src/lod/pgrid.h 5; GLES 3 with ray casting). This frame's
  * error buffer goes into a pixel-pack buffer without waiting for it; the
  * previous frame's, complete by now, is mapped and gives the histogram that
@@ -781,8 +809,12 @@ static void decide_late(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *ca
     gl->BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     m->pbo_full[cur] = 1;
     m->pbo_next = prev;
+    memcpy(m->col_t_pbo[cur], m->col_t, sizeof m->col_t); /* what this frame drew */
     if (have) {
         count_codes(m);
+        if (m->col_warp) {
+            warp_columns(m, prev, gamma);
+        }
         /* the previous frame's pixels at the threshold it used */
         uint64_t last = 0u;
         for (uint32_t c = m->thr; c < FT_PGRID_CODES; ++c) last += m->hist[c];
@@ -964,6 +996,11 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
     GLint fb = 0;
     gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
     ft_pgm_method_select(&m->pgm, t, cam);
+    if (p->shade.ramp_h >= 0) {
+        /* the column warp the last decision chose; a position pass draws
+         * the picture's grid */
+        memcpy(m->col_t, m->col_t_next, sizeof m->col_t);
+    }
     if (m->tight) {
         tight_passes(m, gl, t, cam, fb);
         gl->UseProgram(p->program);

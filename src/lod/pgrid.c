@@ -49,6 +49,80 @@ double ft_pgrid_code_rho_hi(uint32_t code)
     return exp2((double)code * FT_PGRID_CODE_LOG2_SPAN / 255.0 + FT_PGRID_CODE_LOG2_MIN);
 }
 
+double ft_pgrid_col_u(const float t_knots[], double t)
+{
+    uint32_t k = 0u;
+    for (uint32_t n = 1u; n < FT_PGRID_COL_BANDS; ++n) {
+        if (t >= (double)t_knots[n]) k = n;
+    }
+    const double t0 = t_knots[k], t1 = t_knots[k + 1u];
+    return ((double)k + (t - t0) / (t1 - t0)) / (double)FT_PGRID_COL_BANDS;
+}
+
+#define COL_STEPS 13 /* s = 2^(j / 4 - 1), j = 0..12: 1/2 .. 4 */
+
+void ft_pgrid_col_warp(const uint32_t (*hist)[256], const float prev[], double gamma_px,
+                       float next[])
+{
+    const uint32_t nb = FT_PGRID_COL_BANDS;
+    const double cg = (double)ft_pgrid_code(gamma_px);
+    /* over[b][j]: band b's pixels over code(gamma) at share s_j */
+    double over[FT_PGRID_COL_BANDS][COL_STEPS];
+    double s_prev[FT_PGRID_COL_BANDS];
+    double any = 0.0;
+    for (uint32_t b = 0; b < nb; ++b) {
+        s_prev[b] = (double)nb * ((double)prev[b + 1u] - (double)prev[b]);
+        uint32_t above[257];
+        above[256] = 0u;
+        for (int c = 255; c >= 0; --c) above[c] = above[c + 1] + hist[b][c];
+        for (int j = 0; j < COL_STEPS; ++j) {
+            const double s = exp2((double)j / 4.0 - 1.0);
+            /* a pixel of code c drawn at s_prev is over at s iff
+             * c >= code(gamma) + log2(s / s_prev) * 255 / 16 */
+            double c = ceil(cg + log2(s / s_prev[b]) * 255.0 / FT_PGRID_CODE_LOG2_SPAN);
+            c = c < 1.0 ? 1.0 : (c > 256.0 ? 256.0 : c);
+            over[b][j] = (double)above[(int)c];
+        }
+        any += over[b][4]; /* s = 1 */
+    }
+    double s_new[FT_PGRID_COL_BANDS];
+    if (any <= 0.0) {
+        for (uint32_t b = 0; b < nb; ++b) s_new[b] = 1.0;
+    } else {
+        /* each band's best share at a price lambda a unit of share; the
+         * price that spends the columns there are (sum s_b = 16), bisected
+         * (the sum falls as the price rises) */
+        double lo = 0.0, hi = 1e12;
+        for (int it = 0; it < 80; ++it) {
+            const double lam = 0.5 * (lo + hi);
+            double sum = 0.0;
+            for (uint32_t b = 0; b < nb; ++b) {
+                int best = 0;
+                for (int j = 1; j < COL_STEPS; ++j) {
+                    const double sj = exp2((double)j / 4.0 - 1.0);
+                    const double sb = exp2((double)best / 4.0 - 1.0);
+                    if (over[b][j] + lam * sj < over[b][best] + lam * sb) best = j;
+                }
+                s_new[b] = exp2((double)best / 4.0 - 1.0);
+                sum += s_new[b];
+            }
+            if (sum > (double)nb) lo = lam; else hi = lam;
+        }
+    }
+    double sum = 0.0;
+    for (uint32_t b = 0; b < nb; ++b) {
+        s_new[b] = sqrt(s_new[b] * s_prev[b]);
+        sum += s_new[b];
+    }
+    next[0] = 0.0f;
+    double acc = 0.0;
+    for (uint32_t b = 0; b < nb; ++b) {
+        acc += s_new[b] / sum;
+        next[b + 1u] = (float)acc;
+    }
+    next[nb] = 1.0f;
+}
+
 double ft_pgrid_row_s(double depression_rad, double y)
 {
     const double beta = depression_rad - atan(y);

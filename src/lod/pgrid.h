@@ -17,7 +17,19 @@
  *    a cell's depth on the ground (d ds) grows like its width (prop. to d) and
  *    cells stay close to square; near the nadir (d ~ 0) asinh is linear and
  *    the rows are ~h apart, and a bottom edge past the nadir (d < 0) is fine.
- *    The columns stay uniform in x (cells are already d-proportional across).
+ *    Columns: uniform in x by default (pgrid.columns = uniform): a grid row
+ *    lies on a line of constant depth in the view, so uniform columns are
+ *    uniform in the view's pixels along it. pgrid.columns = error (with ray
+ *    casting) moves them to where the error was: x is cut in
+ *    FT_PGRID_COL_BANDS equal bands, band b gets the columns with t = i /
+ *    (cols - 1) in [T_b, T_b+1] (a piecewise linear map, the shader's
+ *    ft_col_x and ft_pgrid_col_u), and each frame the knots T come from the
+ *    previous frame's error buffer, which carries each pixel's column t:
+ *    per band the histogram of codes, and the share s_b = 16 (T_b+1 - T_b)
+ *    in [1/2, 4] that puts fewest pixels over code(gamma) if a pixel's error
+ *    scales as 1 / s_b (ft_pgrid_col_warp), blended with the last share by a
+ *    geometric mean. The bound does not depend on where the columns are:
+ *    every quad is bounded as drawn (6).
  *
  * 2. Per-vertex object-space error. Region of influence of vertex (i, j):
  *    the axis-aligned box of the ground points of grid points (i +- 1, j +- 1)
@@ -41,7 +53,8 @@
  *    rho > gamma, else 0 (the normalised error), G = code(rho), an 8-bit
  *    log code rounded UP: code(rho) = ceil((log2(rho) + 8) * 255 / 16) clamped
  *    to [1, 255] for terrain, 0 for sky (clear). rho > g implies code(rho) >=
- *    code(g), so thresholding codes is conservative.
+ *    code(g), so thresholding codes is conservative. B = the pixel's grid
+ *    column t = i / (cols - 1), for the column warp (1).
  *    With ray casting, the grid is drawn twice more into it, as envelopes:
  *    every vertex at the max (then the min) of its region, with GLES 3 MAX
  *    blending and depth writes off (the mesh's depth decides what is in
@@ -109,6 +122,7 @@
 #include "lod/pgm.h"
 #include "terrain/terrain.h"
 
+#define FT_PGRID_COL_BANDS 16u
 #define FT_PGRID_DIST_UNIFORM 0
 #define FT_PGRID_DIST_VIEW 1
 #define FT_PGRID_CODE_LOG2_MIN (-8.0)
@@ -125,6 +139,20 @@ double ft_pgrid_norm_error(double rho_px, double gamma_px);
 /* 1 when the lower envelope must be drawn (3) for the frame's sampling
  * set-up s: the eye off the grid or not above the terrain's highest sample. */
 int ft_pgrid_lower_envelope_needed(const ft_terrain *t, const ft_pgm_sampling *s);
+
+/* The column warp's knots t (FT_PGRID_COL_BANDS + 1, t[0] = 0, t[last] =
+ * 1, increasing): band b of the sampling rectangle's width holds the
+ * columns with i / (cols - 1) in [t[b], t[b + 1]]. The rectangle's u in
+ * [0, 1] (x = mix(x0, x1, u)) of column parameter t; past either end the end
+ * band's slope (the shader's ft_col_x). */
+double ft_pgrid_col_u(const float t_knots[], double t);
+/* Next knots from the band histograms of a frame's codes (hist[b][c]:
+ * pixels of band b with code c; drawn with knots prev): each band takes
+ * s_b = 16 (t[b+1] - t[b]) times the uniform columns, s_b in [1/2, 4], to
+ * minimise the pixels over code(gamma) if each pixel's error scales as 1 /
+ * s_b, at a fixed column count; geometric mean with prev (no jumps). */
+void ft_pgrid_col_warp(const uint32_t (*hist)[256], const float prev[], double gamma_px,
+                       float next[]);
 
 /* 8-bit error code (rounded up; >= 1 for any rho, 0 is reserved for sky). */
 uint32_t ft_pgrid_code(double rho_px);

@@ -902,6 +902,13 @@ int main(int argc, char **argv)
         return ft_test_result("test_pgrid_gl sweep");
     }
     if (strcmp(mode, "es2") == 0) {
+        /* columns = error needs the ray caster's error buffer: uniform here */
+        g_columns_error = 1;
+        setup c = {"pgrid", "egl-gles2", dem, 60.0, GRID_COLS, GRID_ROWS, 1, 1, 1.0, 0, 1, 0u};
+        app_init(&c);
+        g_columns_error = 0;
+        CHECK(g_app.renderer.method.u.pgrid.col_warp == 0);
+        ft_app_shutdown(&g_app);
         test_cracks("egl-gles2", dem);
         return ft_test_result("test_pgrid_gl es2");
     }

@@ -636,6 +636,11 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
         m->col_t[b] = m->col_t_next[b] = m->col_t_pbo[0][b] = m->col_t_pbo[1][b] = t_b;
     }
     m->col_warp = m->late && s->pgrid_columns_error;
+    if (s->pgrid_columns_error && !m->col_warp) {
+        (void)fprintf(stderr, "pgrid: columns = error moves the columns by the ray-cast error "
+                              "buffer (GLES 3, ray_casting = 1); this context has none: the "
+                              "columns stay uniform\n");
+    }
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     return ft_gl_check(gl, "pgrid init (min/max atlas, error buffer, ray caster)", err);
 }

@@ -193,6 +193,14 @@ static ft_pose path_pose(int f)
 #define TOL_PX 0.10
 #define COVER_PX_PER_GAMMA 24.0
 
+/* Frame f of the flight, drawn and measured against the reference. */
+static void fly_measured(int f, ft_camera *cam, ft_frame_stats *fs, ft_error_stats *es)
+{
+    ft_pose p = path_pose(f);
+    ft_test_frame(&g_app, &p, cam, fs);
+    ft_test_measure(&g_app, cam, es);
+}
+
 static void test_error_bound(const char *dem, int residual)
 {
     double brute_max[PATH_FRAMES], brute_mean[PATH_FRAMES];
@@ -202,9 +210,7 @@ static void test_error_bound(const char *dem, int residual)
         ft_camera cam;
         ft_frame_stats fs;
         ft_error_stats es;
-        ft_pose p = path_pose(f);
-        ft_test_frame(&g_app, &p, &cam, &fs);
-        ft_test_measure(&g_app, &cam, &es);
+        fly_measured(f, &cam, &fs, &es);
         brute_max[f] = es.max_px;
         brute_mean[f] = es.mean_px;
     }
@@ -227,9 +233,7 @@ static void test_error_bound(const char *dem, int residual)
             ft_camera cam;
             ft_frame_stats fs;
             ft_error_stats es;
-            ft_pose p = path_pose(f);
-            ft_test_frame(&g_app, &p, &cam, &fs);
-            ft_test_measure(&g_app, &cam, &es);
+            fly_measured(f, &cam, &fs, &es);
             const uint32_t cover = es.only_method_px + es.only_ref_px;
             printf("  gamma %.1f f%d: max %.3f mean %.4f cover %u+%u rc %u achieved %.3f%s "
                    "[%.3f/%.4f]\n",
@@ -826,16 +830,14 @@ static void test_columns(const char *dem)
     const ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
     REQUIRE(m->tight && m->col_warp);
     const ft_gl *gl = &g_app.gpu.gl;
-    const uint32_t cols = m->pgm.cols, rows = m->pgm.rows;
+    const uint32_t cols = m->pgm.cols;
     double worst_share = 0.0, worst_u = 0.0;
     uint32_t rows_checked = 0u;
     for (int f = 0; f < PATH_FRAMES; ++f) {
         ft_camera cam;
         ft_frame_stats fs;
         ft_error_stats es;
-        ft_pose p = path_pose(f);
-        ft_test_frame(&g_app, &p, &cam, &fs);
-        ft_test_measure(&g_app, &cam, &es);
+        fly_measured(f, &cam, &fs, &es);
         const uint32_t cover = es.only_method_px + es.only_ref_px;
         double share_off = 0.0;
         for (uint32_t b = 0; b < FT_PGRID_COL_BANDS; ++b) {
@@ -883,7 +885,6 @@ static void test_columns(const char *dem)
         CHECK(es.max_px <= 1.0 + TOL_PX);
         CHECK(cover <= COVER_PX_PER_GAMMA);
     }
-    (void)rows;
     CHECK(worst_share > 0.05);
     CHECK(rows_checked >= PATH_FRAMES / 2u);
     CHECK(worst_u < 1e-3);

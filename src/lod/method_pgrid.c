@@ -769,13 +769,17 @@ static void warp_columns(ft_pgrid_method *m, uint32_t slot, double gamma)
 {
     memset(m->band_hist, 0, sizeof m->band_hist);
     const float *knots = m->col_t_pbo[slot];
+    /* the band of each 8-bit column value, once, not once a pixel */
+    uint8_t band_of[256];
+    for (uint32_t v = 0; v < 256u; ++v) {
+        double bf = floor(ft_pgrid_col_u(knots, (double)v / 255.0) * (double)FT_PGRID_COL_BANDS);
+        bf = bf < 0.0 ? 0.0 : (bf > FT_PGRID_COL_BANDS - 1.0 ? FT_PGRID_COL_BANDS - 1.0 : bf);
+        band_of[v] = (uint8_t)bf;
+    }
     for (size_t k = 0; k < (size_t)m->w_px * m->h_px; ++k) {
         const uint8_t code = m->readback[4u * k + 1u];
         if (code == 0u) continue;
-        const double u = ft_pgrid_col_u(knots, (double)m->readback[4u * k + 2u] / 255.0);
-        double bf = floor(u * (double)FT_PGRID_COL_BANDS);
-        bf = bf < 0.0 ? 0.0 : (bf > FT_PGRID_COL_BANDS - 1.0 ? FT_PGRID_COL_BANDS - 1.0 : bf);
-        m->band_hist[(uint32_t)bf][code] += 1u;
+        m->band_hist[band_of[m->readback[4u * k + 2u]]][code] += 1u;
     }
     ft_pgrid_col_warp((const uint32_t (*)[256])m->band_hist, knots, gamma, m->col_t_next);
 }

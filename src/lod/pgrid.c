@@ -68,6 +68,8 @@ void ft_pgrid_col_warp(const uint32_t (*hist)[256], const float prev[], double g
     const double cg = (double)ft_pgrid_code(gamma_px);
     /* over[b][j]: band b's pixels over code(gamma) at share s_j */
     double over[FT_PGRID_COL_BANDS][COL_STEPS];
+    double share[COL_STEPS];
+    for (int j = 0; j < COL_STEPS; ++j) share[j] = exp2((double)j / 4.0 - 1.0);
     double s_prev[FT_PGRID_COL_BANDS];
     double any = 0.0;
     for (uint32_t b = 0; b < nb; ++b) {
@@ -76,7 +78,7 @@ void ft_pgrid_col_warp(const uint32_t (*hist)[256], const float prev[], double g
         above[256] = 0u;
         for (int c = 255; c >= 0; --c) above[c] = above[c + 1] + hist[b][c];
         for (int j = 0; j < COL_STEPS; ++j) {
-            const double s = exp2((double)j / 4.0 - 1.0);
+            const double s = share[j];
             /* a pixel of code c drawn at s_prev is over at s iff
              * c >= code(gamma) + log2(s / s_prev) * 255 / 16 */
             double c = ceil(cg + log2(s / s_prev[b]) * 255.0 / FT_PGRID_CODE_LOG2_SPAN);
@@ -99,11 +101,9 @@ void ft_pgrid_col_warp(const uint32_t (*hist)[256], const float prev[], double g
             for (uint32_t b = 0; b < nb; ++b) {
                 int best = 0;
                 for (int j = 1; j < COL_STEPS; ++j) {
-                    const double sj = exp2((double)j / 4.0 - 1.0);
-                    const double sb = exp2((double)best / 4.0 - 1.0);
-                    if (over[b][j] + lam * sj < over[b][best] + lam * sb) best = j;
+                    if (over[b][j] + lam * share[j] < over[b][best] + lam * share[best]) best = j;
                 }
-                s_new[b] = exp2((double)best / 4.0 - 1.0);
+                s_new[b] = share[best];
                 sum += s_new[b];
             }
             if (sum > (double)nb) lo = lam; else hi = lam;

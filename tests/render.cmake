@@ -110,6 +110,13 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
         set_tests_properties(no_heap_pgm_cache_ftd_gles2 PROPERTIES
                              ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
       endif()
+      # pgrid over the cache (its cell ranges refreshed by every update)
+      if(FIXTERRAIN_WITH_METHOD_PGRID)
+        add_test(NAME no_heap_pgrid_cache_ftd COMMAND test_no_heap
+                 ${CMAKE_BINARY_DIR}/test-out/no_heap_pgrid_cache_ftd.png egl-gles3 pgrid-cache
+                 replay ${_nh_db})
+        set_tests_properties(no_heap_pgrid_cache_ftd PROPERTIES FIXTURES_REQUIRED no_heap_ftd)
+      endif()
     endif()
   endif()
   if(FIXTERRAIN_WITH_OSMESA)

@@ -538,6 +538,97 @@ static void test_block_errors(void)
     CHECK(k.finite > k.pieces / 2u && k.unbounded > 0u);
 }
 
+/* The cells' ranges over a terrain source (its samples are the finest
+ * data): while the boxes move and lag, every cell of every level whose
+ * four corners are resident holds every terrain sample of its closed
+ * footprint (the finest bilinear surface takes its extremes there: the
+ * footprint is whole finest cells), and is no wider than its corners'
+ * range plus twice its deviation (the rule, not a looser one); a cache over
+ * the synthetic source, whose band of unknown deviations gives an unbounded
+ * range there and only there. */
+static void test_cell_ranges(void)
+{
+    enum { W = 150, H = 110 };
+    static float heights[W * H];
+    for (int k = 0; k < W * H; ++k) {
+        const int x = k % W, y = k / W;
+        heights[k] = (float)(300.0 * sin(0.21 * x) * cos(0.13 * y) + 7.0 * ((k * 7919) % 13));
+    }
+    ft_terrain t;
+    memset(&t, 0, sizeof(t));
+    t.width = W;
+    t.height = H;
+    t.heights_m = heights;
+    ft_clip_source src;
+    ft_clip_source_terrain(&src, &t);
+    ft_arena a;
+    memset(&a, 0, sizeof(a));
+    a.pools[FT_POOL_CLIP].budget_bytes = 1u << 19;
+    ft_error err;
+    REQUIRE(ft_arena_bind(&a, g_arena_mem, sizeof(g_arena_mem), &err) == FT_OK);
+    ft_clip_cache c;
+    const ft_clip_desc d = {16u, 3u, 64u, 1};
+    REQUIRE(ft_clip_init(&c, &d, &src, &a, &err) == FT_OK);
+    uint64_t cells = 0u, outside = 0u, wide = 0u;
+    for (int step = 0; step < 40; ++step) {
+        (void)ft_clip_recentre(&c, 20.0 + 2.7 * step, 15.0 + 2.1 * step);
+        (void)drain(&c, step % 5 == 0 ? -1 : 3, NULL);
+        for (uint32_t l = 0u; l < d.levels; ++l) {
+            const ft_clip_box *v = &c.level[l].valid;
+            const int64_t s = (int64_t)1 << l;
+            for (int64_t b = v->j0; b + 1 < v->j1; ++b) {
+                for (int64_t q = v->i0; q + 1 < v->i1; ++q) {
+                    if ((q + 1) * s > W - 1 || (b + 1) * s > H - 1 || q < 0 || b < 0) {
+                        continue; /* past the terrain: nothing is drawn there */
+                    }
+                    float lo, hi;
+                    ft_clip_cell_range(&c, l, q, b, &lo, &hi);
+                    double cmin = INFINITY, cmax = -INFINITY, fmin_ = INFINITY, fmax_ = -INFINITY;
+                    for (int k = 0; k < 4; ++k) {
+                        const double h = heights[((b + (k >> 1)) * s) * W + (q + (k & 1)) * s];
+                        cmin = fmin(cmin, h);
+                        cmax = fmax(cmax, h);
+                    }
+                    for (int64_t y = b * s; y <= (b + 1) * s; ++y) {
+                        for (int64_t x = q * s; x <= (q + 1) * s; ++x) {
+                            fmin_ = fmin(fmin_, heights[y * W + x]);
+                            fmax_ = fmax(fmax_, heights[y * W + x]);
+                        }
+                    }
+                    const double dev = ref_cell_dev(heights, W, H, l, q, b);
+                    cells++;
+                    outside += (double)lo > fmin_ || (double)hi < fmax_;
+                    wide += (double)lo < cmin - dev - 1e-3 || (double)hi > cmax + dev + 1e-3;
+                }
+            }
+        }
+    }
+    printf("cell ranges: %llu cells, %llu miss the finest data, %llu wider than the rule\n",
+           (unsigned long long)cells, (unsigned long long)outside, (unsigned long long)wide);
+    CHECK(cells > 10000u && outside == 0u && wide == 0u);
+    /* unknown deviations: the synthetic source's band on level 2 */
+    ft_clip_cache sc;
+    ft_arena sa;
+    make_cache_kept(&sc, &sa, 256u, 1);
+    (void)ft_clip_recentre(&sc, 0.0, 0.0);
+    (void)drain(&sc, -1, NULL);
+    uint64_t unbounded = 0u, misplaced = 0u;
+    const ft_clip_box *v = &sc.level[2].valid;
+    for (int64_t b = v->j0; b + 1 < v->j1; ++b) {
+        for (int64_t q = v->i0; q + 1 < v->i1; ++q) {
+            float lo, hi;
+            ft_clip_cell_range(&sc, 2u, q, b, &lo, &hi);
+            int unknown = 0;
+            for (int k = 0; k < 4; ++k) {
+                unknown |= synth_dev_m(2u, (q + (k & 1)) * 4, (b + (k >> 1)) * 4) < 0.0f;
+            }
+            unbounded += isinf(lo) && isinf(hi);
+            misplaced += unknown != (isinf(lo) && lo < 0.0f && isinf(hi) && hi > 0.0f);
+        }
+    }
+    CHECK(unbounded > 0u && misplaced == 0u);
+}
+
 int main(void)
 {
     test_fill_and_nesting();
@@ -548,5 +639,6 @@ int main(void)
     test_terrain_source();
     test_max_height_in();
     test_block_errors();
+    test_cell_ranges();
     return ft_test_result("test_clip_cache");
 }

@@ -153,8 +153,12 @@ int main(int argc, char **argv)
     const double speed_mps = argc >= 2 ? atof(argv[1]) : 250.0;
     const uint32_t render_every = argc >= 3 ? (uint32_t)atoi(argv[2]) : 1200u;
     const char *method = argc >= 4 ? argv[3] : "clipmap";
-    const int pgm = strcmp(method, "pgm") == 0;
-    REQUIRE(speed_mps > 0.0 && render_every > 0u && (pgm || strcmp(method, "clipmap") == 0));
+    const int pgm = strcmp(method, "pgm") == 0, pgrid = strcmp(method, "pgrid") == 0;
+    /* the persistent grid's own rules (its coarser rule, no bound): pgm, and
+     * pgrid, whose grid is pgm's (pgrid reports a bound: held as clipmap's) */
+    const int grid = pgm || pgrid;
+    REQUIRE(speed_mps > 0.0 && render_every > 0u &&
+            (grid || strcmp(method, "clipmap") == 0));
     if (!ft_test_have_data(FT_SHARED_DATA_DIR "/N41E001.hgt") ||
         !ft_test_have_data(FT_SHARED_DATA_DIR "/N42E001.hgt") || !ft_test_have_data(k_etopo)) {
         return FT_TEST_SKIP;
@@ -169,6 +173,7 @@ int main(int argc, char **argv)
                    "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 2801\n"
                    "db_centre_lat_deg = 42.1\ndb_centre_lon_deg = 2.1\n"
                    "[pgm]\nheights = clipmap\n"
+                   "[pgrid]\nheights = clipmap\nerror_bound = relief\nray_casting = 0\n"
                    "[clipmap]\nside = 128\nlevels = 8\nupdate_samples_max = 8192\n"
                    "updates_per_frame = 0\ntile_slots = 16\n"
                    "[gpu]\ntexture_bytes = 160M\n"
@@ -184,8 +189,9 @@ int main(int argc, char **argv)
     ft_terrain *t = &g_app.terrain;
     REQUIRE(t->db != NULL);
     ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
-    ft_clip_levels *cl = pgm ? &g_app.renderer.method.u.pgm.cl : &cm->cl;
-    REQUIRE(!pgm || g_app.renderer.method.u.pgm.clip);
+    ft_pgm_method *pm = pgrid ? &g_app.renderer.method.u.pgrid.pgm : &g_app.renderer.method.u.pgm;
+    ft_clip_levels *cl = grid ? &pm->cl : &cm->cl;
+    REQUIRE(!grid || pm->clip);
     const uint64_t gpu_bytes = cl->gpu_bytes;
     printf("cache: %u levels of %u^2 samples, %llu bytes of GPU textures; database window "
            "%u^2 samples (the scene's window)\n",
@@ -261,9 +267,9 @@ int main(int argc, char **argv)
         const uint64_t n = cl->cache.stats.samples_uploaded - before;
         samples_max = n > samples_max ? n : samples_max;
         behind += ft_clip_finest_current(&cl->cache) > 0u;
-        if (pgm) {
+        if (grid) {
             /* the selection above placed the view the frame would draw */
-            coarser += ft_pgm_clip_eye_coarser(&g_app.renderer.method.u.pgm.clip_view);
+            coarser += ft_pgm_clip_eye_coarser(&pm->clip_view);
         } else {
             ft_clip_box valid[FT_CLIP_LEVELS_MAX];
             for (uint32_t l = 0u; l < cl->levels; ++l) {
@@ -307,7 +313,7 @@ int main(int argc, char **argv)
             ft_test_measure(&g_app, &cs, &ess);
             ++steep_frames;
             steep_unbounded += !isfinite(fss.tau_achieved_px);
-            if (!isfinite(fss.tau_achieved_px)) {
+            if (!isfinite(fss.tau_achieved_px) && !pgrid) {
                 const ft_cm_bound *cb = &cm->bound;
                 printf("  steep view without a bound: %llu pieces, %llu unbounded, worst level "
                        "%u, data past the coarsest box in view %d\n",

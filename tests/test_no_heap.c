@@ -182,6 +182,14 @@ int main(int argc, char **argv)
     if (argc >= 4 && strcmp(argv[3], "pgm-cache") == 0) {
         s.method = FT_METHOD_PGM; /* pgm reading its heights through the clip cache */
         s.pgm_heights_clipmap = 1;
+    } else if (argc >= 4 && strcmp(argv[3], "pgrid-cache") == 0) {
+        s.method = FT_METHOD_PGRID; /* pgrid over the clip cache: its cell ranges too */
+        s.pgrid_heights_clipmap = 1;
+        s.pgrid_residual_bound = 0;
+        s.pgrid_ray_casting = 0;
+        /* the ranges' staging (an update's cells) on top of the readback */
+        REQUIRE(ft_scene_parse(&s, "[budget]\nmethod_bytes = 2M\n", "pgrid-cache", &err) ==
+                FT_OK);
     } else if (argc >= 4 && strcmp(argv[3], "pgrid-columns") == 0) {
         s.method = FT_METHOD_PGRID; /* pgrid with its columns moved by the error */
         s.pgrid_columns_error = 1;

@@ -140,6 +140,7 @@ typedef struct ft_scene {
     double pgrid_gamma_px;       /* pgrid.gamma_px */
     uint32_t pgrid_raycast_max_px; /* pgrid.raycast_max_px */
     uint32_t pgrid_raycast_tile_px; /* pgrid.raycast_tile_px */
+    int pgrid_heights_clipmap;   /* pgrid.heights: 0 pyramid, 1 clipmap */
     uint32_t clipmap_side;         /* clipmap.side */
     uint32_t clipmap_levels;       /* clipmap.levels */
     uint32_t clipmap_update_samples_max; /* clipmap.update_samples_max */
@@ -284,6 +285,9 @@ typedef struct ft_scene {
       "most pixels ray cast per frame; above it gamma is raised for that frame and reported")    \
     X(pgrid, raycast_tile_px, U32, pgrid_raycast_tile_px, 4, 64, NULL, "16", "px",               \
       "side of the screen tiles the ray caster runs on: only tiles with a pixel to ray cast")    \
+    X(pgrid, heights, ENUM, pgrid_heights_clipmap, 0, 0, "pyramid|clipmap|", "pyramid", "",      \
+      "where the grid reads heights and bounds its error: the window's pyramids, or the "        \
+      "clipmap cache around the eye (relief bound, no ray casting: the bound is reported)")      \
     X(clipmap, side, U32, clipmap_side, 16, 4096, NULL, "256", "samples",                         \
       "samples per clipmap level side (a power of two)")                                         \
     X(clipmap, levels, U32, clipmap_levels, 1, 16, NULL, "5", "levels",                          \

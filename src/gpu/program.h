@@ -60,7 +60,7 @@ typedef struct ft_uniform_list {
 } ft_uniform_list;
 #define FT_UNIFORM_ROW(id, name, count) {name, count},
 #define FT_UNIFORM_ENUM(id, name, count) id, id##_LAST_ = id + (count) - 1,
-#define FT_METHOD_UNIFORMS_MAX 64u
+#define FT_METHOD_UNIFORMS_MAX 96u
 
 typedef struct ft_terrain_program {
     GLuint program;

@@ -9,13 +9,19 @@
 static ft_clip_desc desc_of(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_rule bounds)
 {
     const ft_clip_desc d = {s->clipmap_side, s->clipmap_levels, s->clipmap_update_samples_max,
-                            t->db != NULL || bounds == FT_CLIP_BOUNDS_ALWAYS};
+                            t->db != NULL || bounds != FT_CLIP_BOUNDS_OVER_DB};
     return d;
 }
 
 static size_t packed_bytes(const ft_scene *s)
 {
     return (size_t)s->clipmap_update_samples_max * 4u;
+}
+
+/* The ranges' staging: an update's cells (lo, hi), at least 2 rows */
+static size_t range_bytes(const ft_scene *s)
+{
+    return (size_t)s->clipmap_update_samples_max * 2u * sizeof(float);
 }
 
 void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_rule bounds,
@@ -31,6 +37,9 @@ void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_
     }
     (void)ft_clip_plan(&d, &src, a, &err); /* init reports a bad description */
     ft_arena_plan(a, FT_POOL_METHOD, packed_bytes(s));
+    if (bounds == FT_CLIP_BOUNDS_RANGES) {
+        ft_arena_plan(a, FT_POOL_METHOD, range_bytes(s));
+    }
 }
 
 /* Atlas columns: the smallest square grid of levels. */
@@ -110,6 +119,51 @@ static void make_textures(ft_clip_levels *c, const ft_gl *gl)
     }
 }
 
+/* The ranges' texture (FT_CLIP_BOUNDS_RANGES), laid out as the heights'
+ * atlas; every cell reads unbounded until refreshed. */
+static ft_status make_ranges(ft_clip_levels *c, const ft_gl *gl, const ft_scene *s, ft_arena *a,
+                             ft_error *err)
+{
+    if (gl->api != FT_GL_API_ES3 || c->layout != FT_CLIP_TEX_ATLAS ||
+        c->fmt.format != FT_HEIGHT_FORMAT_FLOAT) {
+        return ft_fail(err, FT_ERR_UNSUPPORTED,
+                       "the clipmap cache's cell ranges (a vertex shader that bounds its error "
+                       "over the cache) need GLES 3 and float heights (this context: %s, "
+                       "heights %s)",
+                       gl->api == FT_GL_API_ES3 ? "GLES 3" : "GLES 2",
+                       c->fmt.format == FT_HEIGHT_FORMAT_FLOAT ? "float" : "packed");
+    }
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, range_bytes(s), (void **)&c->range_staging,
+                                 err);
+    if (st != FT_OK) {
+        return st;
+    }
+    c->range_cells = (uint32_t)(range_bytes(s) / (2u * sizeof(float)));
+    const ft_texture_desc d = {c->unit + 1u, c->tex_w, c->tex_h, GL_RG32F, GL_RG, GL_FLOAT,
+                               8u};
+    ft_gpu_texture_create(gl, &d, NULL, &c->range_tex, &c->gpu_bytes);
+    const ft_texture_desc db = {c->unit + 2u, c->tex_w / FT_CLIP_BOUND_BLOCK,
+                                c->tex_h / FT_CLIP_BOUND_BLOCK, GL_RG32F, GL_RG, GL_FLOAT, 8u};
+    ft_gpu_texture_create(gl, &db, NULL, &c->block_range_tex, &c->gpu_bytes);
+    for (uint32_t l = 0; l < c->levels; ++l) {
+        /* unbounded until refreshed: the level's texels, row by row
+         * through the staging (range_cells >= 2 side) */
+        for (uint32_t k = 0; k < 2u * c->side; k += 2u) {
+            c->range_staging[k] = -FT_CLIP_RANGE_UNBOUNDED_M;
+            c->range_staging[k + 1u] = FT_CLIP_RANGE_UNBOUNDED_M;
+        }
+        gl->ActiveTexture(c->unit + 1u);
+        gl->BindTexture(GL_TEXTURE_2D, c->range_tex);
+        for (uint32_t y = 0; y < c->side; ++y) {
+            gl->TexSubImage2D(GL_TEXTURE_2D, 0, (GLint)c->origin_px[l][0],
+                              (GLint)(c->origin_px[l][1] + y), (GLsizei)c->side, 1, GL_RG,
+                              GL_FLOAT, c->range_staging);
+        }
+        gl->ActiveTexture(GL_TEXTURE0);
+    }
+    return FT_OK;
+}
+
 /* One update's heights into its level's texels. */
 static void upload(ft_clip_levels *c, const ft_gl *gl, const ft_clip_update *u)
 {
@@ -135,6 +189,89 @@ static void upload(ft_clip_levels *c, const ft_gl *gl, const ft_clip_update *u)
     gl->ActiveTexture(GL_TEXTURE0);
 }
 
+/* The ranges of level l's cells [a0, a1) x [b0, b1) (south-west corner
+ * samples), clipped to the cells of the wanted box (the only ones that can
+ * become resident: the clipped box is under side wide, so no two of its
+ * cells share a texel), uploaded in pieces that do not wrap in texel space,
+ * rows at a time through the staging. Bounded: at most 4 pieces of at most
+ * side rows. */
+static void refresh_ranges(ft_clip_levels *c, uint32_t l, int64_t a0, int64_t a1, int64_t b0,
+                           int64_t b1)
+{
+    const ft_clip_box *w = &c->cache.level[l].want;
+    a0 = a0 > w->i0 ? a0 : w->i0;
+    b0 = b0 > w->j0 ? b0 : w->j0;
+    a1 = a1 < w->i1 - 1 ? a1 : w->i1 - 1;
+    b1 = b1 < w->j1 - 1 ? b1 : w->j1 - 1;
+    if (a1 <= a0 || b1 <= b0) {
+        return;
+    }
+    const int64_t side = (int64_t)c->side;
+    const ft_gl *gl = c->gl;
+    gl->ActiveTexture(c->unit + 1u);
+    gl->BindTexture(GL_TEXTURE_2D, c->range_tex);
+    for (int64_t pa = a0; pa < a1;) {
+        const int64_t ta = (int64_t)ft_clip_texel(&c->cache, pa);
+        const int64_t qa = (a1 - pa < side - ta) ? a1 : pa + (side - ta); /* to the seam */
+        const uint32_t wid = (uint32_t)(qa - pa);
+        const uint32_t rows_max = c->range_cells / wid;
+        for (int64_t pb = b0; pb < b1;) {
+            const int64_t tb = (int64_t)ft_clip_texel(&c->cache, pb);
+            int64_t qb = (b1 - pb < side - tb) ? b1 : pb + (side - tb);
+            qb = (qb - pb > (int64_t)rows_max) ? pb + (int64_t)rows_max : qb;
+            float *out = c->range_staging;
+            for (int64_t b = pb; b < qb; ++b) {
+                for (int64_t a = pa; a < qa; ++a, out += 2) {
+                    ft_clip_cell_range(&c->cache, l, a, b, &out[0], &out[1]);
+                    /* unknown: a large finite value (an infinite varying
+                     * turns to NaN where a weight is 0) */
+                    out[0] = fmaxf(out[0], -FT_CLIP_RANGE_UNBOUNDED_M);
+                    out[1] = fminf(out[1], FT_CLIP_RANGE_UNBOUNDED_M);
+                }
+            }
+            gl->TexSubImage2D(GL_TEXTURE_2D, 0, (GLint)(c->origin_px[l][0] + (uint32_t)ta),
+                              (GLint)(c->origin_px[l][1] + (uint32_t)tb), (GLsizei)wid,
+                              (GLsizei)(qb - pb), GL_RG, GL_FLOAT, c->range_staging);
+            c->range_uploads += 1u;
+            pb = qb;
+        }
+        pa = qa;
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
+}
+
+/* Level l's blocks' ranges (clip_cache.h, ft_clip_block_bound: the block's
+ * texels and apron widened by its error, which is at least every cell's
+ * deviation), each block a texel of the block-range texture, uploaded
+ * whole, rows at a time through the staging. */
+static void refresh_block_ranges(ft_clip_levels *c, uint32_t l)
+{
+    const uint32_t n = c->side / FT_CLIP_BOUND_BLOCK;
+    const uint32_t rows_max = c->range_cells / n;
+    const ft_gl *gl = c->gl;
+    gl->ActiveTexture(c->unit + 2u);
+    gl->BindTexture(GL_TEXTURE_2D, c->block_range_tex);
+    for (uint32_t y0 = 0; y0 < n; y0 += rows_max) {
+        const uint32_t rows = (n - y0 < rows_max) ? n - y0 : rows_max;
+        float *out = c->range_staging;
+        for (uint32_t k = y0 * n; k < (y0 + rows) * n; ++k, out += 2) {
+            const double err = c->cache.block_err_m[l][k];
+            const double lo = (double)c->cache.block_lo_m[l][k] - err;
+            const double hi = (double)c->cache.block_hi_m[l][k] + err;
+            /* rounded outward (err is rounded up already; the sum too) */
+            out[0] = isinf(err) ? -FT_CLIP_RANGE_UNBOUNDED_M
+                                : nextafterf((float)lo, -FT_CLIP_RANGE_UNBOUNDED_M);
+            out[1] = isinf(err) ? FT_CLIP_RANGE_UNBOUNDED_M
+                                : nextafterf((float)hi, FT_CLIP_RANGE_UNBOUNDED_M);
+        }
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, (GLint)(c->origin_px[l][0] / FT_CLIP_BOUND_BLOCK),
+                          (GLint)(c->origin_px[l][1] / FT_CLIP_BOUND_BLOCK + y0), (GLsizei)n,
+                          (GLsizei)rows, GL_RG, GL_FLOAT, c->range_staging);
+        c->range_uploads += 1u;
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
+}
+
 /* One update (read, upload, commit): 1 when one ran. Timed with now (when
  * not NULL), its time raises the declared cost of an update when it is the
  * slowest yet. */
@@ -149,6 +286,12 @@ static int run_one(ft_clip_levels *c, uint64_t (*now)(void), ft_error *err, ft_s
     }
     upload(c, c->gl, &u);
     ft_clip_commit(&c->cache, &u);
+    if (c->range_tex != 0u) {
+        /* the update's cells and those west and south of it (their east
+         * and north corners are its samples) */
+        refresh_ranges(c, u.level, u.box.i0 - 1, u.box.i1, u.box.j0 - 1, u.box.j1);
+        refresh_block_ranges(c, u.level);
+    }
     if (now != NULL) {
         const uint64_t dt = now() - t0;
         uint64_t *slot = &c->cost_ns[c->cost_at];
@@ -238,6 +381,12 @@ ft_status ft_clip_levels_init(ft_clip_levels *c, const ft_gl *gl, const ft_scene
     }
     c->fmt = ft_gpu_height_format(gl, s->height_format, lo_m, hi_m);
     make_textures(c, gl);
+    if (bounds == FT_CLIP_BOUNDS_RANGES) {
+        st = make_ranges(c, gl, s, a, err);
+        if (st != FT_OK) {
+            return st;
+        }
+    }
     /* the first frame is complete: every level filled around the terrain's
      * middle now, and again around the first eye by the first select */
     (void)ft_clip_recentre(&c->cache, (double)c->src.lattice_i0 + 0.5 * (t->width - 1u),
@@ -349,4 +498,7 @@ void ft_clip_levels_shutdown(ft_clip_levels *c, const ft_gl *gl)
         if (c->tex[l]) gl->DeleteTextures(1, &c->tex[l]);
     }
     memset(c->tex, 0, sizeof c->tex);
+    if (c->range_tex) gl->DeleteTextures(1, &c->range_tex);
+    if (c->block_range_tex) gl->DeleteTextures(1, &c->block_range_tex);
+    c->range_tex = c->block_range_tex = 0u;
 }

@@ -36,8 +36,24 @@ typedef enum ft_clip_tex_layout { FT_CLIP_TEX_PER_LEVEL, FT_CLIP_TEX_ATLAS } ft_
 
 /* When the cache keeps its CPU bounds (heights and cells' deviations per
  * level, clip_cache.h keep_bounds): over a database only (its depth range
- * needs them), or always (a method that bounds its error from them). */
-typedef enum ft_clip_bounds_rule { FT_CLIP_BOUNDS_OVER_DB, FT_CLIP_BOUNDS_ALWAYS } ft_clip_bounds_rule;
+ * needs them), or always (a method that bounds its error from them); and
+ * with RANGES, every resident cell's range of the finest data
+ * (ft_clip_cell_range) on the GPU too, for a vertex shader that bounds its
+ * own error: an RG32F texture laid out as the heights (the atlas; GLES 3
+ * with float heights only), on the unit after the heights', refreshed for
+ * the cells every committed update touches (the cells west and south of it
+ * too, whose corners it holds), so a cell whose four corners are resident
+ * holds its range; and on the unit after that the ranges of the level's
+ * blocks (ft_clip_block_bound: lo - err, hi + err), for a box too wide for
+ * a few cells. */
+/* A cell range's ends where the finest data are not known there. */
+#define FT_CLIP_RANGE_UNBOUNDED_M 1e30f
+
+typedef enum ft_clip_bounds_rule {
+    FT_CLIP_BOUNDS_OVER_DB,
+    FT_CLIP_BOUNDS_ALWAYS,
+    FT_CLIP_BOUNDS_RANGES
+} ft_clip_bounds_rule;
 
 /* Spare calls an update's measured cost is remembered for. A slowest-ever
  * declaration stopped the spare time for good after one slow update (a
@@ -77,16 +93,26 @@ typedef struct ft_clip_levels {
     uint64_t spare_deferred;       /* spare calls that left work for later */
     uint64_t read_errors;          /* source reads that failed (retried) */
     uint64_t gpu_bytes;
+    /* FT_CLIP_BOUNDS_RANGES: the cells' ranges (lo, hi), the blocks' (one
+     * texel a block, the same layout at 1 / FT_CLIP_BOUND_BLOCK) and their
+     * staging (range_cells cells, FT_POOL_METHOD) */
+    GLuint range_tex, block_range_tex;
+    float *range_staging;
+    uint32_t range_cells;
+    uint64_t range_uploads;        /* sub-image uploads of ranges since init */
 } ft_clip_levels;
 
 /* CPU pool needs: the cache's staging and the database source's tiles
- * (FT_POOL_CLIP), the packed-texel staging (FT_POOL_METHOD). */
+ * (FT_POOL_CLIP), the packed-texel staging and, with RANGES, the ranges'
+ * staging (FT_POOL_METHOD). */
 void ft_clip_levels_plan(const ft_scene *s, const ft_terrain *t, ft_clip_bounds_rule bounds,
                          ft_arena *a);
 
 /* Checks the clipmap.* keys against the device (side a power of two within
  * GL_MAX_TEXTURE_SIZE, the atlas too; levels; update_samples_max), makes the
- * source, the cache and the textures on `unit`, and fills every level. */
+ * source, the cache and the textures on `unit` (with RANGES the ranges on
+ * unit + 1: an error unless GLES 3, the atlas and float heights), and fills
+ * every level. */
 ft_status ft_clip_levels_init(ft_clip_levels *c, const ft_gl *gl, const ft_scene *s,
                               const ft_terrain *t, ft_clip_tex_layout layout,
                               ft_clip_bounds_rule bounds, GLenum unit, ft_arena *a,

@@ -71,7 +71,8 @@ const char *ft_method_colour_defines(const ft_scene *s, int es3)
 int ft_method_reads_cache(const ft_scene *s)
 {
     return s->method == FT_METHOD_CLIPMAP ||
-           (s->method == FT_METHOD_PGM && s->pgm_heights_clipmap);
+           (s->method == FT_METHOD_PGM && s->pgm_heights_clipmap) ||
+           (s->method == FT_METHOD_PGRID && s->pgrid_heights_clipmap);
 }
 
 const ft_clip_cache *ft_method_cache(const ft_method *m)
@@ -81,6 +82,9 @@ const ft_clip_cache *ft_method_cache(const ft_method *m)
     }
     if (m->kind == FT_METHOD_PGM && m->u.pgm.clip) {
         return &m->u.pgm.cl.cache;
+    }
+    if (m->kind == FT_METHOD_PGRID && m->u.pgrid.pgm.clip) {
+        return &m->u.pgrid.pgm.cl.cache;
     }
     return NULL;
 }

@@ -168,6 +168,7 @@ typedef struct ft_pgrid_method {
     uint32_t pbo_next;
     int late;
     uint32_t w_px, h_px;
+    float top_range_m[2];           /* over the cache: the coarsest level's range */
     int distribution, ray_casting, es3;
     double gamma_px;
     double lod_scale;               /* degradation: ray cast over gamma_px * lod_scale */
@@ -356,7 +357,17 @@ typedef struct ft_pgm_grid_desc {
 void ft_pgm_method_plan(const ft_pgm_grid_desc *g, const ft_terrain *t, ft_arena *a);
 ft_status ft_pgm_method_init(ft_pgm_method *m, const ft_gl *gl, const ft_pgm_grid_desc *g,
                              const ft_terrain *t, ft_arena *a, ft_error *err);
+/* The heights from the clipmap cache (after ft_pgm_method_init with clip):
+ * its levels in one atlas on unit 1 (clip_levels.h, with `bounds`). */
+ft_status ft_pgm_method_clip_init(ft_pgm_method *pm, const ft_gl *gl, const ft_scene *s,
+                                  const ft_terrain *t, ft_clip_bounds_rule bounds, ft_arena *a,
+                                  ft_error *err);
+/* The frame's selection: over the cache, the cache moved to the eye and
+ * this frame's updates run, every frame; then ft_pgm_method_view. */
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
+/* The sampling camera for cam over what is resident (kept while the view is
+ * the same): a draw's, which never moves the cache. */
+void ft_pgm_method_view(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
 /* Cell rows drawn by band b (the last band may be shorter). */
 uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
 /* Binds the avg atlas (unit 1) and sets program p's pgm uniforms for the

@@ -316,26 +316,36 @@ static ft_pgm_surface clip_surface(ft_pgm_method *m, const ft_terrain *t, const 
 
 /* Every frame, the view changed or not: a level that lags catches up while
  * the eye hovers, and the sampling follows what is resident. */
-static void clip_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+static void clip_view(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
-    ft_clip_levels_select(&m->cl, t, cam);
     clip_place(m, t, cam);
     const ft_pgm_surface g = clip_surface(m, t, cam);
     ft_pgm_setup_over(&m->sampling, cam, &g);
     ft_view_key_take(&m->sel_view, cam);
 }
 
-void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+void ft_pgm_method_view(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     if (ft_view_key_matches(&m->sel_view, cam)) {
         return;
     }
     if (m->clip) {
-        clip_select(m, t, cam);
+        clip_view(m, t, cam);
         return;
     }
     ft_pgm_setup(&m->sampling, cam, t);
     ft_view_key_take(&m->sel_view, cam);
+}
+
+void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    if (m->clip) {
+        /* every frame: the cache moves on its own */
+        ft_clip_levels_select(&m->cl, t, cam);
+        clip_view(m, t, cam);
+        return;
+    }
+    ft_pgm_method_view(m, t, cam);
 }
 
 void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
@@ -388,7 +398,7 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
 void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                         const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
-    ft_pgm_method_select(m, t, cam);
+    ft_pgm_method_view(m, t, cam);
     ft_pgm_method_bind(m, gl, p);
     gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
@@ -423,6 +433,21 @@ void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl)
     }
 }
 
+ft_status ft_pgm_method_clip_init(ft_pgm_method *pm, const ft_gl *gl, const ft_scene *s,
+                                  const ft_terrain *t, ft_clip_bounds_rule bounds, ft_arena *a,
+                                  ft_error *err)
+{
+    const ft_status st = ft_clip_levels_init(&pm->cl, gl, s, t, FT_CLIP_TEX_ATLAS, bounds,
+                                             GL_TEXTURE1, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    pm->clip = 1;
+    pm->levels = pm->cl.levels;
+    pm->transition_samples = s->clipmap_transition_samples;
+    return FT_OK;
+}
+
 /* ---- the method table ---------------------------------------------------------- */
 
 /* pgm's own keys (pgrid draws the same grid from its own) */
@@ -451,25 +476,12 @@ static ft_status ops_init(ft_method *m, const ft_gl *gl, const ft_scene *s, cons
     if (st != FT_OK || !g.clip) {
         return st;
     }
-    st = ft_clip_levels_init(&pm->cl, gl, s, t, FT_CLIP_TEX_ATLAS, FT_CLIP_BOUNDS_OVER_DB,
-                             GL_TEXTURE1, a, err);
-    if (st != FT_OK) {
-        return st;
-    }
-    pm->clip = 1;
-    pm->levels = pm->cl.levels;
-    pm->transition_samples = s->clipmap_transition_samples;
-    return FT_OK;
+    return ft_pgm_method_clip_init(pm, gl, s, t, FT_CLIP_BOUNDS_OVER_DB, a, err);
 }
 
 static void ops_select(ft_method *m, const ft_terrain *t, const ft_camera *cam)
 {
-    ft_pgm_method *pm = &m->u.pgm;
-    if (pm->clip) {
-        clip_select(pm, t, cam); /* every frame: the cache moves on its own */
-        return;
-    }
-    ft_pgm_method_select(pm, t, cam);
+    ft_pgm_method_select(&m->u.pgm, t, cam);
 }
 
 static const char *ops_vertex_defines(const ft_scene *s, int es3)

@@ -39,13 +39,20 @@
     X(FT_PGRID_U_ENVELOPE, "u_pgrid_envelope", 1u)            \
     X(FT_PGRID_U_COLS, "u_pgrid_cols", 1u)                    \
     X(FT_PGRID_U_COLS_ON, "u_pgrid_cols_on", 1u)              \
+    X(FT_PGRID_U_RANGE, "u_pgrid_range", 1u)                  \
+    X(FT_PGRID_U_BLOCK_RANGE, "u_pgrid_block_range", 1u)      \
+    X(FT_PGRID_U_TOP_RANGE, "u_pgrid_top_range", 1u)          \
     X(FT_PGRID_U_MM_LEVEL, "u_pgrid_mm_level", FT_PYRAMID_LEVELS_MAX)
-enum { FT_PGRID_U_BEFORE_ = FT_PGM_U_COUNT - 1, FT_PGRID_UNIFORMS(FT_UNIFORM_ENUM) FT_PGRID_U_COUNT };
+enum { FT_PGRID_U_BEFORE_ = FT_PCM_U_COUNT - 1, FT_PGRID_UNIFORMS(FT_UNIFORM_ENUM) FT_PGRID_U_COUNT };
+/* pgm's rows and its cache rows first, at pgm's indices (pgrid draws with
+ * ft_pgm_method_draw, which sets them) */
 static const ft_uniform_name k_pgrid_uniforms[] = {FT_PGM_UNIFORMS(FT_UNIFORM_ROW)
-                                                       FT_PGRID_UNIFORMS(FT_UNIFORM_ROW)};
+                                                       FT_PCM_UNIFORMS(FT_UNIFORM_ROW)
+                                                           FT_PGRID_UNIFORMS(FT_UNIFORM_ROW)};
 static const ft_uniform_list k_pgrid_uniform_list = {
     k_pgrid_uniforms, sizeof k_pgrid_uniforms / sizeof k_pgrid_uniforms[0]};
 _Static_assert(FT_PGRID_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "pgrid's uniforms fit the table");
+_Static_assert(FT_CLIP_BOUND_BLOCK == 16u, "shaders/pgrid.vert.glsl's FT_CLIP_BLOCK");
 
 /* The ray-cast program's uniform locations, looked up once at init (a frame
  * makes no glGetUniformLocation call). They live in the same arena block as
@@ -120,6 +127,11 @@ static int pgrid_tight(const ft_scene *s, int es3)
 
 static const char *pgrid_vertex_defines(const ft_scene *s, int es3)
 {
+    if (s->pgrid_heights_clipmap) {
+        /* over the cache: the relief bound from its cell ranges (init
+         * refuses the tight bound there) */
+        return "#define FT_PGRID_TIGHT 0\n#define FT_PGM_CLIP 1\n";
+    }
     return pgrid_tight(s, es3) ? "#define FT_PGRID_TIGHT 1\n" : "#define FT_PGRID_TIGHT 0\n";
 }
 
@@ -145,7 +157,8 @@ static const char *pgrid_colour_defines(const ft_scene *s, int es3)
 
 static ft_pgm_grid_desc pgm_grid(const ft_scene *s)
 {
-    const ft_pgm_grid_desc g = {s->pgrid_grid_cols, s->pgrid_grid_rows, s->height_format, 0};
+    const ft_pgm_grid_desc g = {s->pgrid_grid_cols, s->pgrid_grid_rows, s->height_format,
+                                s->pgrid_heights_clipmap};
     return g;
 }
 
@@ -153,14 +166,19 @@ static void pgrid_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
 {
     const ft_pgm_grid_desc g = pgm_grid(s);
     ft_pgm_method_plan(&g, t, a);
+    ft_arena_plan(a, FT_POOL_METHOD, (size_t)s->width_px * s->height_px * 5u +
+                                         sizeof(pgrid_programs) + 64u);
+    ft_arena_plan(a, FT_POOL_METHOD, sizeof(ft_terrain_program) + 64u);
+    if (g.clip) {
+        /* the cache and its cell ranges instead of the window's pyramids */
+        ft_clip_levels_plan(s, t, FT_CLIP_BOUNDS_RANGES, a);
+        return;
+    }
     uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], hw = 1u, h = 1u;
     if (t->pyr.minmax_levels > 0u) {
         ft_pgrid_minmax_layout(t, origin, &hw, &h);
     }
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)hw * 2u * h * sizeof(float));
-    ft_arena_plan(a, FT_POOL_METHOD, (size_t)s->width_px * s->height_px * 5u +
-                                         sizeof(pgrid_programs) + 64u);
-    ft_arena_plan(a, FT_POOL_METHOD, sizeof(ft_terrain_program) + 64u);
     /* the residual atlas's staging (reset after upload, like the min/max
      * atlas's: the larger of the two is what the pool must hold) */
     uint32_t rw = 1u, rh = 1u;
@@ -508,8 +526,19 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
                        "it needs 3 vertex texture units, this device has %d",
                        gl->caps.max_vertex_texture_units);
     }
+    if (s->pgrid_heights_clipmap && (s->pgrid_residual_bound || s->pgrid_ray_casting)) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "pgrid.heights = clipmap needs pgrid.error_bound = relief and "
+                       "pgrid.ray_casting = 0 (have %s and %d): the residual bound and the ray "
+                       "caster read the window's whole texture; over the cache the mesh's "
+                       "bound is reported (tau_achieved_px)",
+                       s->pgrid_residual_bound ? "residual" : "relief", s->pgrid_ray_casting);
+    }
     const ft_pgm_grid_desc g = pgm_grid(s);
     ft_status st = ft_pgm_method_init(&m->pgm, gl, &g, t, a, err);
+    if (st == FT_OK && g.clip) {
+        st = ft_pgm_method_clip_init(&m->pgm, gl, s, t, FT_CLIP_BOUNDS_RANGES, a, err);
+    }
     if (st != FT_OK) {
         return st;
     }
@@ -528,9 +557,11 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
                       "gamma_px = %g is not guaranteed\n",
                       s->pgrid_gamma_px);
     }
-    st = upload_minmax(m, gl, s, t, a, err);
-    if (st != FT_OK) {
-        return st;
+    if (!g.clip) {
+        st = upload_minmax(m, gl, s, t, a, err);
+        if (st != FT_OK) {
+            return st;
+        }
     }
     st = make_error_target(m, gl, err);
     if (st != FT_OK) {
@@ -551,9 +582,10 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
     memset(m->err_prog, 0, sizeof(pgrid_programs));
     ft_gpu_terrain gt;
     memset(&gt, 0, sizeof gt);
-    gt.format = m->mm_fmt.format;
-    gt.pack_min_m = m->mm_fmt.pack_min;
-    gt.pack_range_m = m->mm_fmt.pack_range;
+    const ft_scalar_format *hf = g.clip ? &m->pgm.cl.fmt : &m->mm_fmt;
+    gt.format = hf->format;
+    gt.pack_min_m = hf->pack_min;
+    gt.pack_range_m = hf->pack_range;
     const int tight = pgrid_tight(s, m->es3);
     const ft_terrain_program_desc errd = {.vert_name = "pgrid.vert.glsl",
                                           .vert_defines = pgrid_vertex_defines(s, m->es3),
@@ -659,6 +691,22 @@ static void pgrid_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camer
     ft_pgm_method_select(&m->pgm, t, cam);
 }
 
+/* Over the cache: its spare-time updates, and the depth range of what it
+ * holds (the window's grid does not bound it). */
+static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    if (m->u.pgrid.pgm.clip) {
+        ft_clip_levels_spare(&m->u.pgrid.pgm.cl, now, deadline_ns);
+    }
+}
+
+static int ops_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
+                         double corner_cos)
+{
+    const ft_pgm_method *pm = &m->u.pgrid.pgm;
+    return pm->clip ? ft_clip_levels_fit_depth(&pm->cl, t, cam, corner_cos) : 0;
+}
+
 /* Uniforms of pgrid.vert.glsl beyond pgm's, on program p (locations from
  * init: ft_terrain_program carries them). */
 static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_program *p)
@@ -678,6 +726,9 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
         gl->Uniform4f(p->method_u[FT_PGRID_U_MM_LEVEL + l], m->mm_level_px[l][0], m->mm_level_px[l][1],
                       m->mm_level_px[l][2], m->mm_level_px[l][3]);
     }
+    gl->Uniform1i(p->method_u[FT_PGRID_U_RANGE], 2); /* over the cache (pgrid_draw) */
+    gl->Uniform1i(p->method_u[FT_PGRID_U_BLOCK_RANGE], 3);
+    gl->Uniform2f(p->method_u[FT_PGRID_U_TOP_RANGE], m->top_range_m[0], m->top_range_m[1]);
     gl->Uniform1i(p->method_u[FT_PGRID_U_VTX], 4);
     gl->Uniform1i(p->method_u[FT_PGRID_U_SLOPE], 7);
     gl->Uniform1fv(p->method_u[FT_PGRID_U_COLS], (GLsizei)(FT_PGRID_COL_BANDS + 1u), m->col_t);
@@ -999,12 +1050,34 @@ static void draw_envelopes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain
     gl->Uniform1f(env, 0.0f);
 }
 
+/* Over the cache: the finest data's range over the coarsest level, from
+ * its blocks (each widened by its error; unknown: unbounded), for a vertex
+ * whose box no level's cells or blocks hold closely (pgrid.vert.glsl).
+ * At most (side / FT_CLIP_BOUND_BLOCK)^2 blocks. */
+static void top_range(ft_pgrid_method *m)
+{
+    const ft_clip_levels *cl = &m->pgm.cl;
+    const uint32_t l = cl->levels - 1u, n = cl->side / FT_CLIP_BOUND_BLOCK;
+    double lo = INFINITY, hi = -INFINITY;
+    for (uint32_t k = 0; k < n * n; ++k) {
+        const double e = cl->cache.block_err_m[l][k];
+        lo = fmin(lo, (double)cl->cache.block_lo_m[l][k] - e);
+        hi = fmax(hi, (double)cl->cache.block_hi_m[l][k] + e);
+    }
+    const double big = FT_CLIP_RANGE_UNBOUNDED_M;
+    m->top_range_m[0] = nextafterf((float)fmax(lo, -big), -FT_CLIP_RANGE_UNBOUNDED_M);
+    m->top_range_m[1] = nextafterf((float)fmin(hi, big), FT_CLIP_RANGE_UNBOUNDED_M);
+}
+
 static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
     GLint fb = 0;
     gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
-    ft_pgm_method_select(&m->pgm, t, cam);
+    ft_pgm_method_view(&m->pgm, t, cam);
+    if (m->pgm.clip) {
+        top_range(m);
+    }
     if (p->shade.ramp_h >= 0) {
         /* the column warp the last decision chose; a position pass draws
          * the picture's grid */
@@ -1019,9 +1092,14 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
     /* the picture writes the error buffer too, into the framebuffer the
      * caller drew into (the window's own has no second attachment) */
     const int mrt = m->mrt && !pos_pass && fb != 0;
-    /* 1. the mesh, with the pass's program (already in use) */
+    /* 1. the mesh, with the pass's program (already in use); unit 2 holds
+     * the min/max atlas, or over the cache its cell ranges */
     gl->ActiveTexture(GL_TEXTURE2);
-    gl->BindTexture(GL_TEXTURE_2D, m->mm_tex);
+    gl->BindTexture(GL_TEXTURE_2D, m->pgm.clip ? m->pgm.cl.range_tex : m->mm_tex);
+    if (m->pgm.clip) {
+        gl->ActiveTexture(GL_TEXTURE3); /* no ray caster over the cache: unit 3 is free */
+        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.block_range_tex);
+    }
     gl->ActiveTexture(GL_TEXTURE0);
     set_grid_uniforms(m, gl, p);
     if (mrt) {
@@ -1159,7 +1237,7 @@ static void ops_set_lod_scale(ft_method *m, double scale)
 
 static uint64_t ops_gpu_bytes(const ft_method *m)
 {
-    return m->u.pgrid.gpu_bytes + m->u.pgrid.pgm.gpu_bytes;
+    return m->u.pgrid.gpu_bytes + m->u.pgrid.pgm.gpu_bytes + m->u.pgrid.pgm.cl.gpu_bytes;
 }
 
 /* The grid goes through the pipeline once for the picture and the error
@@ -1214,6 +1292,8 @@ const ft_method_ops ft_pgrid_ops = {
     .select = ops_select,
     .draw = ops_draw,
     .set_lod_scale = ops_set_lod_scale,
+    .spare = ops_spare,
+    .fit_depth = ops_fit_depth,
     .gpu_bytes = ops_gpu_bytes,
     .worst = ops_worst,
     .shutdown = ops_shutdown,

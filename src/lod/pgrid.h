@@ -47,6 +47,20 @@
  *    angle in centre pixels) and the displacement in true pixels: a
  *    perspective image stretches angles by up to 1 / cos^2 theta (radially),
  *    15x at 75 degrees off axis, so wide views (FOV 150) need the factor.
+ *    Over the clipmap cache (pgrid.heights = clipmap; relief bound, no ray
+ *    casting, GLES 3): the grid reads its heights as pgm does over the cache
+ *    (pgm.h), and hmin, hmax are the finest data's range over the box
+ *    (clamped into what is drawn): from the cache's cell ranges of the
+ *    finest level whose resident cells hold the box within 2 x 2 of them,
+ *    else its block ranges of the finest level whose blocks do, else the
+ *    coarsest level's range (lod/clip_levels.h FT_CLIP_BOUNDS_RANGES; a
+ *    level-L cell's range is its corners' widened by how far the finest
+ *    data depart from level L's bilinear surface there, so it bounds the
+ *    finest data whatever level the vertex's height came from). The same
+ *    delta then bounds the drawn mesh against the finest data; the frame
+ *    reports the largest rho it drew (tau_achieved_px; +INF where a
+ *    deviation is unknown, e.g. SRTM levels over ETOPO5-only terrain, or
+ *    where rho passes 256 px).
  *
  * 3. Error buffer (RGBA8, drawn with the grid; on GLES 3 the picture pass
  *    writes it as a second colour attachment): R = 1 - gamma / rho where

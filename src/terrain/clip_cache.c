@@ -437,6 +437,40 @@ int ft_clip_cell_bound(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b,
     return 1;
 }
 
+static float round_down_f(double v)
+{
+    float f = (float)v;
+    if ((double)f > v) {
+        f = nextafterf(f, -INFINITY);
+    }
+    return f;
+}
+
+void ft_clip_cell_range(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b, float *lo_m,
+                        float *hi_m)
+{
+    const uint32_t side = c->desc.side;
+    const float *m = c->mirror_m[l], *dev = c->dev_mirror_m[l];
+    double h[4], unknown = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        const size_t t = (size_t)wrap_index(b + (k >> 1), side) * side +
+                         wrap_index(a + (k & 1), side);
+        h[k] = m[t];
+        unknown = fmax(unknown, (double)dev[t]); /* +INF: not known */
+    }
+    if (isinf(unknown)) {
+        *lo_m = -INFINITY;
+        *hi_m = INFINITY;
+        return;
+    }
+    const double d = dev[(size_t)wrap_index(b, side) * side + wrap_index(a, side)];
+    const double lo = fmin(fmin(h[0], h[1]), fmin(h[2], h[3]));
+    const double hi = fmax(fmax(h[0], h[1]), fmax(h[2], h[3]));
+    const double steps = 4.0 * fmax(fabs(lo), fabs(hi)) * ldexp(1.0, -24);
+    *lo_m = round_down_f(lo - d - steps);
+    *hi_m = round_up_f(hi + d + steps);
+}
+
 /* Copies a committed update into the level's mirror and refreshes the
  * blocks whose texels or apron it touched. */
 static void keep_bounds_of(ft_clip_cache *c, const ft_clip_update *u)

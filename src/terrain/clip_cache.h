@@ -239,6 +239,17 @@ uint64_t ft_clip_blocks_visit(const ft_clip_cache *c, uint32_t level, ft_clip_bl
 int ft_clip_cell_bound(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b,
                        ft_clip_block_bound *out);
 
+/* keep_bounds: the heights the source's finest data (their bilinear
+ * surface) take over cell (a, b) of level l (south-west corner sample (a, b),
+ * texels as the mirror holds them, resident or not: the caller asks for
+ * cells whose four corners are resident): the range of its 4 corners
+ * widened by the deviation of the finest data from the level's bilinear
+ * surface there (clip_source), and by 4 float steps of its largest height (a
+ * shader's subtraction), rounded outward to float. -INF / +INF when a
+ * corner's deviation is unknown. No residency check, no memory. */
+void ft_clip_cell_range(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b, float *lo_m,
+                        float *hi_m);
+
 /* 1 when level l's valid box equals its wanted box (and it has one). */
 int ft_clip_level_current(const ft_clip_cache *c, uint32_t l);
 

@@ -192,9 +192,9 @@ static void upload(ft_clip_levels *c, const ft_gl *gl, const ft_clip_update *u)
 /* The ranges of level l's cells [a0, a1) x [b0, b1) (south-west corner
  * samples), clipped to the cells of the wanted box (the only ones that can
  * become resident: the clipped box is under side wide, so no two of its
- * cells share a texel), uploaded in pieces that do not wrap in texel space,
- * rows at a time through the staging. Bounded: at most 4 pieces of at most
- * side rows. */
+ * cells share a texel), uploaded in pieces that do not wrap in texel space
+ * (at most 2 x 2), each in runs of rows that fit the staging (at least 2
+ * rows: range_cells >= 2 side). */
 static void refresh_ranges(ft_clip_levels *c, uint32_t l, int64_t a0, int64_t a1, int64_t b0,
                            int64_t b1)
 {

@@ -14,7 +14,12 @@
  *     position) and gl_FragDepth over the mesh (DepthFunc ALWAYS).
  * GLES 2 (no gl_FragDepth, no texelFetch): steps 1-3 only; init says so
  * on stderr and the stats report the mesh's error bound (tau_achieved_px)
- * instead of gamma. All GL objects and CPU buffers are made at init. */
+ * instead of gamma. pgrid.heights = clipmap: steps 1-3 too (relief bound,
+ * no ray casting, GLES 3), the grid's heights and each vertex's range of
+ * the finest data from the clipmap cache (pgm's cache, with its cell
+ * ranges: lod/clip_levels.h FT_CLIP_BOUNDS_RANGES; src/lod/pgrid.h 2);
+ * the stats report the bound achieved. All GL objects and CPU buffers are
+ * made at init. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

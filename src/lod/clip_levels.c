@@ -243,12 +243,14 @@ static void refresh_ranges(ft_clip_levels *c, uint32_t l, int64_t a0, int64_t a1
 /* Level l's blocks' ranges (clip_cache.h, ft_clip_block_bound: the block's
  * texels and apron widened by its error, which is at least every cell's
  * deviation), each block a texel of the block-range texture, uploaded
- * whole, rows at a time through the staging. */
+ * whole, rows at a time through the staging; on the coarsest level their
+ * union too (top_range_m: what a box too wide for any level's blocks takes). */
 static void refresh_block_ranges(ft_clip_levels *c, uint32_t l)
 {
     const uint32_t n = c->side / FT_CLIP_BOUND_BLOCK;
     const uint32_t rows_max = c->range_cells / n;
     const ft_gl *gl = c->gl;
+    float lo_all = FT_CLIP_RANGE_UNBOUNDED_M, hi_all = -FT_CLIP_RANGE_UNBOUNDED_M;
     gl->ActiveTexture(c->unit + 2u);
     gl->BindTexture(GL_TEXTURE_2D, c->block_range_tex);
     for (uint32_t y0 = 0; y0 < n; y0 += rows_max) {
@@ -263,6 +265,8 @@ static void refresh_block_ranges(ft_clip_levels *c, uint32_t l)
                                 : nextafterf((float)lo, -FT_CLIP_RANGE_UNBOUNDED_M);
             out[1] = isinf(err) ? FT_CLIP_RANGE_UNBOUNDED_M
                                 : nextafterf((float)hi, FT_CLIP_RANGE_UNBOUNDED_M);
+            lo_all = fminf(lo_all, out[0]);
+            hi_all = fmaxf(hi_all, out[1]);
         }
         gl->TexSubImage2D(GL_TEXTURE_2D, 0, (GLint)(c->origin_px[l][0] / FT_CLIP_BOUND_BLOCK),
                           (GLint)(c->origin_px[l][1] / FT_CLIP_BOUND_BLOCK + y0), (GLsizei)n,
@@ -270,6 +274,10 @@ static void refresh_block_ranges(ft_clip_levels *c, uint32_t l)
         c->range_uploads += 1u;
     }
     gl->ActiveTexture(GL_TEXTURE0);
+    if (l + 1u == c->levels) {
+        c->top_range_m[0] = lo_all;
+        c->top_range_m[1] = hi_all;
+    }
 }
 
 /* One update (read, upload, commit): 1 when one ran. Timed with now (when

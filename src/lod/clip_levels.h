@@ -97,6 +97,7 @@ typedef struct ft_clip_levels {
      * texel a block, the same layout at 1 / FT_CLIP_BOUND_BLOCK) and their
      * staging (range_cells cells, FT_POOL_METHOD) */
     GLuint range_tex, block_range_tex;
+    float top_range_m[2];          /* the coarsest level's: over all its blocks' */
     float *range_staging;
     uint32_t range_cells;
     uint64_t range_uploads;        /* sub-image uploads of ranges since init */

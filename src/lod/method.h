@@ -168,7 +168,6 @@ typedef struct ft_pgrid_method {
     uint32_t pbo_next;
     int late;
     uint32_t w_px, h_px;
-    float top_range_m[2];           /* over the cache: the coarsest level's range */
     int distribution, ray_casting, es3;
     double gamma_px;
     double lod_scale;               /* degradation: ray cast over gamma_px * lod_scale */
@@ -368,6 +367,12 @@ void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera
 /* The sampling camera for cam over what is resident (kept while the view is
  * the same): a draw's, which never moves the cache. */
 void ft_pgm_method_view(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam);
+/* Over the cache: its updates in the frame's spare time, and the depth
+ * range of what it holds (ft_method_ops.spare, .fit_depth); nothing, 0
+ * over the window's pyramid. */
+void ft_pgm_method_spare(ft_pgm_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
+int ft_pgm_method_fit_depth(const ft_pgm_method *m, const ft_terrain *t, ft_camera *cam,
+                            double corner_cos);
 /* Cell rows drawn by band b (the last band may be shorter). */
 uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
 /* Binds the avg atlas (unit 1) and sets program p's pgm uniforms for the

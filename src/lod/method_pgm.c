@@ -314,8 +314,7 @@ static ft_pgm_surface clip_surface(ft_pgm_method *m, const ft_terrain *t, const 
     return g;
 }
 
-/* Every frame, the view changed or not: a level that lags catches up while
- * the eye hovers, and the sampling follows what is resident. */
+/* The sampling camera over what the cache holds now. */
 static void clip_view(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     clip_place(m, t, cam);
@@ -340,7 +339,9 @@ void ft_pgm_method_view(ft_pgm_method *m, const ft_terrain *t, const ft_camera *
 void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera *cam)
 {
     if (m->clip) {
-        /* every frame: the cache moves on its own */
+        /* every frame, the view changed or not: a level that lags catches
+         * up while the eye hovers, and the sampling follows what is
+         * resident */
         ft_clip_levels_select(&m->cl, t, cam);
         clip_view(m, t, cam);
         return;
@@ -448,6 +449,20 @@ ft_status ft_pgm_method_clip_init(ft_pgm_method *pm, const ft_gl *gl, const ft_s
     return FT_OK;
 }
 
+void ft_pgm_method_spare(ft_pgm_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    if (m->clip) {
+        ft_clip_levels_spare(&m->cl, now, deadline_ns);
+    }
+}
+
+/* Over a database the drawn terrain is the cache's, not the scene's grid. */
+int ft_pgm_method_fit_depth(const ft_pgm_method *m, const ft_terrain *t, ft_camera *cam,
+                            double corner_cos)
+{
+    return m->clip ? ft_clip_levels_fit_depth(&m->cl, t, cam, corner_cos) : 0;
+}
+
 /* ---- the method table ---------------------------------------------------------- */
 
 /* pgm's own keys (pgrid draws the same grid from its own) */
@@ -492,15 +507,13 @@ static const char *ops_vertex_defines(const ft_scene *s, int es3)
 
 static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
 {
-    if (m->u.pgm.clip) {
-        ft_clip_levels_spare(&m->u.pgm.cl, now, deadline_ns);
-    }
+    ft_pgm_method_spare(&m->u.pgm, now, deadline_ns);
 }
 
 static int ops_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
                          double corner_cos)
 {
-    return m->u.pgm.clip ? ft_clip_levels_fit_depth(&m->u.pgm.cl, t, cam, corner_cos) : 0;
+    return ft_pgm_method_fit_depth(&m->u.pgm, t, cam, corner_cos);
 }
 
 static void ops_draw(ft_method *m, const ft_gl *gl, const struct ft_terrain_program *p,

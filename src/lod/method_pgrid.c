@@ -700,16 +700,13 @@ static void pgrid_select(ft_pgrid_method *m, const ft_terrain *t, const ft_camer
  * holds (the window's grid does not bound it). */
 static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
 {
-    if (m->u.pgrid.pgm.clip) {
-        ft_clip_levels_spare(&m->u.pgrid.pgm.cl, now, deadline_ns);
-    }
+    ft_pgm_method_spare(&m->u.pgrid.pgm, now, deadline_ns);
 }
 
 static int ops_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
                          double corner_cos)
 {
-    const ft_pgm_method *pm = &m->u.pgrid.pgm;
-    return pm->clip ? ft_clip_levels_fit_depth(&pm->cl, t, cam, corner_cos) : 0;
+    return ft_pgm_method_fit_depth(&m->u.pgrid.pgm, t, cam, corner_cos);
 }
 
 /* Uniforms of pgrid.vert.glsl beyond pgm's, on program p (locations from
@@ -733,7 +730,8 @@ static void set_grid_uniforms(ft_pgrid_method *m, const ft_gl *gl, const ft_terr
     }
     gl->Uniform1i(p->method_u[FT_PGRID_U_RANGE], 2); /* over the cache (pgrid_draw) */
     gl->Uniform1i(p->method_u[FT_PGRID_U_BLOCK_RANGE], 3);
-    gl->Uniform2f(p->method_u[FT_PGRID_U_TOP_RANGE], m->top_range_m[0], m->top_range_m[1]);
+    gl->Uniform2f(p->method_u[FT_PGRID_U_TOP_RANGE], m->pgm.cl.top_range_m[0],
+                  m->pgm.cl.top_range_m[1]);
     gl->Uniform1i(p->method_u[FT_PGRID_U_VTX], 4);
     gl->Uniform1i(p->method_u[FT_PGRID_U_SLOPE], 7);
     gl->Uniform1fv(p->method_u[FT_PGRID_U_COLS], (GLsizei)(FT_PGRID_COL_BANDS + 1u), m->col_t);
@@ -1055,34 +1053,12 @@ static void draw_envelopes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain
     gl->Uniform1f(env, 0.0f);
 }
 
-/* Over the cache: the finest data's range over the coarsest level, from
- * its blocks (each widened by its error; unknown: unbounded), for a vertex
- * whose box no level's cells or blocks hold closely (pgrid.vert.glsl).
- * At most (side / FT_CLIP_BOUND_BLOCK)^2 blocks. */
-static void top_range(ft_pgrid_method *m)
-{
-    const ft_clip_levels *cl = &m->pgm.cl;
-    const uint32_t l = cl->levels - 1u, n = cl->side / FT_CLIP_BOUND_BLOCK;
-    double lo = INFINITY, hi = -INFINITY;
-    for (uint32_t k = 0; k < n * n; ++k) {
-        const double e = cl->cache.block_err_m[l][k];
-        lo = fmin(lo, (double)cl->cache.block_lo_m[l][k] - e);
-        hi = fmax(hi, (double)cl->cache.block_hi_m[l][k] + e);
-    }
-    const double big = FT_CLIP_RANGE_UNBOUNDED_M;
-    m->top_range_m[0] = nextafterf((float)fmax(lo, -big), -FT_CLIP_RANGE_UNBOUNDED_M);
-    m->top_range_m[1] = nextafterf((float)fmin(hi, big), FT_CLIP_RANGE_UNBOUNDED_M);
-}
-
 static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
                        const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
 {
     GLint fb = 0;
     gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
     ft_pgm_method_view(&m->pgm, t, cam);
-    if (m->pgm.clip) {
-        top_range(m);
-    }
     if (p->shade.ramp_h >= 0) {
         /* the column warp the last decision chose; a position pass draws
          * the picture's grid */

@@ -56,19 +56,23 @@ static const char k_scene_fmt[] =
     "[gpu]\nheight_format = %s\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[pgm]\nheights = clipmap\n"
-    "[pgrid]\nheights = clipmap\nerror_bound = relief\nray_casting = 0\n"
+    "[pgrid]\nheights = clipmap\nerror_bound = relief\nray_casting = %d\ngamma_px = 1\n"
+    "raycast_max_px = 76800\n"
     "[clipmap]\nside = %u\nlevels = %u\nupdate_samples_max = 4096\nupdates_per_frame = %u\n"
     "transition_samples = 12\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
     "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\nclip_bytes = 4M\n";
 
+/* pgrid's ray caster over the cache (on for pgrid_rc_bound_check) */
+static int g_ray_casting;
+
 static void app_init_metric(const char *method, const char *backend, const char *dem,
                             const char *format, uint32_t side, uint32_t levels,
                             uint32_t per_frame, int metric)
 {
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, method, backend, W_PX, H_PX, dem, format,
-                   metric, side, levels, per_frame);
+                   metric, g_ray_casting, side, levels, per_frame);
     ft_test_app_init(&g_app, g_text, method);
     g_app.renderer.gl_error_checks = 1;
     ft_test_clear_magenta(&g_app);
@@ -533,6 +537,10 @@ static void tf_check(const char *dem)
 typedef struct bound_tally {
     uint32_t frames, infinite, infinite_current, over;
     double ratio_min, ratio_max, err_max, bound_max;
+    /* pgrid ray casting: frames whose bound is gamma (1 px), that ray cast,
+     * and the largest leaf bound (pgrid.h 7) */
+    uint32_t at_gamma, ray_cast;
+    double leaf_max;
 } bound_tally;
 
 static ft_camera g_bound_cam; /* the last bound frame's */
@@ -548,6 +556,12 @@ static void bound_frame(const ft_pose *p, bound_tally *t)
     g_bound_cam = cam;
     const double b = fs.tau_achieved_px;
     t->frames += 1u;
+    if (g_app.renderer.method.kind == FT_METHOD_PGRID) {
+        const ft_pgrid_method *pg = &g_app.renderer.method.u.pgrid;
+        t->at_gamma += (b <= 1.0);
+        t->ray_cast += (pg->thr < FT_PGRID_CODES);
+        t->leaf_max = fmax(t->leaf_max, pg->leaf_px);
+    }
     if (!isfinite(b)) {
         if (g_app.renderer.method.kind == FT_METHOD_CLIPMAP) {
             const ft_cm_bound *cb = &g_app.renderer.method.u.clipmap.bound;
@@ -628,7 +642,7 @@ static uint32_t bound_frames(const char *method, uint32_t low_views, bound_tally
 static void bound_check(const char *dem)
 {
     app_init_metric("clipmap", "egl-gles3", dem, "float", 128u, 5u, 2u, 1);
-    bound_tally t = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0};
+    bound_tally t = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0, 0u, 0u, 0.0};
     CHECK(bound_frames("clipmap", 4u, &t) == 0u);
     const ft_terrain *tr = &g_app.terrain;
     const uint32_t frames = 24u;
@@ -665,14 +679,14 @@ static void bound_check(const char *dem)
 }
 
 /* pgrid over the cache refuses what it cannot do, naming the keys or the
- * context: the residual bound or ray casting (both read the window's whole
- * texture), and a GLES 2 context (its cell ranges are float RG textures). */
+ * context: the residual bound (it reads the window's whole texture and its
+ * pyramids), and a GLES 2 context (its cell ranges are float RG textures). */
 static void pgrid_refusals(const char *backend, const char *dem, int es3)
 {
     static ft_scene sc;
     ft_error err;
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, "pgrid", backend, W_PX, H_PX, dem,
-                   "float", 0, 128u, 5u, 2u);
+                   "float", 0, 0, 128u, 5u, 2u);
     ft_scene_defaults(&sc);
     REQUIRE(ft_scene_parse(&sc, g_text, "refusals", &err) == FT_OK);
     sc.pgrid_residual_bound = 1;
@@ -696,7 +710,7 @@ static void pgrid_refusals(const char *backend, const char *dem, int es3)
 static void pgrid_bound_check(const char *dem)
 {
     app_init_metric("pgrid", "egl-gles3", dem, "float", 128u, 5u, 2u, 1);
-    bound_tally t = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0};
+    bound_tally t = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0, 0u, 0u, 0.0};
     (void)bound_frames("pgrid", 3u, &t);
     printf("pgrid over the cache, bound: %u frames, %u without a bound, %u over it; measured "
            "max %.3f px, bound max %.3f px, bound / measured %.2f .. %.2f\n",
@@ -706,6 +720,77 @@ static void pgrid_bound_check(const char *dem)
      * it saturates the error codes, over 256 px somewhere) */
     CHECK(t.infinite * 4u <= t.frames);
     ft_app_shutdown(&g_app);
+}
+
+/* 6. pgrid over the cache with ray casting (src/lod/pgrid.h 7): the pixels
+ * whose code passes gamma (1 px) are ray cast through the cache's levels,
+ * exact where level 0 holds them and within the level's deviation past
+ * it, and the frame reports max(gamma, the leaves' bound). On the same
+ * views, flight and low views: every frame ray casts and has a bound (the
+ * relief mesh alone had none on a third of them: its codes saturate), and
+ * the measured error keeps it. Looking steeply down once the cache has
+ * caught up, every ray ends in level 0: the frame reports gamma itself and
+ * the measured error keeps it. */
+static void pgrid_rc_bound_check(const char *dem)
+{
+    g_ray_casting = 1;
+    app_init_metric("pgrid", "egl-gles3", dem, "float", 128u, 5u, 2u, 1);
+    bound_tally t = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0, 0u, 0u, 0.0};
+    (void)bound_frames("pgrid", 3u, &t);
+    printf("pgrid over the cache, ray casting at gamma 1: %u frames, %u ray cast, %u at gamma, "
+           "%u without a bound, %u over it; measured max %.3f px, bound max %.3f px, bound / "
+           "measured %.2f .. %.2f\n",
+           t.frames, t.ray_cast, t.at_gamma, t.infinite, t.over, t.err_max, t.bound_max,
+           t.ratio_min, t.ratio_max);
+    CHECK(t.over == 0u);
+    CHECK(t.infinite == 0u);
+    CHECK(t.ray_cast == t.frames);
+    /* steeply down over the middle of the tile, 1500-2500 m up: the view
+     * stays inside level 0's 128 samples */
+    static const double k_steep[3][5] = {
+        {42.50, 1.50, 1500.0, 30.0, -80.0},
+        {42.45, 1.55, 2000.0, 200.0, -70.0},
+        {42.55, 1.45, 2500.0, 300.0, -85.0},
+    };
+    const ft_terrain *tr = &g_app.terrain;
+    const ft_clip_stats *cs = &levels_of("pgrid")->cache.stats;
+    bound_tally steep = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0, 0u, 0u, 0.0};
+    for (uint32_t k = 0; k < 3u; ++k) {
+        double x = 0.0, y = 0.0;
+        ft_terrain_geo_to_world(tr, k_steep[k][0], k_steep[k][1], &x, &y);
+        const ft_pose p = ft_test_pose(k_steep[k][0], k_steep[k][1],
+                                       ft_terrain_height_at(tr, x, y) + k_steep[k][2],
+                                       k_steep[k][3], k_steep[k][4], 0.0);
+        for (uint32_t f = 0; f < 400u && (f < 2u || cs->samples_outstanding > 0u); ++f) {
+            render(&p);
+        }
+        bound_frame(&p, &steep);
+    }
+    printf("pgrid over the cache, ray casting, steep views: %u frames, %u at gamma, %u ray "
+           "cast, %u over it; measured max %.3f px, leaves' bound max %.3f px\n",
+           steep.frames, steep.at_gamma, steep.ray_cast, steep.over, steep.err_max,
+           steep.leaf_max);
+    CHECK(steep.at_gamma == steep.frames);
+    CHECK(steep.ray_cast == steep.frames);
+    CHECK(steep.over == 0u);
+    /* what the leaves' bound costs a frame (printed, not asserted): the last
+     * view again, 200 times */
+    {
+        const ft_pgrid_method *pg = &g_app.renderer.method.u.pgrid;
+        const ft_clip_world w = ft_clip_levels_world(tr);
+        const uint64_t t0 = ft_plat_monotonic_ns();
+        double again = 0.0;
+        for (int k = 0; k < 200; ++k) {
+            again = ft_pgrid_cache_leaf_bound_px(&pg->pgm.cl.cache, &pg->pgm.clip_view, &w,
+                                                 &g_bound_cam, tr->curv_drop_per_m2, 1.0);
+        }
+        const double us = (double)(ft_plat_monotonic_ns() - t0) * 1e-3 / 200.0;
+        printf("pgrid leaves' bound of the last view: %.1f us a frame (side 128, 5 levels)\n",
+               us);
+        CHECK(again == pg->leaf_px); /* the same inputs, the same bound */
+    }
+    ft_app_shutdown(&g_app);
+    g_ray_casting = 0;
 }
 
 int main(int argc, char **argv)
@@ -735,6 +820,7 @@ int main(int argc, char **argv)
         tf_check(argv[2]);
         bound_check(argv[2]);
         pgrid_bound_check(argv[2]);
+        pgrid_rc_bound_check(argv[2]);
     }
     return ft_test_result(es3 ? "test_clipmap_gl es3" : "test_clipmap_gl es2");
 }

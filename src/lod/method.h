@@ -180,6 +180,7 @@ typedef struct ft_pgrid_method {
     uint32_t thr;                   /* code threshold, 256 = none */
     uint64_t rc_px;                 /* pixels ray cast */
     double achieved_px;
+    double leaf_px;                 /* over the cache: the ray caster's leaves' bound (pgrid.h 7) */
     int budget_hit;
     int have_decision;
     uint64_t gpu_bytes;
@@ -379,6 +380,10 @@ uint32_t ft_pgm_band_cell_rows(const ft_pgm_method *m, uint32_t b);
  * selected sampling (u_pgm_grid with band row 0), without drawing. */
 void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
                         const ft_terrain_program *p);
+/* Over the cache: what a shader gets for level l (shaders/pgm_grid.glsl):
+ * u_pgm_level[l] (base mod side, eye - base 2^l) and u_pcm_box[l] (the
+ * resident samples from base, inclusive), from the last view. */
+void ft_pgm_method_clip_level(const ft_pgm_method *m, uint32_t l, float level[4], float box[4]);
 void ft_pgm_method_draw(ft_pgm_method *m, const ft_gl *gl, const ft_terrain_program *p,
                         const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st);
 void ft_pgm_method_shutdown(ft_pgm_method *m, const ft_gl *gl);

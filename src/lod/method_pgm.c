@@ -349,6 +349,21 @@ void ft_pgm_method_select(ft_pgm_method *m, const ft_terrain *t, const ft_camera
     ft_pgm_method_view(m, t, cam);
 }
 
+void ft_pgm_method_clip_level(const ft_pgm_method *m, uint32_t l, float level[4], float box[4])
+{
+    const ft_pgm_clip_view *cv = &m->clip_view;
+    const int64_t side = (int64_t)m->cl.side;
+    const int64_t mx = ((cv->base[l][0] % side) + side) % side;
+    const int64_t my = ((cv->base[l][1] % side) + side) % side;
+    level[0] = (float)mx;
+    level[1] = (float)my;
+    level[2] = (float)cv->off[l][0];
+    level[3] = (float)cv->off[l][1];
+    for (int k = 0; k < 4; ++k) {
+        box[k] = (float)cv->box[l][k];
+    }
+}
+
 void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
                         const struct ft_terrain_program *p)
 {
@@ -366,14 +381,11 @@ void ft_pgm_method_bind(const ft_pgm_method *m, const ft_gl *gl,
     if (m->clip) {
         /* from the doubles near the eye: every value here is small */
         const ft_pgm_clip_view *cv = &m->clip_view;
-        const int64_t side = (int64_t)m->cl.side;
         for (uint32_t l = 0; l < m->levels; ++l) {
-            const int64_t mx = ((cv->base[l][0] % side) + side) % side;
-            const int64_t my = ((cv->base[l][1] % side) + side) % side;
-            gl->Uniform4f(p->method_u[FT_PGM_U_LEVEL + l], (float)mx, (float)my,
-                          (float)cv->off[l][0], (float)cv->off[l][1]);
-            gl->Uniform4f(p->method_u[FT_PCM_U_BOX + l], (float)cv->box[l][0],
-                          (float)cv->box[l][1], (float)cv->box[l][2], (float)cv->box[l][3]);
+            float lv[4], box[4];
+            ft_pgm_method_clip_level(m, l, lv, box);
+            gl->Uniform4fv(p->method_u[FT_PGM_U_LEVEL + l], 1, lv);
+            gl->Uniform4fv(p->method_u[FT_PCM_U_BOX + l], 1, box);
         }
         gl->Uniform4f(p->method_u[FT_PCM_U_CLAMP], (float)cv->clamp_m[0], (float)cv->clamp_m[1],
                       (float)cv->clamp_m[2], (float)cv->clamp_m[3]);

@@ -68,6 +68,9 @@ typedef struct pgrid_rc_locs {
     GLint fwd, right, up, tan, size, view_proj, mode, sky, tiles, tile_px, tiles_w;
     ft_shade_locs shade;
     GLint max_level[FT_PYRAMID_LEVELS_MAX];
+    /* over the cache: its heights atlas, levels and cell ranges */
+    GLint atlas, atlas_pack, clamp, misc, range;
+    GLint clip_level[FT_CLIP_LEVELS_MAX], clip_box[FT_CLIP_LEVELS_MAX];
 } pgrid_rc_locs;
 
 typedef struct pgrid_programs {
@@ -111,12 +114,24 @@ static void locate_rc(const ft_gl *gl, GLuint prog, pgrid_rc_locs *u)
     U(view_proj, "u_view_proj");
     U(mode, "u_rc_mode");
     U(sky, "u_rc_sky");
+    U(atlas, "u_pgm_atlas");
+    U(atlas_pack, "u_pgm_atlas_pack");
+    U(clamp, "u_pcm_clamp");
+    U(misc, "u_pcm_misc");
+    U(range, "u_pgrid_range");
 #undef U
     ft_program_shade_locate(gl, prog, &u->shade);
     for (uint32_t l = 0; l < FT_PYRAMID_LEVELS_MAX; ++l) {
         char name[40];
         (void)snprintf(name, sizeof name, "u_rc_max_level[%u]", l);
         u->max_level[l] = gl->GetUniformLocation(prog, name);
+    }
+    for (uint32_t l = 0; l < FT_CLIP_LEVELS_MAX; ++l) {
+        char name[40];
+        (void)snprintf(name, sizeof name, "u_pgm_level[%u]", l);
+        u->clip_level[l] = gl->GetUniformLocation(prog, name);
+        (void)snprintf(name, sizeof name, "u_pcm_box[%u]", l);
+        u->clip_box[l] = gl->GetUniformLocation(prog, name);
     }
 }
 
@@ -531,13 +546,12 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
                        "it needs 3 vertex texture units, this device has %d",
                        gl->caps.max_vertex_texture_units);
     }
-    if (s->pgrid_heights_clipmap && (s->pgrid_residual_bound || s->pgrid_ray_casting)) {
+    if (s->pgrid_heights_clipmap && s->pgrid_residual_bound) {
         return ft_fail(err, FT_ERR_CONFIG,
-                       "pgrid.heights = clipmap needs pgrid.error_bound = relief and "
-                       "pgrid.ray_casting = 0 (have %s and %d): the residual bound and the ray "
-                       "caster read the window's whole texture; over the cache the mesh's "
-                       "bound is reported (tau_achieved_px)",
-                       s->pgrid_residual_bound ? "residual" : "relief", s->pgrid_ray_casting);
+                       "pgrid.heights = clipmap needs pgrid.error_bound = relief (have "
+                       "residual): the residual bound reads the window's whole texture and its "
+                       "pyramids; over the cache the relief bound comes from the cache's cell "
+                       "ranges");
     }
     const ft_pgm_grid_desc g = pgm_grid(s);
     ft_status st = ft_pgm_method_init(&m->pgm, gl, &g, t, a, err);
@@ -618,14 +632,21 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
     char frag_buf[FT_SHADE_DEFINES_MAX];
     if (m->ray_casting) {
         static const float corners[8] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
-        st = ft_program_link(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl",
-                             ft_program_shade_defines(s, t, frag_buf), "a_corner", &m->rc_prog,
-                             err);
+        /* over the cache the traversal reads the cache's levels and cell
+         * ranges (src/lod/pgrid.h 7), not the window's max pyramid */
+        char rc_defines[FT_SHADE_DEFINES_MAX + 32];
+        (void)snprintf(rc_defines, sizeof rc_defines, "%s%s",
+                       g.clip ? "#define FT_RC_CLIP 1\n" : "",
+                       ft_program_shade_defines(s, t, frag_buf));
+        st = ft_program_link(gl, "pgrid_rc.vert.glsl", "pgrid_rc.frag.glsl", rc_defines,
+                             "a_corner", &m->rc_prog, err);
         if (st != FT_OK) {
             return st;
         }
         locate_rc(gl, m->rc_prog, rc_locs(m));
-        st = upload_rc_max(m, gl, t, a, err);
+        if (!g.clip) {
+            st = upload_rc_max(m, gl, t, a, err);
+        }
         if (st == FT_OK) {
             st = init_tiles(m, gl, s, err);
         }
@@ -896,10 +917,29 @@ static void decide_late(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *ca
     remember_view(m, cam);
 }
 
-static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
+/* Over the cache, a frame that ray casts reports its leaves' error too
+ * (src/lod/pgrid.h 7): rays that end on a coarser level's surface. */
+static void add_leaf_bound(ft_pgrid_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    m->leaf_px = 0.0;
+    if (!m->pgm.clip || !m->ray_casting || m->thr >= FT_PGRID_CODES) {
+        return;
+    }
+    const ft_clip_world w = ft_clip_levels_world(t);
+    /* pieces under gamma need no second look: the frame reports gamma */
+    m->leaf_px = ft_pgrid_cache_leaf_bound_px(&m->pgm.cl.cache, &m->pgm.clip_view, &w, cam,
+                                              t->curv_drop_per_m2, m->gamma_px * m->lod_scale);
+    if (m->leaf_px > m->achieved_px) {
+        m->achieved_px = m->leaf_px; /* +INF where a deviation is unknown */
+    }
+}
+
+static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                   const ft_camera *cam)
 {
     if (m->late) {
         decide_late(m, gl, cam);
+        add_leaf_bound(m, t, cam);
         return;
     }
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -925,6 +965,7 @@ static void decide(ft_pgrid_method *m, const ft_gl *gl, const ft_camera *cam)
         m->budget_hit = 0;
         m->achieved_px = (top >= 1u) ? ft_pgrid_code_rho_hi(top) : 0.0;
     }
+    add_leaf_bound(m, t, cam);
     remember_view(m, cam);
 }
 
@@ -962,22 +1003,49 @@ static void ray_cast(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain_progr
     const pgrid_rc_locs *u = rc_locs(m);
     gl->Uniform1i(u->err, 3);
     gl->Uniform1i(u->heights, 0);
-    gl->Uniform1i(u->rc_max, FT_TEX_UNIT_RC_MAX);
     gl->Uniform1i(u->tiles, FT_TEX_UNIT_RC_TILES);
     gl->Uniform1f(u->tile_px, (float)m->tile_px);
     gl->Uniform1f(u->tiles_w, (float)m->tiles_w);
     gl->Uniform1f(u->thr, (float)m->thr);
-    gl->Uniform2f(u->pack, m->mm_fmt.pack_min,
-                  m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
-    gl->Uniform2f(u->grid_size, (float)t->width, (float)t->height);
-    gl->Uniform1f(u->levels, (float)m->mm_levels);
-    for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
-        gl->Uniform4f(u->max_level[l], m->rc_max_level_px[l][0], m->rc_max_level_px[l][1],
-                      m->rc_max_level_px[l][2], m->rc_max_level_px[l][3]);
+    if (m->pgm.clip) {
+        /* the cache as the grid saw it (src/lod/pgrid.h 7): heights atlas on
+         * unit 1, cell ranges on unit 2; the ray starts at the eye */
+        const ft_pgm_method *pm = &m->pgm;
+        gl->ActiveTexture(GL_TEXTURE1);
+        gl->BindTexture(GL_TEXTURE_2D, pm->cl.tex[0]);
+        gl->ActiveTexture(GL_TEXTURE2);
+        gl->BindTexture(GL_TEXTURE_2D, pm->cl.range_tex);
+        gl->ActiveTexture(GL_TEXTURE0);
+        gl->Uniform1i(u->atlas, 1);
+        gl->Uniform1i(u->range, 2);
+        gl->Uniform2f(u->atlas_pack, pm->cl.fmt.pack_min,
+                      pm->cl.fmt.format == FT_HEIGHT_FORMAT_PACKED ? pm->cl.fmt.pack_range : 0.0f);
+        gl->Uniform1f(u->levels, (float)pm->levels);
+        for (uint32_t l = 0; l < pm->levels && l < FT_CLIP_LEVELS_MAX; ++l) {
+            float lv[4], box[4];
+            ft_pgm_method_clip_level(pm, l, lv, box);
+            gl->Uniform4fv(u->clip_level[l], 1, lv);
+            gl->Uniform4fv(u->clip_box[l], 1, box);
+        }
+        const double *cb = pm->clip_view.clamp_m;
+        gl->Uniform4f(u->clamp, (float)cb[0], (float)cb[1], (float)cb[2], (float)cb[3]);
+        gl->Uniform4f(u->misc, (float)pm->cl.side, (float)pm->transition_samples,
+                      (float)pm->levels, (float)pm->cl.atlas_cols);
+        gl->Uniform3f(u->eye_g, 0.0f, 0.0f, (float)cam->eye_m[2]);
+    } else {
+        gl->Uniform1i(u->rc_max, FT_TEX_UNIT_RC_MAX);
+        gl->Uniform2f(u->pack, m->mm_fmt.pack_min,
+                      m->mm_fmt.format == FT_HEIGHT_FORMAT_PACKED ? m->mm_fmt.pack_range : 0.0f);
+        gl->Uniform2f(u->grid_size, (float)t->width, (float)t->height);
+        gl->Uniform1f(u->levels, (float)m->mm_levels);
+        for (uint32_t l = 0; l < m->mm_levels && l < FT_PYRAMID_LEVELS_MAX; ++l) {
+            gl->Uniform4f(u->max_level[l], m->rc_max_level_px[l][0], m->rc_max_level_px[l][1],
+                          m->rc_max_level_px[l][2], m->rc_max_level_px[l][3]);
+        }
+        gl->Uniform3f(u->eye_g, (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
+                      (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
+                      (float)cam->eye_m[2]);
     }
-    gl->Uniform3f(u->eye_g, (float)((cam->eye_m[0] - t->origin_world_x_m) / t->cell_x_m),
-                  (float)((cam->eye_m[1] - t->origin_world_y_m) / t->cell_y_m),
-                  (float)cam->eye_m[2]);
     gl->Uniform2f(u->cell_m, (float)t->cell_x_m, (float)t->cell_y_m);
     gl->Uniform1f(u->drop, (float)t->curv_drop_per_m2);
     gl->Uniform3f(u->fwd, (float)cam->forward[0], (float)cam->forward[1],
@@ -1078,7 +1146,7 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, m->pgm.clip ? m->pgm.cl.range_tex : m->mm_tex);
     if (m->pgm.clip) {
-        gl->ActiveTexture(GL_TEXTURE3); /* no ray caster over the cache: unit 3 is free */
+        gl->ActiveTexture(GL_TEXTURE3); /* until the ray caster reads the error buffer there */
         gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.block_range_tex);
     }
     gl->ActiveTexture(GL_TEXTURE0);
@@ -1112,7 +1180,7 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
         gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, 0u, 0);
         /* 3. the decision, from the error buffer's own framebuffer */
         gl->BindFramebuffer(GL_FRAMEBUFFER, m->err_fbo);
-        decide(m, gl, cam);
+        decide(m, gl, t, cam);
         gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
     } else if (!pos_pass || !same_decision_view(m, cam)) {
         /* 2. the error buffer drawn on its own (GLES 2, a window's own
@@ -1134,7 +1202,7 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
             draw_envelopes(m, gl, e, t, cam, st);
         }
         /* 3. the decision */
-        decide(m, gl, cam);
+        decide(m, gl, t, cam);
         gl->BindFramebuffer(GL_FRAMEBUFFER, (GLuint)fb);
     }
     /* 4. ray casting */

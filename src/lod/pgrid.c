@@ -2,6 +2,9 @@
 #include "lod/pgrid.h"
 
 #include <math.h>
+#include <string.h>
+
+#include "core/view_scale.h"
 
 int ft_pgrid_lower_envelope_needed(const ft_terrain *t, const ft_pgm_sampling *s)
 {
@@ -538,4 +541,152 @@ double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q_in)
         }
     }
     return e;
+}
+
+/* ---- 7. ray casting over the clipmap cache: the leaves' bound ------------------ */
+
+typedef struct leaf_piece {
+    double px;
+    uint32_t level;
+    ft_clip_box box;
+} leaf_piece;
+
+typedef struct leaf_bound_ctx {
+    const ft_clip_cache *c;
+    const ft_pgm_clip_view *v;
+    const ft_clip_world *w;
+    ft_view_bound vb;
+    double refine_over_px;
+    leaf_piece worst[FT_PGRID_LEAF_REFINE_MAX]; /* the largest, descending */
+    uint32_t nworst;
+    double rest_px; /* the largest of the others */
+} leaf_bound_ctx;
+
+/* 1 when level l - 1's resident box (as the shader got it) holds every
+ * point of the level-l cells with south-west corners [i0, i1) x [j0, j1):
+ * the traversal descends there, so no leaf of level l. */
+static int finer_holds(const ft_pgm_clip_view *v, uint32_t l, const ft_clip_box *b)
+{
+    const uint32_t f = l - 1u;
+    const double *bx = v->box[f];
+    if (bx[2] <= bx[0] || bx[3] <= bx[1]) {
+        return 0;
+    }
+    const double x0 = (double)v->base[f][0] + bx[0], x1 = (double)v->base[f][0] + bx[2];
+    const double y0 = (double)v->base[f][1] + bx[1], y1 = (double)v->base[f][1] + bx[3];
+    return 2.0 * (double)b->i0 >= x0 && 2.0 * (double)b->i1 <= x1 &&
+           2.0 * (double)b->j0 >= y0 && 2.0 * (double)b->j1 <= y1;
+}
+
+/* 1 when a level-l cell with south-west corner (a, b) meets the data (the
+ * ray is clipped to them: a cell past their edge is never met). */
+static int meets_data(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b)
+{
+    const int64_t s = (int64_t)1 << l;
+    const ft_clip_source *src = &c->src;
+    return (a + 1) * s > src->data_i_lo && a * s < src->data_i_hi &&
+           (b + 1) * s > src->data_j_lo && b * s < src->data_j_hi;
+}
+
+/* Error e_m over the level-l cells with south-west corners in r, heights
+ * [lo, hi] widened by e_m: its pixels (0 outside the view). */
+static double leaf_px(const leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r, double lo_m,
+                      double hi_m, double e_m)
+{
+    const ft_clip_world *w = k->w;
+    const double s = ldexp(1.0, (int)l);
+    const double li = (double)k->c->src.lattice_i0, lj = (double)k->c->src.lattice_j0;
+    const double pad = isfinite(e_m) ? e_m : 0.0;
+    double lo[3] = {((double)r->i0 * s - li) * w->cell_x_m, ((double)r->j0 * s - lj) * w->cell_y_m,
+                    lo_m - pad};
+    double hi[3] = {((double)r->i1 * s - li) * w->cell_x_m, ((double)r->j1 * s - lj) * w->cell_y_m,
+                    hi_m + pad};
+    ft_view_bound_drawn_box(&k->vb, lo, hi);
+    if (ft_view_bound_outside(&k->vb, lo, hi)) {
+        return 0.0;
+    }
+    return ft_view_bound_error_px(&k->vb, e_m, lo, hi);
+}
+
+static void note_leaf_piece(leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r, double px)
+{
+    if (k->nworst == FT_PGRID_LEAF_REFINE_MAX) {
+        const leaf_piece *last = &k->worst[FT_PGRID_LEAF_REFINE_MAX - 1u];
+        if (!(px > last->px)) {
+            k->rest_px = fmax(k->rest_px, px);
+            return;
+        }
+        k->rest_px = fmax(k->rest_px, last->px); /* it leaves the list */
+        --k->nworst;
+    }
+    uint32_t i = k->nworst++;
+    while (i > 0u && k->worst[i - 1u].px < px) { /* at most REFINE_MAX steps */
+        k->worst[i] = k->worst[i - 1u];
+        --i;
+    }
+    const leaf_piece p = {px, l, *r};
+    k->worst[i] = p;
+}
+
+static void leaf_block(void *ctx, uint32_t level, const ft_clip_block_bound *b)
+{
+    leaf_bound_ctx *k = ctx;
+    if (level == 0u || finer_holds(k->v, level, &b->box)) {
+        return;
+    }
+    /* a block's dev_m is its err_m, whose twist term (for triangles) only
+     * loosens a bound of the bilinear surface the ray meets; cells have
+     * their own (refine_leaf_piece) */
+    const double px = leaf_px(k, level, &b->box, (double)b->lo_m, (double)b->hi_m,
+                              (double)b->dev_m);
+    if (px > 0.0) {
+        note_leaf_piece(k, level, &b->box, px);
+    }
+}
+
+/* A piece again, cell by cell: only the cells that can be leaves and that
+ * meet the data. */
+static double refine_leaf_piece(const leaf_bound_ctx *k, const leaf_piece *p)
+{
+    double best = 0.0;
+    for (int64_t b = p->box.j0; b < p->box.j1; ++b) {
+        for (int64_t a = p->box.i0; a < p->box.i1; ++a) {
+            const ft_clip_box cell = {a, b, a + 1, b + 1};
+            ft_clip_block_bound cb;
+            if (finer_holds(k->v, p->level, &cell) || !meets_data(k->c, p->level, a, b) ||
+                !ft_clip_cell_bound(k->c, p->level, a, b, &cb)) {
+                continue;
+            }
+            best = fmax(best, leaf_px(k, p->level, &cell, (double)cb.lo_m, (double)cb.hi_m,
+                                      (double)cb.dev_m));
+        }
+    }
+    return best;
+}
+
+double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_view *v,
+                                    const ft_clip_world *w, const ft_camera *cam,
+                                    double curv_k_per_m, double refine_over_px)
+{
+    leaf_bound_ctx k;
+    memset(&k, 0, sizeof k);
+    k.c = c;
+    k.v = v;
+    k.w = w;
+    k.refine_over_px = refine_over_px;
+    const double origin_m[2] = {w->origin_x_m, w->origin_y_m};
+    ft_view_bound_from_camera(cam, origin_m, curv_k_per_m, &k.vb);
+    const uint32_t levels = (v->levels < c->desc.levels) ? v->levels : c->desc.levels;
+    for (uint32_t l = 1u; l < levels && l < FT_PGM_CLIP_LEVELS_MAX; ++l) {
+        (void)ft_clip_blocks_visit(c, l, leaf_block, &k);
+    }
+    double bound = k.rest_px;
+    for (uint32_t i = 0u; i < k.nworst; ++i) {
+        double px = k.worst[i].px;
+        if (px > refine_over_px) { /* both bound the piece: the smaller */
+            px = fmin(px, refine_leaf_piece(&k, &k.worst[i]));
+        }
+        bound = fmax(bound, px);
+    }
+    return bound;
 }

@@ -133,7 +133,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/camera.h"
 #include "lod/pgm.h"
+#include "terrain/clip_cache.h"
 #include "terrain/terrain.h"
 
 #define FT_PGRID_COL_BANDS 16u
@@ -292,5 +294,39 @@ double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q);
 /* The quad bound e_Q (metres, without the chord): exact when the quad fits
  * the window, else the residual rule; the shader's rule in double. */
 double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q);
+
+/* 7. Ray casting over the clipmap cache (pgrid.heights = clipmap, GLES 3):
+ *    the traversal's max-mip is the cache's levels (shaders/pgrid_rc.frag.glsl):
+ *    a node is a resident level-L cell, its max the hi of the cell's range of
+ *    the finest data (2), its children the level L - 1 cells under it. A
+ *    node whose point the finer level does not hold is a leaf: the ray meets
+ *    level L's bilinear surface H_L there, and the finest data lie within the
+ *    level's deviation e of H_L (the cache's cell deviation, plus a quarter
+ *    of the twist: ft_clip_block_bound err_m). So the point a ray-cast pixel
+ *    shows, and any surface of the finest data the ray passed over in a
+ *    leaf, is within e of it vertically, and the pixel's error is at most
+ *        rho = K e / (|P - eye| cos^2 theta)
+ *    as a mesh pixel's (2), with the vertical gain G <= 1 / cos^2 theta
+ *    of core/view_scale.h in place of 1 / cos^2 theta: a ray goes through
+ *    its pixel's centre, so nothing is misplaced sideways. Level 0's leaves
+ *    are the finest data: exact. Level L >= 1 holds leaves only where level
+ *    L - 1's resident box does not hold its cells, so the frame's bound is
+ *    the largest ft_view_bound_error_px(err_m) over the cache's blocks of
+ *    levels >= 1 with such cells that meet the view (their height range
+ *    widened by err_m); the FT_PGRID_LEAF_REFINE_MAX largest over
+ *    refine_over_px are bounded again cell by cell (ft_clip_cell_bound),
+ *    over the cells that can be leaves and meet the data (the ray is
+ *    clipped to them: past the data's edge a deviation is unknown). The
+ *    frame reports max(its threshold's bound, this) whenever it ray casts;
+ *    +INF where a deviation is unknown. No GPU read-back: the CPU keeps
+ *    every block's bounds (clip_cache.h). */
+#define FT_PGRID_LEAF_REFINE_MAX 64u
+/* The bound (px) for a frame that ray casts over the cache as the shader
+ * sees it (v: the boxes it got), camera cam; 0 when no block with leaves
+ * meets the view. At most levels x (side / 16)^2 x 4 blocks and
+ * FT_PGRID_LEAF_REFINE_MAX x 16^2 cells; no memory. */
+double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_view *v,
+                                    const ft_clip_world *w, const ft_camera *cam,
+                                    double curv_k_per_m, double refine_over_px);
 
 #endif

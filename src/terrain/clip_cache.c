@@ -47,6 +47,9 @@ static size_t mirror_bytes(const ft_clip_desc *d)
     return (size_t)d->side * d->side * sizeof(float);
 }
 
+/* per level and block: lo, hi, err, morph, dev (ft_clip_block_bound) */
+#define BLOCK_ARRAYS 5
+
 static size_t block_bytes(const ft_clip_desc *d)
 {
     const size_t n = d->side / FT_CLIP_BOUND_BLOCK;
@@ -89,7 +92,7 @@ ft_status ft_clip_plan(const ft_clip_desc *d, const ft_clip_source *src, ft_aren
         for (uint32_t l = 0u; d->keep_bounds && l < d->levels; ++l) {
             ft_arena_plan(a, FT_POOL_CLIP, mirror_bytes(d));
             ft_arena_plan(a, FT_POOL_CLIP, mirror_bytes(d));
-            for (int k = 0; k < 4; ++k) {
+            for (int k = 0; k < BLOCK_ARRAYS; ++k) {
                 ft_arena_plan(a, FT_POOL_CLIP, block_bytes(d));
             }
         }
@@ -126,10 +129,10 @@ ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_so
     const size_t texels = (size_t)d->side * d->side;
     const size_t blocks = block_bytes(d) / sizeof(float);
     for (uint32_t l = 0u; d->keep_bounds && l < d->levels; ++l) {
-        void *m = NULL, *dm = NULL, *b[4] = {NULL, NULL, NULL, NULL};
+        void *m = NULL, *dm = NULL, *b[BLOCK_ARRAYS] = {NULL, NULL, NULL, NULL, NULL};
         st = ft_arena_take(a, FT_POOL_CLIP, mirror_bytes(d), &m, err);
         if (st == FT_OK) st = ft_arena_take(a, FT_POOL_CLIP, mirror_bytes(d), &dm, err);
-        for (int k = 0; k < 4 && st == FT_OK; ++k) {
+        for (int k = 0; k < BLOCK_ARRAYS && st == FT_OK; ++k) {
             st = ft_arena_take(a, FT_POOL_CLIP, block_bytes(d), &b[k], err);
         }
         if (st != FT_OK) {
@@ -141,6 +144,7 @@ ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_so
         c->block_hi_m[l] = b[1];
         c->block_err_m[l] = b[2];
         c->block_morph_m[l] = b[3];
+        c->block_dev_m[l] = b[4];
         /* nothing uploaded yet: texels read 0, nothing is bounded */
         memset(m, 0, mirror_bytes(d));
         memset(b[0], 0, block_bytes(d));
@@ -151,6 +155,7 @@ ft_status ft_clip_init(ft_clip_cache *c, const ft_clip_desc *d, const ft_clip_so
         for (size_t k = 0u; k < blocks; ++k) {
             c->block_err_m[l][k] = INFINITY;
             c->block_morph_m[l][k] = INFINITY;
+            c->block_dev_m[l][k] = INFINITY;
         }
     }
     c->desc = *d;
@@ -359,7 +364,7 @@ static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_
     const uint32_t seam_x = wrap_index(want->i0 - 1, side), seam_y = wrap_index(want->j0 - 1, side);
     const int morph = (l + 1u < c->desc.levels);
     float lo = m[(size_t)wrap_index(y0, side) * side + wrap_index(x0, side)], hi = lo;
-    double err = 0.0, dmorph = 0.0;
+    double err = 0.0, dmorph = 0.0, dev_max = 0.0;
     for (int64_t y = y0; y < y0 + span; ++y) {
         const uint32_t ty = wrap_index(y, side), ty1 = wrap_index(y + 1, side);
         const float *row = m + (size_t)ty * side, *row1 = m + (size_t)ty1 * side;
@@ -383,6 +388,7 @@ static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_
             const double twist =
                 0.25 * fabs((double)v + (double)row1[tx1] - (double)row[tx1] - (double)row1[tx]);
             err = isinf(d) ? INFINITY : fmax(err, (double)drow[tx] + twist);
+            dev_max = isinf(d) ? INFINITY : fmax(dev_max, (double)drow[tx]);
         }
     }
     const double steps = 4.0 * fmax(fabs((double)lo), fabs((double)hi)) * ldexp(1.0, -24);
@@ -391,6 +397,7 @@ static void block_range(const ft_clip_cache *c, uint32_t l, uint32_t bx, uint32_
     c->block_hi_m[l][k] = hi;
     c->block_err_m[l][k] = round_up_f(err + steps);
     c->block_morph_m[l][k] = morph ? round_up_f(dmorph + steps) : 0.0f;
+    c->block_dev_m[l][k] = round_up_f(dev_max + steps);
 }
 
 static int box_holds(const ft_clip_box *b, int64_t a, int64_t c)
@@ -434,6 +441,7 @@ int ft_clip_cell_bound(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b,
     out->hi_m = (float)hi;
     out->err_m = isinf(err) ? INFINITY : round_up_f(err + steps);
     out->morph_m = morph ? round_up_f(dmorph + steps) : 0.0f;
+    out->dev_m = isinf(d) ? INFINITY : round_up_f(sw + steps);
     return 1;
 }
 
@@ -591,8 +599,9 @@ uint64_t ft_clip_blocks_visit(const ft_clip_cache *c, uint32_t l, ft_clip_block_
             const int kx =
                 block_pieces((int64_t)bx * FT_CLIP_BOUND_BLOCK, wb->i0, v->i0, v->i1, side, px);
             const size_t k = (size_t)by * n + bx;
-            ft_clip_block_bound b = {{0, 0, 0, 0},    c->block_lo_m[l][k],  c->block_hi_m[l][k],
-                                     c->block_err_m[l][k], c->block_morph_m[l][k]};
+            ft_clip_block_bound b = {{0, 0, 0, 0},         c->block_lo_m[l][k],
+                                     c->block_hi_m[l][k],  c->block_err_m[l][k],
+                                     c->block_morph_m[l][k], c->block_dev_m[l][k]};
             for (int qy = 0; qy < ky; ++qy) {
                 for (int qx = 0; qx < kx; ++qx) {
                     b.box.i0 = px[qx][0];

@@ -157,6 +157,7 @@ typedef struct ft_clip_cache {
     float *block_hi_m[FT_CLIP_LEVELS_MAX];
     float *block_err_m[FT_CLIP_LEVELS_MAX];
     float *block_morph_m[FT_CLIP_LEVELS_MAX];
+    float *block_dev_m[FT_CLIP_LEVELS_MAX];
 } ft_clip_cache;
 
 /* Checks the description (the message names the scene key: clipmap.side,
@@ -221,6 +222,11 @@ typedef struct ft_clip_block_bound {
     ft_clip_box box; /* level-l samples, resident */
     float lo_m, hi_m; /* the block's height range, apron included */
     float err_m, morph_m;
+    /* how far the finest data depart from level l's bilinear surface
+     * itself (no triangles: the deviation without the twist), the largest
+     * over the cells of the block and its apron, rounded as err_m; +INF
+     * when a cell's deviation is unknown */
+    float dev_m;
 } ft_clip_block_bound;
 
 typedef void (*ft_clip_block_fn)(void *ctx, uint32_t level, const ft_clip_block_bound *b);

@@ -33,5 +33,8 @@ if(TARGET ft_app AND TARGET ft_tools AND FIXTERRAIN_WITH_METHOD_CLIPMAP
   if(FIXTERRAIN_WITH_METHOD_PGRID)
     add_test(NAME test_clip_flight_pgrid COMMAND test_clip_flight 250 1200 pgrid)
     set_tests_properties(test_clip_flight_pgrid PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+    # and ray casting the pixels over gamma through the cache's levels
+    add_test(NAME test_clip_flight_pgrid_rc COMMAND test_clip_flight 250 1200 pgrid_rc)
+    set_tests_properties(test_clip_flight_pgrid_rc PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
   endif()
 endif()

@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/view_scale.h"
+#include "lod/pgrid.h"
 #include "terrain/clip_cache.h"
 #include "terrain/clip_source.h"
 #include "test_util.h"
@@ -452,7 +454,8 @@ static void test_terrain_source(void)
 
 /* The blocks' errors against the synthetic source's deviations, recomputed
  * cell by cell from the lattice: every resident cell's dev + twist / 4 is
- * within its block's err_m (+INF where a corner's deviation is unknown),
+ * within its block's err_m and its dev within dev_m (+INF where a corner's
+ * deviation is unknown; dev_m never over err_m),
  * every sample's distance to the next level's bilinear surface within
  * morph_m; and the bounds are tight (the largest cell of a block is its
  * err_m within the float steps) while the boxes move and lag. */
@@ -472,8 +475,9 @@ static void check_block(void *ctx, uint32_t l, const ft_clip_block_bound *bb)
     block_check *k = ctx;
     const ft_clip_box *v = &k->c->level[l].valid;
     const int64_t s = (int64_t)1 << l;
-    double worst = 0.0;
+    double worst = 0.0, worst_dev = 0.0;
     int unknown = 0;
+    k->under += bb->dev_m > bb->err_m;
     for (int64_t b = bb->box.j0; b < bb->box.j1; ++b) {
         for (int64_t a = bb->box.i0; a < bb->box.i1; ++a) {
             if (l + 1u < LEVELS) {
@@ -497,15 +501,16 @@ static void check_block(void *ctx, uint32_t l, const ft_clip_block_bound *bb)
             const double tw = 0.25 * fabs(synth_h(l, a, b) + synth_h(l, a + 1, b + 1) -
                                           synth_h(l, a + 1, b) - synth_h(l, a, b + 1));
             worst = fmax(worst, (double)synth_dev_m(l, a * s, b * s) + tw);
+            worst_dev = fmax(worst_dev, (double)synth_dev_m(l, a * s, b * s));
         }
     }
     k->pieces++;
     if (unknown) {
-        k->under += !isinf(bb->err_m);
+        k->under += !isinf(bb->err_m) || !isinf(bb->dev_m);
         k->unbounded++;
         return;
     }
-    k->under += worst > (double)bb->err_m;
+    k->under += worst > (double)bb->err_m || worst_dev > (double)bb->dev_m;
     if (isfinite(bb->err_m)) {
         k->finite++;
         /* the block's apron holds more cells than the piece: only a block
@@ -629,6 +634,193 @@ static void test_cell_ranges(void)
     CHECK(unbounded > 0u && misplaced == 0u);
 }
 
+/* pgrid's leaves' bound over the cache (lod/pgrid.h 7) against every cell:
+ * while the boxes move and lag and the eye looks around, the frame's bound
+ * is at least every cell's own bound (ft_view_bound_error_px of its
+ * deviation over its box) among the cells the traversal can end in (levels
+ * >= 1, four corners resident, not held by the finer level's box) that meet
+ * the view, and +INF when one of them has an unknown deviation (the
+ * synthetic band on level 2), finite otherwise. Not vacuous: most frames
+ * have leaves in view. */
+typedef struct leaf_brute {
+    double worst_px;
+    int unknown;
+} leaf_brute;
+
+/* The synthetic source's heights lie in [-1000, 4000) m (lattice_height). */
+#define SYNTH_TOP_M 4000.0
+
+/* Every resident cell of every level by its nearest horizontal distance
+ * from the eye, with the lowest of its corners: sorted, then prefix minima,
+ * so the lowest drawn height of the cells at most r away is one search. */
+typedef struct near_cell {
+    double near_m, lo_m;
+} near_cell;
+
+static near_cell g_near[LEVELS * SIDE * SIDE];
+
+static int near_cmp(const void *a, const void *b)
+{
+    const double x = ((const near_cell *)a)->near_m, y = ((const near_cell *)b)->near_m;
+    return (x > y) - (x < y);
+}
+
+static double horiz_reach(const ft_view_bound *vb, double x0, double x1, double y0, double y1,
+                          int farthest)
+{
+    const double a[2] = {x0 - vb->eye_m[0], y0 - vb->eye_m[1]};
+    const double b[2] = {x1 - vb->eye_m[0], y1 - vb->eye_m[1]};
+    double d2 = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        const double n = a[i] > 0.0 ? a[i] : (b[i] < 0.0 ? -b[i] : 0.0);
+        const double f = fmax(fabs(a[i]), fabs(b[i]));
+        d2 += farthest ? f * f : n * n;
+    }
+    return sqrt(d2);
+}
+
+static size_t near_cells(const ft_clip_cache *c, const ft_view_bound *vb)
+{
+    size_t n = 0u;
+    for (uint32_t l = 0u; l < LEVELS; ++l) {
+        const ft_clip_box *r = &c->level[l].valid;
+        const int64_t s = (int64_t)1 << l;
+        for (int64_t b = r->j0; b + 1 < r->j1; ++b) {
+            for (int64_t a = r->i0; a + 1 < r->i1; ++a) {
+                double lo = INFINITY;
+                for (int q = 0; q < 4; ++q) lo = fmin(lo, synth_h(l, a + (q & 1), b + (q >> 1)));
+                g_near[n].near_m = horiz_reach(vb, (double)(a * s) * 90.0,
+                                               (double)((a + 1) * s) * 90.0, (double)(b * s) * 90.0,
+                                               (double)((b + 1) * s) * 90.0, 0);
+                g_near[n].lo_m = lo;
+                ++n;
+            }
+        }
+    }
+    qsort(g_near, n, sizeof g_near[0], near_cmp);
+    for (size_t i = 1u; i < n; ++i) g_near[i].lo_m = fmin(g_near[i].lo_m, g_near[i - 1u].lo_m);
+    return n;
+}
+
+/* The lowest drawn height of the cells at most r_m away (+INF: none). */
+static double lowest_within(size_t n, double r_m)
+{
+    size_t lo = 0u, hi = n; /* the first cell farther than r_m */
+    while (lo < hi) {
+        const size_t mid = (lo + hi) / 2u;
+        if (g_near[mid].near_m <= r_m) lo = mid + 1u; else hi = mid;
+    }
+    return lo == 0u ? INFINITY : g_near[lo - 1u].lo_m;
+}
+
+static void leaf_brute_force(const ft_clip_cache *c, const ft_pgm_clip_view *v,
+                             const ft_view_bound *vb, leaf_brute *out)
+{
+    out->worst_px = 0.0;
+    out->unknown = 0;
+    /* the column of an unknown cell a ray can cross starts at the lowest
+     * drawn height nearer than the cell's farthest point (the eye is over
+     * every height here) */
+    const size_t n = near_cells(c, vb);
+    for (uint32_t l = 1u; l < LEVELS; ++l) {
+        const ft_clip_box *r = &c->level[l].valid;
+        const int64_t s = (int64_t)1 << l;
+        const double *fb = v->box[l - 1u];
+        const double fx0 = (double)v->base[l - 1u][0] + fb[0], fx1 = (double)v->base[l - 1u][0] + fb[2];
+        const double fy0 = (double)v->base[l - 1u][1] + fb[1], fy1 = (double)v->base[l - 1u][1] + fb[3];
+        for (int64_t b = r->j0; b + 1 < r->j1; ++b) {
+            for (int64_t a = r->i0; a + 1 < r->i1; ++a) {
+                const int held = fb[2] > fb[0] && fb[3] > fb[1] && 2.0 * (double)a >= fx0 &&
+                                 2.0 * (double)(a + 1) <= fx1 && 2.0 * (double)b >= fy0 &&
+                                 2.0 * (double)(b + 1) <= fy1;
+                if (held) continue;
+                double lo = INFINITY, hi = -INFINITY;
+                int unknown = 0;
+                for (int q = 0; q < 4; ++q) {
+                    const double h = synth_h(l, a + (q & 1), b + (q >> 1));
+                    lo = fmin(lo, h);
+                    hi = fmax(hi, h);
+                    unknown |= synth_dev_m(l, (a + (q & 1)) * s, (b + (q >> 1)) * s) < 0.0f;
+                }
+                const double dev = unknown ? 0.0 : (double)synth_dev_m(l, a * s, b * s);
+                const double far_m = horiz_reach(vb, (double)(a * s) * 90.0,
+                                                 (double)((a + 1) * s) * 90.0,
+                                                 (double)(b * s) * 90.0,
+                                                 (double)((b + 1) * s) * 90.0, 1);
+                double blo[3] = {(double)(a * s) * 90.0, (double)(b * s) * 90.0,
+                                 unknown ? lowest_within(n, far_m) : lo - dev};
+                double bhi[3] = {(double)((a + 1) * s) * 90.0, (double)((b + 1) * s) * 90.0,
+                                 unknown ? fmax(hi, SYNTH_TOP_M) : hi + dev};
+                ft_view_bound_drawn_box(vb, blo, bhi);
+                if (ft_view_bound_outside(vb, blo, bhi)) continue;
+                if (unknown) {
+                    out->unknown = 1;
+                    continue;
+                }
+                out->worst_px = fmax(out->worst_px, ft_view_bound_error_px(vb, dev, blo, bhi));
+            }
+        }
+    }
+}
+
+static void test_leaf_bound(void)
+{
+    ft_clip_cache c;
+    ft_arena a;
+    make_cache_kept(&c, &a, 256u, 1);
+    const ft_clip_world w = {0.0, 0.0, 90.0, 90.0};
+    uint32_t frames = 0u, under = 0u, with_leaves = 0u, finite = 0u, unknown = 0u;
+    double slack_max = 0.0;
+    for (int step = 0; step < 40; ++step) {
+        const double ei = 23.0 * step - 200.0 + 0.37, ej = -13.0 * step + 40.0 + 0.61;
+        (void)ft_clip_recentre(&c, ei, ej);
+        (void)drain(&c, step % 4 == 0 ? -1 : 5, NULL);
+        ft_pgm_clip_view v;
+        memset(&v, 0, sizeof v);
+        v.levels = LEVELS;
+        for (uint32_t l = 0u; l < LEVELS; ++l) {
+            const double sc = ldexp(1.0, (int)l);
+            const ft_clip_box *r = &c.level[l].valid;
+            v.base[l][0] = (int64_t)floor(ei / sc);
+            v.base[l][1] = (int64_t)floor(ej / sc);
+            v.box[l][0] = (double)(r->i0 - v.base[l][0]);
+            v.box[l][1] = (double)(r->j0 - v.base[l][1]);
+            v.box[l][2] = (double)(r->i1 - 1 - v.base[l][0]);
+            v.box[l][3] = (double)(r->j1 - 1 - v.base[l][1]);
+        }
+        const double eye[3] = {ei * 90.0, ej * 90.0, 6000.0 + 100.0 * (step % 7)};
+        ft_camera cam;
+        ft_error err;
+        REQUIRE(ft_camera_init(&cam, eye, 0.7 * step, -0.05 - 0.02 * (step % 9), 0.0,
+                               1.0, 320u, 240u, 1.0, 1e6, &err) == FT_OK);
+        const double b = ft_pgrid_cache_leaf_bound_px(&c, &v, &w, &cam, 0.0, SYNTH_TOP_M, 0.5);
+        const double origin[2] = {0.0, 0.0};
+        ft_view_bound vb;
+        ft_view_bound_from_camera(&cam, origin, 0.0, &vb);
+        leaf_brute br;
+        leaf_brute_force(&c, &v, &vb, &br);
+        frames++;
+        with_leaves += br.worst_px > 0.0;
+        unknown += br.unknown;
+        finite += isfinite(b);
+        if (br.unknown) {
+            under += isfinite(b);
+            if (isfinite(b)) printf("  finite %.3f px with an unknown deviation in view\n", b);
+            continue;
+        }
+        under += b < br.worst_px;
+        if (b < br.worst_px) printf("  %.4f px under the worst cell's %.4f\n", b, br.worst_px);
+        if (isfinite(b)) slack_max = fmax(slack_max, b - br.worst_px);
+    }
+    printf("leaves' bound: %u frames, %u with leaves in view, %u with an unknown deviation "
+           "there, %u finite, %u under the cells; largest excess over the worst cell %.3f px\n",
+           frames, with_leaves, unknown, finite, under, slack_max);
+    CHECK(under == 0u);
+    CHECK(with_leaves * 2u > frames);
+    /* every frame without an unknown deviation in view has a bound */
+    CHECK(finite + unknown == frames && unknown > 0u && finite > 0u);
+}
+
 int main(void)
 {
     test_fill_and_nesting();
@@ -640,5 +832,6 @@ int main(void)
     test_max_height_in();
     test_block_errors();
     test_cell_ranges();
+    test_leaf_bound();
     return ft_test_result("test_clip_cache");
 }

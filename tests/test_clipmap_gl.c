@@ -782,7 +782,8 @@ static void pgrid_rc_bound_check(const char *dem)
         double again = 0.0;
         for (int k = 0; k < 200; ++k) {
             again = ft_pgrid_cache_leaf_bound_px(&pg->pgm.cl.cache, &pg->pgm.clip_view, &w,
-                                                 &g_bound_cam, tr->curv_drop_per_m2, 1.0);
+                                                 &g_bound_cam, tr->curv_drop_per_m2,
+                                                 (double)tr->max_height_m, 1.0);
         }
         const double us = (double)(ft_plat_monotonic_ns() - t0) * 1e-3 / 200.0;
         printf("pgrid leaves' bound of the last view: %.1f us a frame (side 128, 5 levels)\n",

@@ -14,12 +14,13 @@
  *     position) and gl_FragDepth over the mesh (DepthFunc ALWAYS).
  * GLES 2 (no gl_FragDepth, no texelFetch): steps 1-3 only; init says so
  * on stderr and the stats report the mesh's error bound (tau_achieved_px)
- * instead of gamma. pgrid.heights = clipmap: steps 1-3 too (relief bound,
- * no ray casting, GLES 3), the grid's heights and each vertex's range of
- * the finest data from the clipmap cache (pgm's cache, with its cell
- * ranges: lod/clip_levels.h FT_CLIP_BOUNDS_RANGES; src/lod/pgrid.h 2);
- * the stats report the bound achieved. All GL objects and CPU buffers are
- * made at init. */
+ * instead of gamma. pgrid.heights = clipmap (relief bound, GLES 3): the
+ * grid's heights and each vertex's range of the finest data from the
+ * clipmap cache (pgm's cache, with its cell ranges: lod/clip_levels.h
+ * FT_CLIP_BOUNDS_RANGES; src/lod/pgrid.h 2), and step 4 through the cache's
+ * levels (src/lod/pgrid.h 7); the stats report the bound achieved, with the
+ * ray caster's leaves' bound in it. All GL objects and CPU buffers are made
+ * at init. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -28,6 +29,7 @@
 #include "gpu/program.h"
 #include "gpu/shade.h"
 #include "lod/method.h"
+#include "terrain/terrain_db.h"
 
 /* pgrid's uniforms (shaders/pgrid.vert.glsl, pgrid_pass.vert.glsl): pgm's
  * first (it draws with the pgm grid), then its own row distribution, min/max
@@ -927,8 +929,12 @@ static void add_leaf_bound(ft_pgrid_method *m, const ft_terrain *t, const ft_cam
     }
     const ft_clip_world w = ft_clip_levels_world(t);
     /* pieces under gamma need no second look: the frame reports gamma */
+    /* the finest data's top: the database's (its data tiles'), or the
+     * terrain's own when the cache reads it */
+    const double top_m = (t->db != NULL) ? (double)t->db->hdr.max_height_m : (double)t->max_height_m;
     m->leaf_px = ft_pgrid_cache_leaf_bound_px(&m->pgm.cl.cache, &m->pgm.clip_view, &w, cam,
-                                              t->curv_drop_per_m2, m->gamma_px * m->lod_scale);
+                                              t->curv_drop_per_m2, top_m,
+                                              m->gamma_px * m->lod_scale);
     if (m->leaf_px > m->achieved_px) {
         m->achieved_px = m->leaf_px; /* +INF where a deviation is unknown */
     }

@@ -545,6 +545,19 @@ double ft_pgrid_quad_residual(const ft_terrain *t, const ft_pgrid_quad *q_in)
 
 /* ---- 7. ray casting over the clipmap cache: the leaves' bound ------------------ */
 
+/* Distance bins of the ray floor: bin 0 up to 100 m, bin b up to
+ * 100 m 2^(b / 3). */
+#define FT_PGRID_FLOOR_BINS 64
+
+static int floor_bin(double r_m)
+{
+    if (!(r_m > 100.0)) {
+        return 0;
+    }
+    const double b = ceil(3.0 * log2(r_m / 100.0));
+    return b >= FT_PGRID_FLOOR_BINS - 1 ? FT_PGRID_FLOOR_BINS - 1 : (int)b;
+}
+
 typedef struct leaf_piece {
     double px;
     uint32_t level;
@@ -557,6 +570,11 @@ typedef struct leaf_bound_ctx {
     const ft_clip_world *w;
     ft_view_bound vb;
     double refine_over_px;
+    /* the ray floor (see leaf_px): per distance bin, the lowest drawn
+     * height of the blocks whose nearest point is in that bin or nearer */
+    double floor_m[FT_PGRID_FLOOR_BINS];
+    double eye_over_m;   /* the drawn surface under the eye is under it */
+    double truth_top_m;  /* no height of the finest data is over it */
     leaf_piece worst[FT_PGRID_LEAF_REFINE_MAX]; /* the largest, descending */
     uint32_t nworst;
     double rest_px; /* the largest of the others */
@@ -588,6 +606,41 @@ static int meets_data(const ft_clip_cache *c, uint32_t l, int64_t a, int64_t b)
            (b + 1) * s > src->data_j_lo && b * s < src->data_j_hi;
 }
 
+/* The horizontal distances from the eye to the xy box [lo, hi] (frame
+ * coordinates): its nearest and farthest points. */
+static void box_reach(const ft_view_bound *v, const double lo[2], const double hi[2],
+                      double *near_m, double *far_m)
+{
+    double n2 = 0.0, f2 = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        const double a = lo[i] - v->eye_m[i], b = hi[i] - v->eye_m[i];
+        const double n = (a > 0.0) ? a : ((b < 0.0) ? -b : 0.0);
+        const double f = fmax(fabs(a), fabs(b));
+        n2 += n * n;
+        f2 += f * f;
+    }
+    *near_m = sqrt(n2);
+    *far_m = sqrt(f2);
+}
+
+/* The lowest height a ray can cross the column over the xy box [lo, hi]
+ * at. A ray starts at an eye over the drawn surface under it; over the box
+ * its path has crossed only points nearer than the box's farthest. Were it
+ * there under every drawn height of those points (each block whose nearest
+ * point is that near), it would be under the drawn surface where it is:
+ * it has crossed the surface on the way (continuous along the path, and a
+ * ray that enters a leaf under it stops at the entry) and ended, at a
+ * height the same rule bounds. An eye under the surface: no floor. */
+static double ray_floor(const leaf_bound_ctx *k, const double lo[3], const double hi[3])
+{
+    if (k->vb.eye_m[2] < k->eye_over_m) {
+        return -INFINITY;
+    }
+    double near_m = 0.0, far_m = 0.0;
+    box_reach(&k->vb, lo, hi, &near_m, &far_m);
+    return k->floor_m[floor_bin(far_m)];
+}
+
 /* Error e_m over the level-l cells with south-west corners in r, heights
  * [lo, hi] widened by e_m: its pixels (0 outside the view). */
 static double leaf_px(const leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r, double lo_m,
@@ -596,11 +649,18 @@ static double leaf_px(const leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r,
     const ft_clip_world *w = k->w;
     const double s = ldexp(1.0, (int)l);
     const double li = (double)k->c->src.lattice_i0, lj = (double)k->c->src.lattice_j0;
-    const double pad = isfinite(e_m) ? e_m : 0.0;
+    /* An unknown deviation leaves the cell's range unbounded too: a ray
+     * over its column can end in it or miss the finest data there, from the
+     * top of the finest data down to the ray floor. */
+    const int known = isfinite(e_m);
     double lo[3] = {((double)r->i0 * s - li) * w->cell_x_m, ((double)r->j0 * s - lj) * w->cell_y_m,
-                    lo_m - pad};
+                    lo_m - e_m};
     double hi[3] = {((double)r->i1 * s - li) * w->cell_x_m, ((double)r->j1 * s - lj) * w->cell_y_m,
-                    hi_m + pad};
+                    hi_m + e_m};
+    if (!known) {
+        lo[2] = ray_floor(k, lo, hi);
+        hi[2] = fmax(hi_m, k->truth_top_m);
+    }
     ft_view_bound_drawn_box(&k->vb, lo, hi);
     if (ft_view_bound_outside(&k->vb, lo, hi)) {
         return 0.0;
@@ -626,6 +686,48 @@ static void note_leaf_piece(leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r,
     }
     const leaf_piece p = {px, l, *r};
     k->worst[i] = p;
+}
+
+static void lowest_block(void *ctx, uint32_t level, const ft_clip_block_bound *b)
+{
+    leaf_bound_ctx *k = ctx;
+    const double s = ldexp(1.0, (int)level);
+    const double li = (double)k->c->src.lattice_i0, lj = (double)k->c->src.lattice_j0;
+    const double lo[2] = {((double)b->box.i0 * s - li) * k->w->cell_x_m,
+                          ((double)b->box.j0 * s - lj) * k->w->cell_y_m};
+    /* the cells reach one sample past the box */
+    const double hi[2] = {((double)b->box.i1 * s - li) * k->w->cell_x_m,
+                          ((double)b->box.j1 * s - lj) * k->w->cell_y_m};
+    double near_m = 0.0, far_m = 0.0;
+    box_reach(&k->vb, lo, hi, &near_m, &far_m);
+    const int bin = floor_bin(near_m);
+    k->floor_m[bin] = fmin(k->floor_m[bin], (double)b->lo_m);
+}
+
+/* The highest point of the drawn surface under the eye: the corners of
+ * the cell holding it on the finest level whose box (as the shader got
+ * it) holds it, the level the ray caster starts on; +INF when none. */
+static double surface_top_under_eye(const leaf_bound_ctx *k)
+{
+    const ft_pgm_clip_view *v = k->v;
+    for (uint32_t l = 0u; l < v->levels && l < FT_PGM_CLIP_LEVELS_MAX; ++l) {
+        const double *bx = v->box[l];
+        const double sc = ldexp(1.0, (int)l);
+        const double ux = v->off[l][0] / sc, uy = v->off[l][1] / sc;
+        if (bx[2] <= bx[0] || bx[3] <= bx[1] || ux < bx[0] || ux > bx[2] || uy < bx[1] ||
+            uy > bx[3]) {
+            continue;
+        }
+        const double cx = fmin(fmax(floor(ux), bx[0]), bx[2] - 1.0);
+        const double cy = fmin(fmax(floor(uy), bx[1]), bx[3] - 1.0);
+        ft_clip_block_bound cb;
+        if (ft_clip_cell_bound(k->c, l, v->base[l][0] + (int64_t)cx, v->base[l][1] + (int64_t)cy,
+                               &cb)) {
+            return (double)cb.hi_m;
+        }
+        return INFINITY;
+    }
+    return INFINITY;
 }
 
 static void leaf_block(void *ctx, uint32_t level, const ft_clip_block_bound *b)
@@ -666,7 +768,8 @@ static double refine_leaf_piece(const leaf_bound_ctx *k, const leaf_piece *p)
 
 double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_view *v,
                                     const ft_clip_world *w, const ft_camera *cam,
-                                    double curv_k_per_m, double refine_over_px)
+                                    double curv_k_per_m, double truth_top_m,
+                                    double refine_over_px)
 {
     leaf_bound_ctx k;
     memset(&k, 0, sizeof k);
@@ -677,6 +780,19 @@ double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_vi
     const double origin_m[2] = {w->origin_x_m, w->origin_y_m};
     ft_view_bound_from_camera(cam, origin_m, curv_k_per_m, &k.vb);
     const uint32_t levels = (v->levels < c->desc.levels) ? v->levels : c->desc.levels;
+    /* the ray floor: the lowest drawn height by distance, then prefix
+     * minima (a bin's floor holds every nearer block too) */
+    for (int b = 0; b < FT_PGRID_FLOOR_BINS; ++b) {
+        k.floor_m[b] = INFINITY;
+    }
+    k.eye_over_m = surface_top_under_eye(&k);
+    for (uint32_t l = 0u; l < levels && l < FT_PGM_CLIP_LEVELS_MAX; ++l) {
+        (void)ft_clip_blocks_visit(c, l, lowest_block, &k);
+    }
+    for (int b = 1; b < FT_PGRID_FLOOR_BINS; ++b) {
+        k.floor_m[b] = fmin(k.floor_m[b], k.floor_m[b - 1]);
+    }
+    k.truth_top_m = truth_top_m;
     for (uint32_t l = 1u; l < levels && l < FT_PGM_CLIP_LEVELS_MAX; ++l) {
         (void)ft_clip_blocks_visit(c, l, leaf_block, &k);
     }

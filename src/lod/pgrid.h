@@ -47,8 +47,8 @@
  *    angle in centre pixels) and the displacement in true pixels: a
  *    perspective image stretches angles by up to 1 / cos^2 theta (radially),
  *    15x at 75 degrees off axis, so wide views (FOV 150) need the factor.
- *    Over the clipmap cache (pgrid.heights = clipmap; relief bound, no ray
- *    casting, GLES 3): the grid reads its heights as pgm does over the cache
+ *    Over the clipmap cache (pgrid.heights = clipmap; relief bound, GLES 3;
+ *    ray casting: 7): the grid reads its heights as pgm does over the cache
  *    (pgm.h), and hmin, hmax are the finest data's range over the box
  *    (clamped into what is drawn): from the cache's cell ranges of the
  *    finest level whose resident cells hold the box within 2 x 2 of them,
@@ -301,25 +301,30 @@ double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q);
  *    the finest data (2), its children the level L - 1 cells under it. A
  *    node whose point the finer level does not hold is a leaf: the ray meets
  *    level L's bilinear surface H_L there, and the finest data lie within the
- *    level's deviation e of H_L (the cache's cell deviation, plus a quarter
- *    of the twist: ft_clip_block_bound err_m). So the point a ray-cast pixel
- *    shows, and any surface of the finest data the ray passed over in a
- *    leaf, is within e of it vertically, and the pixel's error is at most
- *        rho = K e / (|P - eye| cos^2 theta)
- *    as a mesh pixel's (2), with the vertical gain G <= 1 / cos^2 theta
- *    of core/view_scale.h in place of 1 / cos^2 theta: a ray goes through
- *    its pixel's centre, so nothing is misplaced sideways. Level 0's leaves
- *    are the finest data: exact. Level L >= 1 holds leaves only where level
- *    L - 1's resident box does not hold its cells, so the frame's bound is
- *    the largest ft_view_bound_error_px(err_m) over the cache's blocks of
- *    levels >= 1 with such cells that meet the view (their height range
- *    widened by err_m); the FT_PGRID_LEAF_REFINE_MAX largest over
- *    refine_over_px are bounded again cell by cell (ft_clip_cell_bound),
- *    over the cells that can be leaves and meet the data (the ray is
- *    clipped to them: past the data's edge a deviation is unknown). The
- *    frame reports max(its threshold's bound, this) whenever it ray casts;
- *    +INF where a deviation is unknown. No GPU read-back: the CPU keeps
- *    every block's bounds (clip_cache.h). */
+ *    cell's deviation e of H_L (ft_clip_block_bound dev_m: the database's
+ *    per-cell deviation, no twist term, since no triangle is drawn). So the
+ *    point a ray-cast pixel shows, and any surface of the finest data the
+ *    ray passed over in a leaf, is within e of it vertically, and the
+ *    pixel's error is at most K e G / |P - eye|, G the vertical gain of
+ *    core/view_scale.h (<= 1 / cos^2 theta, the mesh's factor (2): a ray
+ *    goes through its pixel's centre, so nothing is misplaced sideways).
+ *    Level 0's leaves are the finest data: exact. Level L >= 1 holds leaves
+ *    only where level L - 1's box does not hold its cells, so the frame's
+ *    bound is the largest ft_view_bound_error_px(dev_m) over the cache's
+ *    blocks of levels >= 1 with such cells that meet the view (heights lo -
+ *    e .. hi + e); the FT_PGRID_LEAF_REFINE_MAX largest over refine_over_px
+ *    are bounded again cell by cell (ft_clip_cell_bound), over the cells
+ *    that can be leaves and meet the data (the ray is clipped to them: past
+ *    the data's edge a deviation is unknown). A cell whose deviation is
+ *    unknown counts over the column a ray can cross it in: from truth_top_m
+ *    (the finest data's highest point) down to the ray floor, the lowest
+ *    drawn height nearer than the cell's farthest point: a ray from an eye
+ *    over the drawn surface under it that is under every drawn height on
+ *    its way has crossed the surface (continuous along the path; a ray that
+ *    enters a leaf under it stops at the entry) and ended. The frame reports
+ *    max(its threshold's bound, this) whenever it ray casts; +INF where such
+ *    a column meets the view. No GPU read-back: the CPU keeps every block's
+ *    bounds (clip_cache.h). */
 #define FT_PGRID_LEAF_REFINE_MAX 64u
 /* The bound (px) for a frame that ray casts over the cache as the shader
  * sees it (v: the boxes it got), camera cam; 0 when no block with leaves
@@ -327,6 +332,7 @@ double ft_pgrid_quad_bound(const ft_terrain *t, const ft_pgrid_quad *q);
  * FT_PGRID_LEAF_REFINE_MAX x 16^2 cells; no memory. */
 double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_view *v,
                                     const ft_clip_world *w, const ft_camera *cam,
-                                    double curv_k_per_m, double refine_over_px);
+                                    double curv_k_per_m, double truth_top_m,
+                                    double refine_over_px);
 
 #endif

@@ -19,6 +19,12 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_EGL)
                            TIMEOUT 300 LABELS "gl;gl_discipline")
     endif()
   endforeach()
+  # pgrid over the clipmap cache, ray casting through its levels (GLES 3 only)
+  if(FIXTERRAIN_WITH_METHOD_PGRID)
+    add_test(NAME gl_discipline_pgrid_cache_es3 COMMAND test_gl_discipline egl-gles3 pgrid-cache)
+    set_tests_properties(gl_discipline_pgrid_cache_es3 PROPERTIES TIMEOUT 300
+                         LABELS "gl;gl_discipline")
+  endif()
   if(FIXTERRAIN_WITH_OSMESA AND FIXTERRAIN_WITH_METHOD_BINTREE)
     add_test(NAME gl_discipline_bintree_osmesa COMMAND test_gl_discipline osmesa bintree)
     set_tests_properties(gl_discipline_bintree_osmesa PROPERTIES TIMEOUT 300

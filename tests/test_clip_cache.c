@@ -12,6 +12,7 @@
 
 #include "core/view_scale.h"
 #include "lod/pgrid.h"
+#include "lod/worst_pieces.h"
 #include "terrain/clip_cache.h"
 #include "terrain/clip_source.h"
 #include "test_util.h"
@@ -821,6 +822,43 @@ static void test_leaf_bound(void)
     CHECK(finite + unknown == frames && unknown > 0u && finite > 0u);
 }
 
+/* The worst pieces: 200 bounds (ties and +INF among them) into a list of
+ * 5: the 5 largest kept, descending, with their levels and boxes; the rest
+ * is the 6th largest and its level. */
+static void test_worst_pieces(void)
+{
+    static double px[200];
+    ft_worst_pieces w;
+    ft_worst_pieces_init(&w, 5u);
+    for (uint32_t k = 0u; k < 200u; ++k) {
+        px[k] = (k == 77u) ? INFINITY : (double)((k * 7919u) % 101u);
+        const ft_clip_box b = {(int64_t)k, 0, (int64_t)k + 1, 1};
+        ft_worst_pieces_note(&w, k % 7u, &b, px[k]);
+    }
+    /* the 6 largest by a plain sort */
+    double top[6] = {-1.0, -1.0, -1.0, -1.0, -1.0, -1.0};
+    for (uint32_t k = 0u; k < 200u; ++k) {
+        double v = px[k];
+        for (int i = 0; i < 6; ++i) {
+            if (v > top[i]) {
+                const double t = top[i];
+                top[i] = v;
+                v = t;
+            }
+        }
+    }
+    int bad = (w.n != 5u);
+    for (uint32_t i = 0u; i < w.n; ++i) {
+        const ft_worst_piece *p = &w.piece[i];
+        const int64_t k = p->box.i0;
+        bad |= p->px != top[i] || p->px != px[k] || p->level != (uint32_t)(k % 7) ||
+               p->box.i1 != k + 1;
+    }
+    bad |= w.rest_px != top[5];
+    printf("worst pieces: kept %u, largest %g, rest %g\n", w.n, w.piece[0].px, w.rest_px);
+    CHECK(!bad);
+}
+
 int main(void)
 {
     test_fill_and_nesting();
@@ -832,6 +870,7 @@ int main(void)
     test_max_height_in();
     test_block_errors();
     test_cell_ranges();
+    test_worst_pieces();
     test_leaf_bound();
     return ft_test_result("test_clip_cache");
 }

@@ -3,6 +3,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "lod/worst_pieces.h"
+
 /* floor(a / 2^s) for any sign (an arithmetic shift of a negative value is
  * implementation-defined in C, so divide) */
 static int64_t floor_shift(int64_t a, uint32_t s)
@@ -369,12 +371,6 @@ void ft_cm_vertex(const ft_cm_uniforms *u, uint32_t level, const float t[2],
 
 /* ---- the bound of what a frame draws ---------------------------------------------- */
 
-typedef struct cm_candidate {
-    double px;
-    uint32_t level;
-    ft_clip_box box;
-} cm_candidate;
-
 typedef struct cm_bound_ctx {
     const ft_cm_layout *lay;
     const ft_clip_cache *c;
@@ -382,10 +378,7 @@ typedef struct cm_bound_ctx {
     const ft_view_bound *v;
     double quantum_m;
     ft_cm_bound *out;
-    double rest_px;     /* the largest bound of a piece not among the candidates */
-    uint32_t rest_level;
-    cm_candidate cand[FT_CM_REFINE_PIECES_MAX]; /* the largest, descending */
-    uint32_t ncand;
+    ft_worst_pieces cand; /* the FT_CM_REFINE_PIECES_MAX largest, and the rest */
 } cm_bound_ctx;
 
 /* The drawn cells of level l whose south-west corners lie in p, as that
@@ -449,32 +442,6 @@ static double drawn_err_m(const cm_bound_ctx *k, const ft_cm_level *lv, const ft
     return (double)b->err_m + *morph_m + k->quantum_m;
 }
 
-static void note_piece(cm_bound_ctx *k, uint32_t l, const ft_clip_box *r, double px)
-{
-    const cm_candidate c = {px, l, *r};
-    if (k->ncand == FT_CM_REFINE_PIECES_MAX) {
-        const cm_candidate *last = &k->cand[FT_CM_REFINE_PIECES_MAX - 1u];
-        if (!(px > last->px)) {
-            if (px > k->rest_px) {
-                k->rest_px = px;
-                k->rest_level = l;
-            }
-            return;
-        }
-        if (last->px > k->rest_px) { /* it leaves the candidates */
-            k->rest_px = last->px;
-            k->rest_level = last->level;
-        }
-        --k->ncand;
-    }
-    uint32_t i = k->ncand++;
-    while (i > 0u && k->cand[i - 1u].px < px) { /* at most REFINE_PIECES_MAX steps */
-        k->cand[i] = k->cand[i - 1u];
-        --i;
-    }
-    k->cand[i] = c;
-}
-
 static void bound_piece(void *ctx, uint32_t l, const ft_clip_block_bound *b)
 {
     cm_bound_ctx *k = ctx;
@@ -491,11 +458,11 @@ static void bound_piece(void *ctx, uint32_t l, const ft_clip_block_bound *b)
     }
     k->out->pieces += 1u;
     k->out->unbounded += !(px < INFINITY);
-    note_piece(k, l, &r, px);
+    ft_worst_pieces_note(&k->cand, l, &r, px);
 }
 
 /* A candidate piece again, cell by cell (drawn cells only): the largest. */
-static double refine_piece(const cm_bound_ctx *k, const cm_candidate *p)
+static double refine_piece(const cm_bound_ctx *k, const ft_worst_piece *p)
 {
     const ft_cm_level *lv = &k->lay->level[p->level];
     double best = 0.0;
@@ -593,6 +560,7 @@ void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft
 {
     memset(out, 0, sizeof *out);
     cm_bound_ctx k = {.lay = lay, .c = c, .w = w, .v = view, .quantum_m = quantum_m, .out = out};
+    ft_worst_pieces_init(&k.cand, FT_CM_REFINE_PIECES_MAX);
     for (uint32_t l = 0u; l < lay->levels; ++l) {
         if (lay->level[l].drawn) {
             (void)ft_clip_blocks_visit(c, l, bound_piece, &k);
@@ -603,17 +571,18 @@ void ft_cm_frame_bound(const ft_cm_layout *lay, const ft_clip_cache *c, const ft
         out->bound_px = INFINITY;
         return;
     }
-    out->bound_px = k.rest_px;
-    out->worst_level = k.rest_level;
-    for (uint32_t i = 0u; i < k.ncand; ++i) {
-        double px = k.cand[i].px;
+    out->bound_px = k.cand.rest_px;
+    out->worst_level = k.cand.rest_level;
+    for (uint32_t i = 0u; i < k.cand.n; ++i) {
+        const ft_worst_piece *p = &k.cand.piece[i];
+        double px = p->px;
         if (px > 1.0) { /* both bound the piece: the smaller */
-            px = fmin(px, refine_piece(&k, &k.cand[i]));
+            px = fmin(px, refine_piece(&k, p));
             out->refined += 1u;
         }
         if (px > out->bound_px) {
             out->bound_px = px;
-            out->worst_level = k.cand[i].level;
+            out->worst_level = p->level;
         }
     }
 }

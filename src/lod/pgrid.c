@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/view_scale.h"
+#include "lod/worst_pieces.h"
 
 int ft_pgrid_lower_envelope_needed(const ft_terrain *t, const ft_pgm_sampling *s)
 {
@@ -558,12 +559,6 @@ static int floor_bin(double r_m)
     return b >= FT_PGRID_FLOOR_BINS - 1 ? FT_PGRID_FLOOR_BINS - 1 : (int)b;
 }
 
-typedef struct leaf_piece {
-    double px;
-    uint32_t level;
-    ft_clip_box box;
-} leaf_piece;
-
 typedef struct leaf_bound_ctx {
     const ft_clip_cache *c;
     const ft_pgm_clip_view *v;
@@ -575,9 +570,7 @@ typedef struct leaf_bound_ctx {
     double floor_m[FT_PGRID_FLOOR_BINS];
     double eye_over_m;   /* the drawn surface under the eye is under it */
     double truth_top_m;  /* no height of the finest data is over it */
-    leaf_piece worst[FT_PGRID_LEAF_REFINE_MAX]; /* the largest, descending */
-    uint32_t nworst;
-    double rest_px; /* the largest of the others */
+    ft_worst_pieces worst; /* the FT_PGRID_LEAF_REFINE_MAX largest, and the rest */
 } leaf_bound_ctx;
 
 /* 1 when level l - 1's resident box (as the shader got it) holds every
@@ -668,26 +661,6 @@ static double leaf_px(const leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r,
     return ft_view_bound_error_px(&k->vb, e_m, lo, hi);
 }
 
-static void note_leaf_piece(leaf_bound_ctx *k, uint32_t l, const ft_clip_box *r, double px)
-{
-    if (k->nworst == FT_PGRID_LEAF_REFINE_MAX) {
-        const leaf_piece *last = &k->worst[FT_PGRID_LEAF_REFINE_MAX - 1u];
-        if (!(px > last->px)) {
-            k->rest_px = fmax(k->rest_px, px);
-            return;
-        }
-        k->rest_px = fmax(k->rest_px, last->px); /* it leaves the list */
-        --k->nworst;
-    }
-    uint32_t i = k->nworst++;
-    while (i > 0u && k->worst[i - 1u].px < px) { /* at most REFINE_MAX steps */
-        k->worst[i] = k->worst[i - 1u];
-        --i;
-    }
-    const leaf_piece p = {px, l, *r};
-    k->worst[i] = p;
-}
-
 static void lowest_block(void *ctx, uint32_t level, const ft_clip_block_bound *b)
 {
     leaf_bound_ctx *k = ctx;
@@ -736,19 +709,18 @@ static void leaf_block(void *ctx, uint32_t level, const ft_clip_block_bound *b)
     if (level == 0u || finer_holds(k->v, level, &b->box)) {
         return;
     }
-    /* a block's dev_m is its err_m, whose twist term (for triangles) only
-     * loosens a bound of the bilinear surface the ray meets; cells have
-     * their own (refine_leaf_piece) */
+    /* dev_m, not err_m: the twist term is for triangles, and the ray meets
+     * the bilinear surface itself */
     const double px = leaf_px(k, level, &b->box, (double)b->lo_m, (double)b->hi_m,
                               (double)b->dev_m);
     if (px > 0.0) {
-        note_leaf_piece(k, level, &b->box, px);
+        ft_worst_pieces_note(&k->worst, level, &b->box, px);
     }
 }
 
 /* A piece again, cell by cell: only the cells that can be leaves and that
  * meet the data. */
-static double refine_leaf_piece(const leaf_bound_ctx *k, const leaf_piece *p)
+static double refine_leaf_piece(const leaf_bound_ctx *k, const ft_worst_piece *p)
 {
     double best = 0.0;
     for (int64_t b = p->box.j0; b < p->box.j1; ++b) {
@@ -777,6 +749,7 @@ double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_vi
     k.v = v;
     k.w = w;
     k.refine_over_px = refine_over_px;
+    ft_worst_pieces_init(&k.worst, FT_PGRID_LEAF_REFINE_MAX);
     const double origin_m[2] = {w->origin_x_m, w->origin_y_m};
     ft_view_bound_from_camera(cam, origin_m, curv_k_per_m, &k.vb);
     const uint32_t levels = (v->levels < c->desc.levels) ? v->levels : c->desc.levels;
@@ -796,11 +769,12 @@ double ft_pgrid_cache_leaf_bound_px(const ft_clip_cache *c, const ft_pgm_clip_vi
     for (uint32_t l = 1u; l < levels && l < FT_PGM_CLIP_LEVELS_MAX; ++l) {
         (void)ft_clip_blocks_visit(c, l, leaf_block, &k);
     }
-    double bound = k.rest_px;
-    for (uint32_t i = 0u; i < k.nworst; ++i) {
-        double px = k.worst[i].px;
+    double bound = k.worst.rest_px;
+    for (uint32_t i = 0u; i < k.worst.n; ++i) {
+        const ft_worst_piece *p = &k.worst.piece[i];
+        double px = p->px;
         if (px > refine_over_px) { /* both bound the piece: the smaller */
-            px = fmin(px, refine_leaf_piece(&k, &k.worst[i]));
+            px = fmin(px, refine_leaf_piece(&k, p));
         }
         bound = fmax(bound, px);
     }

@@ -151,22 +151,24 @@ void ft_leaf_ray(float level, vec3 o, vec3 d, out vec3 ok, out vec3 dk)
     dk = d;
 }
 #else
-float ft_texel(float level, vec2 a)
+/* The atlas texel of level `level`'s sample a (from its base): heights and
+ * cell ranges share the layout. */
+ivec2 ft_cache_texel(float level, vec2 a)
 {
     vec4 lv = u_pgm_level[int(level)];
     float side = u_pcm_misc.x;
     vec2 block = vec2(mod(level, u_pcm_misc.w), floor(level / u_pcm_misc.w));
-    ivec2 t = ivec2(block * side + mod(lv.xy + a, side));
-    return ft_decode(texelFetch(u_pgm_atlas, t, 0), u_pgm_atlas_pack);
+    return ivec2(block * side + mod(lv.xy + a, side));
+}
+
+float ft_texel(float level, vec2 a)
+{
+    return ft_decode(texelFetch(u_pgm_atlas, ft_cache_texel(level, a), 0), u_pgm_atlas_pack);
 }
 
 float ft_range_hi(float level, vec2 a)
 {
-    vec4 lv = u_pgm_level[int(level)];
-    float side = u_pcm_misc.x;
-    vec2 block = vec2(mod(level, u_pcm_misc.w), floor(level / u_pcm_misc.w));
-    ivec2 t = ivec2(block * side + mod(lv.xy + a, side));
-    return texelFetch(u_pgrid_range, t, 0).y;
+    return texelFetch(u_pgrid_range, ft_cache_texel(level, a), 0).y;
 }
 
 /* Level `level`'s units (its samples from its base) of ray point p. */

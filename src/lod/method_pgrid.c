@@ -928,10 +928,10 @@ static void add_leaf_bound(ft_pgrid_method *m, const ft_terrain *t, const ft_cam
         return;
     }
     const ft_clip_world w = ft_clip_levels_world(t);
-    /* pieces under gamma need no second look: the frame reports gamma */
     /* the finest data's top: the database's (its data tiles'), or the
      * terrain's own when the cache reads it */
     const double top_m = (t->db != NULL) ? (double)t->db->hdr.max_height_m : (double)t->max_height_m;
+    /* pieces under gamma need no second look: the frame reports gamma */
     m->leaf_px = ft_pgrid_cache_leaf_bound_px(&m->pgm.cl.cache, &m->pgm.clip_view, &w, cam,
                                               t->curv_drop_per_m2, top_m,
                                               m->gamma_px * m->lod_scale);

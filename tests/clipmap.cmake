@@ -36,5 +36,8 @@ if(TARGET ft_app AND TARGET ft_tools AND FIXTERRAIN_WITH_METHOD_CLIPMAP
     # and ray casting the pixels over gamma through the cache's levels
     add_test(NAME test_clip_flight_pgrid_rc COMMAND test_clip_flight 250 1200 pgrid_rc)
     set_tests_properties(test_clip_flight_pgrid_rc PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+    # and with the tight bound deciding which pixels are ray cast
+    add_test(NAME test_clip_flight_pgrid_tight COMMAND test_clip_flight 250 1200 pgrid_tight)
+    set_tests_properties(test_clip_flight_pgrid_tight PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
   endif()
 endif()

@@ -40,7 +40,8 @@
  * pgm.heights = clipmap: the same cache, read per vertex from an atlas),
  * pgrid (pgm's grid with the relief bound from the cache's cell ranges) or
  * pgrid_rc (pgrid ray casting the pixels over gamma = 1 px through the
- * cache's levels, lod/pgrid.h 7); all are held to the same requirements. pgm's "coarser" rule is its own
+ * cache's levels, lod/pgrid.h 7) or pgrid_tight (the same with the tight
+ * bound, lod/pgrid.h 6); all are held to the same requirements. pgm's "coarser" rule is its own
  * (ft_pgm_clip_eye_coarser, the frame stats' cache_coarser): level 0's
  * resident samples do not hold the eye one sample in from their edge.
  *
@@ -155,8 +156,10 @@ int main(int argc, char **argv)
     const double speed_mps = argc >= 2 ? atof(argv[1]) : 250.0;
     const uint32_t render_every = argc >= 3 ? (uint32_t)atoi(argv[2]) : 1200u;
     const char *arg_method = argc >= 4 ? argv[3] : "clipmap";
-    /* pgrid_rc: pgrid ray casting over the cache (src/lod/pgrid.h 7) */
-    const int ray_casting = strcmp(arg_method, "pgrid_rc") == 0;
+    /* pgrid_rc: pgrid ray casting over the cache (src/lod/pgrid.h 7);
+     * pgrid_tight: with the tight bound too (src/lod/pgrid.h 6) */
+    const int tight = strcmp(arg_method, "pgrid_tight") == 0;
+    const int ray_casting = tight || strcmp(arg_method, "pgrid_rc") == 0;
     const char *method = ray_casting ? "pgrid" : arg_method;
     const int pgm = strcmp(method, "pgm") == 0, pgrid = strcmp(method, "pgrid") == 0;
     /* the persistent grid's own rules (its coarser rule, no bound): pgm, and
@@ -178,7 +181,7 @@ int main(int argc, char **argv)
                    "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 2801\n"
                    "db_centre_lat_deg = 42.1\ndb_centre_lon_deg = 2.1\n"
                    "[pgm]\nheights = clipmap\n"
-                   "[pgrid]\nheights = clipmap\nerror_bound = relief\nray_casting = %d\n"
+                   "[pgrid]\nheights = clipmap\nerror_bound = %s\nray_casting = %d\n"
                    "gamma_px = 1\nraycast_max_px = 76800\n"
                    "[clipmap]\nside = 128\nlevels = 8\nupdate_samples_max = 8192\n"
                    "updates_per_frame = 0\ntile_slots = 16\n"
@@ -188,7 +191,7 @@ int main(int argc, char **argv)
                    "frame_rgba_bytes = 512K\nframe_pos_bytes = 2M\nreference_bytes = 136M\n"
                    "metric_bytes = 1M\ngpu_staging_bytes = 16M\nmethod_bytes = 4M\n"
                    "clip_bytes = 12M\n",
-                   method, db_path, ray_casting);
+                   method, db_path, tight ? "residual" : "relief", ray_casting);
     char what[64];
     (void)snprintf(what, sizeof what, "%s flight", method);
     ft_test_app_init(&g_app, g_scene, what);

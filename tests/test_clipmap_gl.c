@@ -56,23 +56,25 @@ static const char k_scene_fmt[] =
     "[gpu]\nheight_format = %s\ntexture_bytes = 64M\n[metric]\nenabled = %d\n"
     "[brute]\npatch_cells = 64\nmax_vertices = 1442401\n"
     "[pgm]\nheights = clipmap\n"
-    "[pgrid]\nheights = clipmap\nerror_bound = relief\nray_casting = %d\ngamma_px = 1\n"
+    "[pgrid]\nheights = clipmap\nerror_bound = %s\nray_casting = %d\ngamma_px = 1\n"
     "raycast_max_px = 76800\n"
     "[clipmap]\nside = %u\nlevels = %u\nupdate_samples_max = 4096\nupdates_per_frame = %u\n"
     "transition_samples = 12\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 2M\nreference_bytes = 4M\nmetric_bytes = 2M\n"
-    "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\nclip_bytes = 4M\n";
+    "gpu_staging_bytes = 8M\nmethod_bytes = 8M\npng_bytes = 512K\nclip_bytes = 12M\n";
 
-/* pgrid's ray caster over the cache (on for pgrid_rc_bound_check) */
+/* pgrid's ray caster over the cache (on for pgrid_rc_bound_check) and its
+ * error bound (residual for pgrid_tight_check) */
 static int g_ray_casting;
+static const char *g_error_bound = "relief";
 
 static void app_init_metric(const char *method, const char *backend, const char *dem,
                             const char *format, uint32_t side, uint32_t levels,
                             uint32_t per_frame, int metric)
 {
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, method, backend, W_PX, H_PX, dem, format,
-                   metric, g_ray_casting, side, levels, per_frame);
+                   metric, g_error_bound, g_ray_casting, side, levels, per_frame);
     ft_test_app_init(&g_app, g_text, method);
     g_app.renderer.gl_error_checks = 1;
     ft_test_clear_magenta(&g_app);
@@ -678,27 +680,22 @@ static void bound_check(const char *dem)
     ft_app_shutdown(&g_app);
 }
 
-/* pgrid over the cache refuses what it cannot do, naming the keys or the
- * context: the residual bound (it reads the window's whole texture and its
- * pyramids), and a GLES 2 context (its cell ranges are float RG textures). */
+/* pgrid over the cache refuses a GLES 2 context, naming it: its cell ranges
+ * are float RG textures. */
 static void pgrid_refusals(const char *backend, const char *dem, int es3)
 {
+    if (es3) {
+        return;
+    }
     static ft_scene sc;
     ft_error err;
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, "pgrid", backend, W_PX, H_PX, dem,
-                   "float", 0, 0, 128u, 5u, 2u);
+                   "float", 0, "relief", 0, 128u, 5u, 2u);
     ft_scene_defaults(&sc);
     REQUIRE(ft_scene_parse(&sc, g_text, "refusals", &err) == FT_OK);
-    sc.pgrid_residual_bound = 1;
-    ft_status st = ft_app_init(&g_app, &sc, &err);
-    printf("pgrid over the cache with the residual bound: \"%s\"\n", err.text);
-    CHECK(st == FT_ERR_CONFIG && strstr(err.text, "pgrid.error_bound = relief") != NULL);
-    if (!es3) {
-        sc.pgrid_residual_bound = 0;
-        st = ft_app_init(&g_app, &sc, &err);
-        printf("pgrid over the cache on GLES 2: \"%s\"\n", err.text);
-        CHECK(st == FT_ERR_UNSUPPORTED && strstr(err.text, "need GLES 3") != NULL);
-    }
+    const ft_status st = ft_app_init(&g_app, &sc, &err);
+    printf("pgrid over the cache on GLES 2: \"%s\"\n", err.text);
+    CHECK(st == FT_ERR_UNSUPPORTED && strstr(err.text, "need GLES 3") != NULL);
 }
 
 /* 5. pgrid over the cache (es3, the metric on) reports the bound its mesh
@@ -720,6 +717,23 @@ static void pgrid_bound_check(const char *dem)
      * it saturates the error codes, over 256 px somewhere) */
     CHECK(t.infinite * 4u <= t.frames);
     ft_app_shutdown(&g_app);
+}
+
+/* The share of the terrain pixels pgrid ray casts on the fixed views: each
+ * view drawn twice, since the count a frame reports is the previous
+ * frame's (the late decision, src/lod/pgrid.h 5). */
+static double rc_share(void)
+{
+    uint64_t rc = 0u, terrain = 0u;
+    const ft_pgrid_method *pg = &g_app.renderer.method.u.pgrid;
+    for (uint32_t v = 0; v < VIEWS; ++v) {
+        const ft_pose p = view_of(v);
+        render(&p);
+        render(&p);
+        rc += pg->rc_px;
+        terrain += pg->terrain_px;
+    }
+    return (double)rc / (double)(terrain > 0u ? terrain : 1u);
 }
 
 /* 6. pgrid over the cache with ray casting (src/lod/pgrid.h 7): the pixels
@@ -745,6 +759,8 @@ static void pgrid_rc_bound_check(const char *dem)
     CHECK(t.over == 0u);
     CHECK(t.infinite == 0u);
     CHECK(t.ray_cast == t.frames);
+    printf("pgrid over the cache, relief bound: %.1f%% of the terrain pixels ray cast on the "
+           "fixed views\n", 100.0 * rc_share());
     /* steeply down over the middle of the tile, 1500-2500 m up: the view
      * stays inside level 0's 128 samples */
     static const double k_steep[3][5] = {
@@ -794,6 +810,126 @@ static void pgrid_rc_bound_check(const char *dem)
     g_ray_casting = 0;
 }
 
+/* 7. pgrid over the cache with the tight bound (src/lod/pgrid.h 6): every
+ * quad bounded on the cache's level where it fits 4 x 4 cells, exactly
+ * against that level's surface plus the level's deviation from the finest
+ * data. (a) Every quad's bound, read back, is at least |drawn - truth| at
+ * 15 points of each of its triangles, the truth being the .hgt's bilinear
+ * surface (the cache's finest data), on the fixed views. (b) The frames of
+ * the bound check keep their reported bound as measured by the metric, and
+ * every frame has one. (c) At most 30% of the terrain pixels are ray cast
+ * on the fixed views (the relief bound casts nearly all). Side 512: at 128
+ * the deviation of the levels past level 0's 128 samples is over gamma on
+ * most of the view, and so is the mesh's bound there. */
+#define TIGHT_COLS 200u /* pgrid.grid_cols, the scene's default */
+#define TIGHT_ROWS 800u
+static float g_tvtx[4u * TIGHT_COLS * TIGHT_ROWS];
+static float g_tquad[4u * TIGHT_COLS * TIGHT_ROWS];
+
+typedef struct quad_truth {
+    uint32_t quads, unbounded, under;
+    uint32_t relief; /* bounded by the relief rule: no level holds them in 4 x 4 cells */
+    double worst_over_m; /* largest measured - bound (<= 0: held) */
+    double ratio_sum;    /* sum over bounded quads of measured / bound */
+} quad_truth;
+
+static void quad_truth_frame(const ft_camera *cam, quad_truth *q)
+{
+    const ft_pgrid_method *m = &g_app.renderer.method.u.pgrid;
+    const ft_gl *gl = &g_app.gpu.gl;
+    const ft_terrain *t = &g_app.terrain;
+    const uint32_t cols = m->pgm.cols, rows = m->pgm.rows;
+    REQUIRE(cols <= TIGHT_COLS && rows <= TIGHT_ROWS);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->vtx_fbo);
+    gl->ReadPixels(0, 0, (GLsizei)cols, (GLsizei)rows, GL_RGBA, GL_FLOAT, g_tvtx);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, m->quad_fbo);
+    gl->ReadPixels(0, 0, (GLsizei)(cols - 1u), (GLsizei)(rows - 1u), GL_RGBA, GL_FLOAT, g_tquad);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    CHECK(ft_gl_check(gl, "reading the tight passes back", NULL) == FT_OK);
+    static const int k_tri[2][3] = {{0, 1, 3}, {0, 3, 2}}; /* the grid's order */
+    for (uint32_t j = 0; j + 1u < rows; ++j) {
+        for (uint32_t i = 0; i + 1u < cols; ++i) {
+            const double e = (double)g_tquad[4u * (j * (cols - 1u) + i)];
+            q->quads += 1u;
+            q->relief += g_tquad[4u * (j * (cols - 1u) + i) + 1u] < 0.0f; /* G: the level */
+            if (!(e < 1e29)) {
+                q->unbounded += 1u;
+                continue;
+            }
+            const float *v[4];
+            for (int c = 0; c < 4; ++c) {
+                v[c] = g_tvtx + 4u * ((j + (uint32_t)(c / 2)) * cols + i + (uint32_t)(c % 2));
+            }
+            double worst = 0.0;
+            for (int tri = 0; tri < 2; ++tri) {
+                for (int a = 0; a <= 4; ++a) {
+                    for (int b = 0; a + b <= 4; ++b) {
+                        const double w[3] = {a / 4.0, b / 4.0, (4 - a - b) / 4.0};
+                        double x = cam->eye_m[0], y = cam->eye_m[1], l = 0.0;
+                        for (int k = 0; k < 3; ++k) {
+                            const float *c = v[k_tri[tri][k]];
+                            x += w[k] * c[0];
+                            y += w[k] * c[1];
+                            l += w[k] * c[2];
+                        }
+                        worst = fmax(worst, fabs(l - ft_terrain_height_at(t, x, y)));
+                    }
+                }
+            }
+            /* 1 mm: the float positions the vertex pass wrote */
+            if (worst > e + 1e-3) {
+                if (q->under < 5u) {
+                    printf("  quad (%u, %u): bound %.4f m, measured %.4f m\n", i, j, e, worst);
+                }
+                q->under += 1u;
+            }
+            q->worst_over_m = fmax(q->worst_over_m, worst - e);
+            q->ratio_sum += worst / fmax(e, 1e-6);
+        }
+    }
+}
+
+static void pgrid_tight_check(const char *dem)
+{
+    g_ray_casting = 1;
+    g_error_bound = "residual";
+    app_init_metric("pgrid", "egl-gles3", dem, "float", 512u, 5u, 2u, 1);
+    REQUIRE(g_app.renderer.method.u.pgrid.tight);
+    quad_truth q = {0u, 0u, 0u, 0u, -INFINITY, 0.0};
+    for (uint32_t v = 0; v < VIEWS; ++v) {
+        const ft_pose p = view_of(v);
+        ft_camera cam;
+        ft_frame_stats fs;
+        ft_test_frame(&g_app, &p, &cam, &fs);
+        quad_truth_frame(&cam, &q);
+    }
+    const uint32_t bounded = q.quads - q.unbounded;
+    printf("pgrid over the cache, tight bound vs the truth: %u quads, %u unbounded, %u by the "
+           "relief rule, %u under the truth (largest measured - bound %.4f m), measured / "
+           "bound %.3f on the mean quad\n", q.quads, q.unbounded, q.relief, q.under,
+           q.worst_over_m, q.ratio_sum / (double)(bounded > 0u ? bounded : 1u));
+    CHECK(q.under == 0u);
+    CHECK(q.unbounded == 0u); /* over a .hgt every deviation is known */
+    CHECK(q.quads > 100000u);
+    CHECK(q.relief * 100u < q.quads); /* the exact rule bounds nearly all of them */
+    bound_tally t = {0u, 0u, 0u, 0u, INFINITY, 0.0, 0.0, 0.0, 0u, 0u, 0.0};
+    (void)bound_frames("pgrid", 3u, &t);
+    printf("pgrid over the cache, tight bound, ray casting at gamma 1: %u frames, %u ray cast, "
+           "%u at gamma, %u without a bound, %u over it; measured max %.3f px, bound max %.3f "
+           "px\n", t.frames, t.ray_cast, t.at_gamma, t.infinite, t.over, t.err_max, t.bound_max);
+    CHECK(t.over == 0u);
+    CHECK(t.infinite == 0u);
+    const double share = rc_share();
+    printf("pgrid over the cache, tight bound: %.1f%% of the terrain pixels ray cast on the "
+           "fixed views\n", 100.0 * share);
+    /* the relief bound casts nearly all of them (pgrid_rc_bound_check);
+     * measured 22.6% */
+    CHECK(share <= 0.30);
+    ft_app_shutdown(&g_app);
+    g_ray_casting = 0;
+    g_error_bound = "relief";
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -822,6 +958,7 @@ int main(int argc, char **argv)
         bound_check(argv[2]);
         pgrid_bound_check(argv[2]);
         pgrid_rc_bound_check(argv[2]);
+        pgrid_tight_check(argv[2]);
     }
     return ft_test_result(es3 ? "test_clipmap_gl es3" : "test_clipmap_gl es2");
 }

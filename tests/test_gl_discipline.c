@@ -161,20 +161,20 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *backend = argv[1];
-    /* pgrid-cache: pgrid over the clipmap cache, ray casting through its
-     * levels (GLES 3) */
+    /* pgrid-cache: pgrid over the clipmap cache, its tight bound's passes on
+     * the cache's levels and ray casting through them (GLES 3) */
     const int pgrid_cache = strcmp(argv[2], "pgrid-cache") == 0;
     const char *method = pgrid_cache ? "pgrid" : argv[2];
     char scene[2048];
     (void)snprintf(scene, sizeof scene, "%s%s[scene]\nbackend = %s\nmethod = %s\n", k_scene,
-                   pgrid_cache ? "[pgrid]\nheights = clipmap\nerror_bound = relief\n"
+                   pgrid_cache ? "[pgrid]\nheights = clipmap\nerror_bound = residual\n"
                                  "ray_casting = 1\n[budget]\nclip_bytes = 1M\n"
                                : "",
                    backend, method);
     ft_test_app_init(&g_app, scene, method);
     if (pgrid_cache) {
         const ft_pgrid_method *pg = &g_app.renderer.method.u.pgrid;
-        REQUIRE(pg->pgm.clip && pg->ray_casting);
+        REQUIRE(pg->pgm.clip && pg->ray_casting && pg->tight);
     }
     ft_gl *gl = &g_app.gpu.gl;
     g_app.renderer.gl_error_checks = 0; /* the deployment frame loop */

@@ -183,11 +183,12 @@ int main(int argc, char **argv)
         s.method = FT_METHOD_PGM; /* pgm reading its heights through the clip cache */
         s.pgm_heights_clipmap = 1;
     } else if (argc >= 4 && strcmp(argv[3], "pgrid-cache") == 0) {
-        /* pgrid over the clip cache: its cell ranges too, and the ray
-         * caster through its levels with the leaves' bound every frame */
+        /* pgrid over the clip cache: its cell ranges too, the tight
+         * bound's passes on its levels, and the ray caster through them
+         * with the leaves' bound every frame */
         s.method = FT_METHOD_PGRID;
         s.pgrid_heights_clipmap = 1;
-        s.pgrid_residual_bound = 0;
+        s.pgrid_residual_bound = 1;
         s.pgrid_ray_casting = 1;
         /* the ranges' staging (an update's cells) on top of the readback */
         REQUIRE(ft_scene_parse(&s, "[budget]\nmethod_bytes = 2M\n", "pgrid-cache", &err) ==

@@ -287,8 +287,8 @@ typedef struct ft_scene {
       "side of the screen tiles the ray caster runs on: only tiles with a pixel to ray cast")    \
     X(pgrid, heights, ENUM, pgrid_heights_clipmap, 0, 0, "pyramid|clipmap|", "pyramid", "",      \
       "where the grid reads heights and bounds its error: the window's pyramids, or the "        \
-      "clipmap cache around the eye (relief bound; rays cast through its levels; the bound "   \
-      "achieved is reported)")                                                                  \
+      "clipmap cache around the eye (rays cast through its levels; the bound achieved is "      \
+      "reported)")                                                                              \
     X(clipmap, side, U32, clipmap_side, 16, 4096, NULL, "256", "samples",                         \
       "samples per clipmap level side (a power of two)")                                         \
     X(clipmap, levels, U32, clipmap_levels, 1, 16, NULL, "5", "levels",                          \

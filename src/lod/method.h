@@ -149,6 +149,11 @@ typedef struct ft_pgrid_method {
     float res_level_px[FT_PYRAMID_LEVELS_MAX][4];
     ft_terrain_program *vtx_prog; /* in FT_POOL_METHOD */
     int vtx_prog_built;
+    /* over the cache the quad-bound pass reads the cache's levels and
+     * ranges with pgm's uniforms: a terrain program (FT_POOL_METHOD) in
+     * place of quad_prog */
+    ft_terrain_program *quad_clip_prog;
+    int quad_clip_built;
     GLint uq_vtx, uq_res, uq_heights, uq_grid_size, uq_cell_m, uq_origin, uq_pack, uq_drop;
     GLint uq_res_levels, uq_res_level[FT_PYRAMID_LEVELS_MAX];
     uint64_t terrain_px;            /* the last decision's terrain pixels (undilated code > 0) */

@@ -14,13 +14,13 @@
  *     position) and gl_FragDepth over the mesh (DepthFunc ALWAYS).
  * GLES 2 (no gl_FragDepth, no texelFetch): steps 1-3 only; init says so
  * on stderr and the stats report the mesh's error bound (tau_achieved_px)
- * instead of gamma. pgrid.heights = clipmap (relief bound, GLES 3): the
- * grid's heights and each vertex's range of the finest data from the
- * clipmap cache (pgm's cache, with its cell ranges: lod/clip_levels.h
- * FT_CLIP_BOUNDS_RANGES; src/lod/pgrid.h 2), and step 4 through the cache's
- * levels (src/lod/pgrid.h 7); the stats report the bound achieved, with the
- * ray caster's leaves' bound in it. All GL objects and CPU buffers are made
- * at init. */
+ * instead of gamma. pgrid.heights = clipmap (GLES 3): the grid's heights
+ * and each vertex's range of the finest data from the clipmap cache (pgm's
+ * cache, with its cell ranges: lod/clip_levels.h FT_CLIP_BOUNDS_RANGES;
+ * src/lod/pgrid.h 2), the tight bound's quads from the cache's levels
+ * (src/lod/pgrid.h 6), and step 4 through the cache's levels (src/lod/pgrid.h
+ * 7); the stats report the bound achieved, with the ray caster's leaves'
+ * bound in it. All GL objects and CPU buffers are made at init. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -150,9 +150,9 @@ static int pgrid_tight(const ft_scene *s, int es3)
 static const char *pgrid_vertex_defines(const ft_scene *s, int es3)
 {
     if (s->pgrid_heights_clipmap) {
-        /* over the cache: the relief bound from its cell ranges (init
-         * refuses the tight bound there) */
-        return "#define FT_PGRID_TIGHT 0\n#define FT_PGM_CLIP 1\n";
+        /* over the cache: heights and ranges from the cache's levels */
+        return pgrid_tight(s, es3) ? "#define FT_PGRID_TIGHT 1\n#define FT_PGM_CLIP 1\n"
+                                   : "#define FT_PGRID_TIGHT 0\n#define FT_PGM_CLIP 1\n";
     }
     return pgrid_tight(s, es3) ? "#define FT_PGRID_TIGHT 1\n" : "#define FT_PGRID_TIGHT 0\n";
 }
@@ -194,6 +194,7 @@ static void pgrid_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     if (g.clip) {
         /* the cache and its cell ranges instead of the window's pyramids */
         ft_clip_levels_plan(s, t, FT_CLIP_BOUNDS_RANGES, a);
+        ft_arena_plan(a, FT_POOL_METHOD, sizeof(ft_terrain_program) + 64u); /* quad pass */
         return;
     }
     uint32_t origin[FT_PYRAMID_LEVELS_MAX][2], hw = 1u, h = 1u;
@@ -291,10 +292,34 @@ static ft_status make_float_target(ft_pgrid_method *m, const ft_gl *gl, GLenum u
     return FT_OK;
 }
 
+/* Over the cache the quad-bound pass is the cache's variant (src/lod/pgrid.h
+ * 6): a terrain program with pgm's and pgrid's uniforms, set per frame as the
+ * grid's are. */
+static ft_status init_quad_clip(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
+                                const ft_gpu_terrain *gt, ft_arena *a, ft_error *err)
+{
+    ft_status st = ft_arena_take(a, FT_POOL_METHOD, sizeof(ft_terrain_program),
+                                 (void **)&m->quad_clip_prog, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    memset(m->quad_clip_prog, 0, sizeof *m->quad_clip_prog);
+    const ft_terrain_program_desc d = {.vert_name = "pgrid_pass.vert.glsl",
+                                       .frag_name = "pgrid_quad.frag.glsl",
+                                       .frag_defines = "#define FT_PGM_CLIP 1\n",
+                                       .method_uniforms = &k_pgrid_uniform_list};
+    st = ft_terrain_program_build(gl, t, gt, &d, m->quad_clip_prog, err);
+    if (st == FT_OK) {
+        m->quad_clip_built = 1;
+    }
+    return st;
+}
+
 static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *t,
                             const ft_gpu_terrain *gt, ft_arena *a, ft_error *err)
 {
-    ft_status st = upload_residuals(m, gl, t, a, err);
+    /* over the cache the quads are bounded from its levels: no residual atlas */
+    ft_status st = m->pgm.clip ? FT_OK : upload_residuals(m, gl, t, a, err);
     if (st == FT_OK) {
         st = make_float_target(m, gl, GL_TEXTURE4, GL_TEXTURE7, m->pgm.cols, m->pgm.rows,
                                &m->vtx_tex, &m->slope_tex, &m->vtx_fbo, "vertex pass", err);
@@ -318,14 +343,17 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
     memset(m->vtx_prog, 0, sizeof *m->vtx_prog);
     const ft_terrain_program_desc vtx = {.vert_name = "pgrid_pass.vert.glsl",
                                          .frag_name = "pgrid_vtx.frag.glsl",
+                                         .frag_defines = m->pgm.clip ? "#define FT_PGM_CLIP 1\n"
+                                                                     : NULL,
                                          .method_uniforms = &k_pgrid_uniform_list};
     st = ft_terrain_program_build(gl, t, gt, &vtx, m->vtx_prog, err);
     if (st != FT_OK) {
         return st;
     }
     m->vtx_prog_built = 1;
-    st = ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", NULL, "a_uv",
-                         &m->quad_prog, err);
+    st = m->pgm.clip ? init_quad_clip(m, gl, t, gt, a, err)
+                     : ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_quad.frag.glsl", NULL,
+                                       "a_uv", &m->quad_prog, err);
     if (st == FT_OK) {
         st = ft_program_link(gl, "pgrid_pass.vert.glsl", "pgrid_shape.frag.glsl", NULL, "a_uv",
                              &m->shape_prog, err);
@@ -339,6 +367,12 @@ static ft_status init_tight(ft_pgrid_method *m, const ft_gl *gl, const ft_terrai
     gl->Uniform1i(gl->GetUniformLocation(sp, "u_pgrid_slope"), 7);
     gl->Uniform2f(gl->GetUniformLocation(sp, "u_pgrid_cells"), (float)(m->pgm.cols - 1u),
                   (float)(m->pgm.rows - 1u));
+    if (m->pgm.clip) {
+        gl->UseProgram(0);
+        m->tight = 1;
+        return ft_gl_check(gl, "pgrid init (tight bound over the cache: vertex and quad passes)",
+                           err);
+    }
     const GLuint q = m->quad_prog;
     m->uq_vtx = gl->GetUniformLocation(q, "u_pgrid_vtx");
     m->uq_res = gl->GetUniformLocation(q, "u_pgrid_res");
@@ -547,13 +581,6 @@ static ft_status pgrid_init(ft_pgrid_method *m, const ft_gl *gl, const ft_scene 
                        "pgrid samples heights, avg and min/max atlases in the vertex shader: "
                        "it needs 3 vertex texture units, this device has %d",
                        gl->caps.max_vertex_texture_units);
-    }
-    if (s->pgrid_heights_clipmap && s->pgrid_residual_bound) {
-        return ft_fail(err, FT_ERR_CONFIG,
-                       "pgrid.heights = clipmap needs pgrid.error_bound = relief (have "
-                       "residual): the residual bound reads the window's whole texture and its "
-                       "pyramids; over the cache the relief bound comes from the cache's cell "
-                       "ranges");
     }
     const ft_pgm_grid_desc g = pgm_grid(s);
     ft_status st = ft_pgm_method_init(&m->pgm, gl, &g, t, a, err);
@@ -790,13 +817,28 @@ static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *
     /* the quad bounds */
     gl->BindFramebuffer(GL_FRAMEBUFFER, m->quad_fbo);
     gl->Viewport(0, 0, (GLsizei)(m->pgm.cols - 1u), (GLsizei)(m->pgm.rows - 1u));
-    gl->UseProgram(m->quad_prog);
     gl->ActiveTexture(GL_TEXTURE4);
     gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
-    gl->ActiveTexture(GL_TEXTURE6);
-    gl->BindTexture(GL_TEXTURE_2D, m->res_tex);
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->Uniform3f(m->uq_origin, ox, oy, oz);
+    if (m->pgm.clip) {
+        /* the cache's levels (unit 1, bound with pgm's uniforms) and its
+         * cell and block ranges (units 2 and 3, set_grid_uniforms) */
+        const ft_terrain_program *q = m->quad_clip_prog;
+        gl->ActiveTexture(GL_TEXTURE2);
+        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.range_tex);
+        gl->ActiveTexture(GL_TEXTURE3);
+        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.block_range_tex);
+        gl->ActiveTexture(GL_TEXTURE0);
+        gl->UseProgram(q->program);
+        set_grid_uniforms(m, gl, q);
+        ft_pgm_method_bind(&m->pgm, gl, q);
+    } else {
+        gl->ActiveTexture(GL_TEXTURE6);
+        gl->BindTexture(GL_TEXTURE_2D, m->res_tex);
+        gl->ActiveTexture(GL_TEXTURE0);
+        gl->UseProgram(m->quad_prog);
+        gl->Uniform3f(m->uq_origin, ox, oy, oz);
+    }
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
     gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     /* the vertex bounds (vtx_tex on 4, quad_tex on 5, slope_tex on 7) */
     gl->BindFramebuffer(GL_FRAMEBUFFER, m->shape_fbo);
@@ -1242,6 +1284,10 @@ static void pgrid_shutdown(ft_pgrid_method *m, const ft_gl *gl)
     if (m->err_prog_built && m->err_prog->program) gl->DeleteProgram(m->err_prog->program);
     if (m->vtx_prog_built && m->vtx_prog->program) gl->DeleteProgram(m->vtx_prog->program);
     if (m->quad_prog) gl->DeleteProgram(m->quad_prog);
+    if (m->quad_clip_built && m->quad_clip_prog->program) {
+        gl->DeleteProgram(m->quad_clip_prog->program);
+    }
+    m->quad_clip_built = 0;
     if (m->shape_prog) gl->DeleteProgram(m->shape_prog);
     if (m->shape_tex) gl->DeleteTextures(1, &m->shape_tex);
     if (m->shape_fbo) gl->DeleteFramebuffers(1, &m->shape_fbo);

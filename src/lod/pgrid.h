@@ -47,8 +47,8 @@
  *    angle in centre pixels) and the displacement in true pixels: a
  *    perspective image stretches angles by up to 1 / cos^2 theta (radially),
  *    15x at 75 degrees off axis, so wide views (FOV 150) need the factor.
- *    Over the clipmap cache (pgrid.heights = clipmap; relief bound, GLES 3;
- *    ray casting: 7): the grid reads its heights as pgm does over the cache
+ *    Over the clipmap cache (pgrid.heights = clipmap; GLES 3; ray casting:
+ *    7; the tight bound: 6): the grid reads its heights as pgm does over the cache
  *    (pgm.h), and hmin, hmax are the finest data's range over the box
  *    (clamped into what is drawn): from the cache's cell ranges of the
  *    finest level whose resident cells hold the box within 2 x 2 of them,
@@ -252,7 +252,21 @@ void ft_pgrid_rc_max_layout(const ft_terrain *t, uint32_t origin_px[][2], uint32
  *    of the truth the mesh hides or misses, further along the ray than the
  *    envelope's fragment and not always over the same quad; coded with the
  *    fragment's own quad's e_Q, the 1 m above ground case of extreme_cases
- *    measured 1.5 px at gamma 1 (0.002 px with the interpolated delta). */
+ *    measured 1.5 px at gamma 1 (0.002 px with the interpolated delta).
+ *    Over the cache (pgrid.heights = clipmap) there is no residual atlas:
+ *    a quad is bounded on the finest level L whose resident samples hold a
+ *    window of FT_PGRID_EXACT_CELLS^2 level-L cells around its box (the
+ *    level where it is small enough, or the next one that holds it), by
+ *    |L - T| <= |L - H_L| + |H_L - T|, T the finest data: the exact rule on
+ *    H_L, level L's bilinear surface, plus the largest deviation of T from
+ *    H_L over the cells the quad touches, read from the cell ranges (2: a
+ *    cell's range is its corners' widened by that deviation, so range hi -
+ *    the corners' max and the corners' min - range lo are at least it).
+ *    Level 0 is the finest data itself. A quad no level holds so takes the
+ *    relief rule over its box from the cache's ranges (every point of the
+ *    quad lies between its corners' heights, every point of T in the box
+ *    within the range). Unknown deviations give unbounded ranges, so an
+ *    unbounded e_Q: its pixels take the top code, as with the relief bound. */
 #define FT_PGRID_RES_L0 1u
 /* Atlas of the residual levels FT_PGRID_RES_L0.. (level L at origin_px[L]),
  * width_px x height_px (1 x 1 when the terrain has no such level). */

@@ -25,7 +25,8 @@ endif()
 # The bound over the bench's valley, climb and orbit paths on N42E001 and
 # Rainier (imported here), gamma 0.5/1/2, residual bound, ray-casting budget
 # of every pixel: max error <= gamma + 0.1 px on every row, no budget hit
-# (tests/test_pgrid_paths.sh). About 100 s on 2 cores.
+# (tests/test_pgrid_paths.sh); and over the clipmap cache, each frame held
+# to the bound it reports. About 200 s on 2 cores.
 if(TARGET fixterrain AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_METHOD_PGRID
    AND FIXTERRAIN_WITH_GDAL_TOOLS)
   add_test(NAME pgrid_paths

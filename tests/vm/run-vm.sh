@@ -95,18 +95,35 @@ case ${FT_VM_DISPLAY:-} in
 esac
 echo "vm: $accel, $(basename "$kernel"), timeout ${timeout_s}s, out $out${FT_VM_DISPLAY:+, display $FT_VM_DISPLAY}" >&2
 echo "vm: running: $cmd" >&2
+# One retry, only when qemu itself died of a signal (exit > 128, not the
+# timeout's kill) before the guest started the command (no FT-VM-BEGIN on the
+# console): an emulator crash on the host, not a result of the command. Seen
+# once: qemu with the bochs display segfaulted in the BIOS, 4 s in. Any
+# other failure, or a second crash, fails the run.
 t0=$(date +%s.%N)
-set +e
-# shellcheck disable=SC2086
-timeout -k 5 "$timeout_s" "$qemu" $accel_opts -m 1024 -smp 2 \
-  -nodefaults -nographic -no-reboot -no-user-config \
-  -serial "file:$log" -monitor none $display_opts \
-  -kernel "$kernel" -initrd "$initrd" -append "$append" \
-  -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
-  -virtfs "local,path=$out,mount_tag=ftout,security_model=none" \
-  < /dev/null > "$out/qemu.log" 2>&1
-qrc=$?
-set -e
+attempt=1
+while :; do
+  [ -z "${qmp:-}" ] || rm -f "$qmp"
+  set +e
+  # shellcheck disable=SC2086
+  timeout -k 5 "$timeout_s" "$qemu" $accel_opts -m 1024 -smp 2 \
+    -nodefaults -nographic -no-reboot -no-user-config \
+    -serial "file:$log" -monitor none $display_opts \
+    -kernel "$kernel" -initrd "$initrd" -append "$append" \
+    -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
+    -virtfs "local,path=$out,mount_tag=ftout,security_model=none" \
+    < /dev/null > "$out/qemu.log" 2>&1
+  qrc=$?
+  set -e
+  if [ "$attempt" -eq 1 ] && [ "$qrc" -gt 128 ] && [ "$qrc" -ne 137 ] &&
+     ! tr -d '\r' < "$log" 2>/dev/null | grep -q '^FT-VM-BEGIN$'; then
+    echo "vm: qemu died (exit $qrc) before the guest started the command; retrying once" >&2
+    cat "$out/qemu.log" >&2
+    attempt=2
+    continue
+  fi
+  break
+done
 t1=$(date +%s.%N)
 secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
 

@@ -304,12 +304,13 @@ void main()
     }
     float e;
     if (level >= 0.0) {
-        vec4 off = u_pgm_level[int(level)];
+        /* level-L samples from the level's base */
+        vec2 off = u_pgm_level[int(level)].zw;
         float s = exp2(level);
-        vec2 o = floor((pmin + off.zw) / s);
-        vec2 ed = ft_quad_exact(level, (p0 + off.zw) / s, (p1 + off.zw) / s, (p2 + off.zw) / s,
-                                (p3 + off.zw) / s, z, o, (pmin + off.zw) / s,
-                                (pmax + off.zw) / s, u_pcm_box[int(level)].zw);
+        vec2 bmin = (pmin + off) / s;
+        vec2 ed = ft_quad_exact(level, (p0 + off) / s, (p1 + off) / s, (p2 + off) / s,
+                                (p3 + off) / s, z, floor(bmin), bmin, (pmax + off) / s,
+                                u_pcm_box[int(level)].zw);
         e = ed.x + ed.y;
     } else {
         vec2 mm = ft_region_minmax_cache(pmin, pmax);

@@ -821,13 +821,8 @@ static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *
     gl->BindTexture(GL_TEXTURE_2D, m->vtx_tex);
     if (m->pgm.clip) {
         /* the cache's levels (unit 1, bound with pgm's uniforms) and its
-         * cell and block ranges (units 2 and 3, set_grid_uniforms) */
+         * cell and block ranges (units 2 and 3, bound by pgrid_draw) */
         const ft_terrain_program *q = m->quad_clip_prog;
-        gl->ActiveTexture(GL_TEXTURE2);
-        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.range_tex);
-        gl->ActiveTexture(GL_TEXTURE3);
-        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.block_range_tex);
-        gl->ActiveTexture(GL_TEXTURE0);
         gl->UseProgram(q->program);
         set_grid_uniforms(m, gl, q);
         ft_pgm_method_bind(&m->pgm, gl, q);
@@ -838,7 +833,6 @@ static void tight_passes(ft_pgrid_method *m, const ft_gl *gl, const ft_terrain *
         gl->UseProgram(m->quad_prog);
         gl->Uniform3f(m->uq_origin, ox, oy, oz);
     }
-    gl->BindBuffer(GL_ARRAY_BUFFER, m->quad_vbo);
     gl->DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     /* the vertex bounds (vtx_tex on 4, quad_tex on 5, slope_tex on 7) */
     gl->BindFramebuffer(GL_FRAMEBUFFER, m->shape_fbo);
@@ -1180,6 +1174,16 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
          * the picture's grid */
         memcpy(m->col_t, m->col_t_next, sizeof m->col_t);
     }
+    /* unit 2 holds the min/max atlas, or over the cache its cell ranges
+     * (and unit 3 its block ranges, until the ray caster reads the error
+     * buffer there), for the tight passes and the mesh */
+    gl->ActiveTexture(GL_TEXTURE2);
+    gl->BindTexture(GL_TEXTURE_2D, m->pgm.clip ? m->pgm.cl.range_tex : m->mm_tex);
+    if (m->pgm.clip) {
+        gl->ActiveTexture(GL_TEXTURE3);
+        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.block_range_tex);
+    }
+    gl->ActiveTexture(GL_TEXTURE0);
     if (m->tight) {
         tight_passes(m, gl, t, cam, fb);
         gl->UseProgram(p->program);
@@ -1189,15 +1193,7 @@ static void pgrid_draw(ft_pgrid_method *m, const ft_gl *gl, const struct ft_terr
     /* the picture writes the error buffer too, into the framebuffer the
      * caller drew into (the window's own has no second attachment) */
     const int mrt = m->mrt && !pos_pass && fb != 0;
-    /* 1. the mesh, with the pass's program (already in use); unit 2 holds
-     * the min/max atlas, or over the cache its cell ranges */
-    gl->ActiveTexture(GL_TEXTURE2);
-    gl->BindTexture(GL_TEXTURE_2D, m->pgm.clip ? m->pgm.cl.range_tex : m->mm_tex);
-    if (m->pgm.clip) {
-        gl->ActiveTexture(GL_TEXTURE3); /* until the ray caster reads the error buffer there */
-        gl->BindTexture(GL_TEXTURE_2D, m->pgm.cl.block_range_tex);
-    }
-    gl->ActiveTexture(GL_TEXTURE0);
+    /* 1. the mesh, with the pass's program (already in use) */
     set_grid_uniforms(m, gl, p);
     if (mrt) {
         set_error_uniforms(m, gl, p, cam);

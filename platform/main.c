@@ -837,7 +837,7 @@ static void print_defines(const char *defines)
 /* The shader variants this scene compiles: only the code it uses. */
 static void print_shader_variants(const ft_scene *s, const ft_terrain *t, int es3)
 {
-    printf("shader variants: %s [", ft_method_vertex_shader(s->method));
+    printf("shader variants: %s [", ft_method_vertex_shader(s));
     print_defines(ft_method_vertex_defines(s, es3));
     const char *coarse = ft_method_vertex_defines_coarse(s, es3);
     if (coarse != NULL) {

@@ -40,4 +40,10 @@ if(TARGET ft_app AND TARGET ft_tools AND FIXTERRAIN_WITH_METHOD_CLIPMAP
     add_test(NAME test_clip_flight_pgrid_tight COMMAND test_clip_flight 250 1200 pgrid_tight)
     set_tests_properties(test_clip_flight_pgrid_tight PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
   endif()
+  # and with the bintree's tiles over the cache (bintree.heights = clipmap),
+  # its reported bound held on every frame
+  if(FIXTERRAIN_WITH_METHOD_BINTREE)
+    add_test(NAME test_clip_flight_bintree COMMAND test_clip_flight 250 1200 bintree)
+    set_tests_properties(test_clip_flight_bintree PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
+  endif()
 endif()

@@ -25,6 +25,18 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_EGL)
     set_tests_properties(gl_discipline_pgrid_cache_es3 PROPERTIES TIMEOUT 300
                          LABELS "gl;gl_discipline")
   endif()
+  # the bintree's tiles over the clipmap cache (bintree.heights = clipmap),
+  # GLES 3 and 2
+  if(FIXTERRAIN_WITH_METHOD_BINTREE)
+    add_test(NAME gl_discipline_bintree_cache_es3 COMMAND test_gl_discipline egl-gles3
+             bintree-cache)
+    add_test(NAME gl_discipline_bintree_cache_es2 COMMAND test_gl_discipline egl-gles2
+             bintree-cache)
+    set_tests_properties(gl_discipline_bintree_cache_es2 PROPERTIES
+                         ENVIRONMENT "MESA_GLES_VERSION_OVERRIDE=2.0")
+    set_tests_properties(gl_discipline_bintree_cache_es3 gl_discipline_bintree_cache_es2
+                         PROPERTIES TIMEOUT 300 LABELS "gl;gl_discipline")
+  endif()
   if(FIXTERRAIN_WITH_OSMESA AND FIXTERRAIN_WITH_METHOD_BINTREE)
     add_test(NAME gl_discipline_bintree_osmesa COMMAND test_gl_discipline osmesa bintree)
     set_tests_properties(gl_discipline_bintree_osmesa PROPERTIES TIMEOUT 300

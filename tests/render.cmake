@@ -117,6 +117,13 @@ if(TARGET ft_app AND FIXTERRAIN_WITH_REFERENCE AND FIXTERRAIN_WITH_PNG)
                  replay ${_nh_db})
         set_tests_properties(no_heap_pgrid_cache_ftd PROPERTIES FIXTURES_REQUIRED no_heap_ftd)
       endif()
+      # the bintree's tiles over the cache (bintree.heights = clipmap)
+      if(FIXTERRAIN_WITH_METHOD_BINTREE)
+        add_test(NAME no_heap_bintree_cache_ftd COMMAND test_no_heap
+                 ${CMAKE_BINARY_DIR}/test-out/no_heap_bintree_cache_ftd.png egl-gles3
+                 bintree-cache replay ${_nh_db})
+        set_tests_properties(no_heap_bintree_cache_ftd PROPERTIES FIXTURES_REQUIRED no_heap_ftd)
+      endif()
     endif()
   endif()
   if(FIXTERRAIN_WITH_OSMESA)

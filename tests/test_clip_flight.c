@@ -41,9 +41,14 @@
  * pgrid (pgm's grid with the relief bound from the cache's cell ranges) or
  * pgrid_rc (pgrid ray casting the pixels over gamma = 1 px through the
  * cache's levels, lod/pgrid.h 7) or pgrid_tight (the same with the tight
- * bound, lod/pgrid.h 6); all are held to the same requirements. pgm's "coarser" rule is its own
+ * bound, lod/pgrid.h 6) or bintree (bintree.heights = clipmap: its tiles over
+ * the cache's lattice, lod/bintree_cache.h, without geomorphing); all are
+ * held to the same requirements. pgm's "coarser" rule is its own
  * (ft_pgm_clip_eye_coarser, the frame stats' cache_coarser): level 0's
- * resident samples do not hold the eye one sample in from their edge.
+ * resident samples do not hold the eye one sample in from their edge; the
+ * bintree's is its own too (ft_btc_eye_coarser, the frame stats'
+ * cache_coarser): level 0's usable box does not hold the eye with an odd
+ * diamond's parents' closures to spare, so no tile around it reads level 0.
  *
  * usage: test_clip_flight [SPEED_MPS [RENDER_EVERY [METHOD]]] */
 #define _POSIX_C_SOURCE 200809L
@@ -165,8 +170,10 @@ int main(int argc, char **argv)
     /* the persistent grid's own rules (its coarser rule, no bound): pgm, and
      * pgrid, whose grid is pgm's (pgrid reports a bound: held as clipmap's) */
     const int grid = pgm || pgrid;
+    /* the bintree reports the bound its tiles meet: held as clipmap's */
+    const int bintree = strcmp(method, "bintree") == 0;
     REQUIRE(speed_mps > 0.0 && render_every > 0u &&
-            (grid || strcmp(method, "clipmap") == 0));
+            (grid || bintree || strcmp(method, "clipmap") == 0));
     if (!ft_test_have_data(FT_SHARED_DATA_DIR "/N41E001.hgt") ||
         !ft_test_have_data(FT_SHARED_DATA_DIR "/N42E001.hgt") || !ft_test_have_data(k_etopo)) {
         return FT_TEST_SKIP;
@@ -180,6 +187,8 @@ int main(int argc, char **argv)
                    "[view]\nwidth_px = 320\nheight_px = 240\nfovy_deg = 50\n"
                    "[terrain]\ndem = %s\ndb_level = 0\ndb_side_samples = 2801\n"
                    "db_centre_lat_deg = 42.1\ndb_centre_lon_deg = 2.1\n"
+                   "[bintree]\nheights = clipmap\nmorph = 0\ntemplate_k = 3\ntau_px = 1\n"
+                   "subsample_levels = 0\n"
                    "[pgm]\nheights = clipmap\n"
                    "[pgrid]\nheights = clipmap\nerror_bound = %s\nray_casting = %d\n"
                    "gamma_px = 1\nraycast_max_px = 76800\n"
@@ -199,8 +208,10 @@ int main(int argc, char **argv)
     REQUIRE(t->db != NULL);
     ft_clipmap_method *cm = &g_app.renderer.method.u.clipmap;
     ft_pgm_method *pm = pgrid ? &g_app.renderer.method.u.pgrid.pgm : &g_app.renderer.method.u.pgm;
-    ft_clip_levels *cl = grid ? &pm->cl : &cm->cl;
+    ft_bintree_method *bm = &g_app.renderer.method.u.bintree;
+    ft_clip_levels *cl = grid ? &pm->cl : bintree ? &bm->cl : &cm->cl;
     REQUIRE(!grid || pm->clip);
+    REQUIRE(!bintree || bm->clip);
     const uint64_t gpu_bytes = cl->gpu_bytes;
     printf("cache: %u levels of %u^2 samples, %llu bytes of GPU textures; database window "
            "%u^2 samples (the scene's window)\n",
@@ -258,6 +269,9 @@ int main(int argc, char **argv)
     double err_max = 0.0;
     uint64_t bounded_frames = 0u, over_bound = 0u, steep_frames = 0u, steep_unbounded = 0u;
     double bound_max = 0.0, ratio_min = INFINITY;
+    /* the bintree's drawn frames: tiles, budget hits, selection and frame time */
+    uint32_t tiles_most = 0u, budget_hits = 0u;
+    double select_ms_max = 0.0, gpu_ms_max = 0.0;
     for (uint32_t k = 1u; k <= ticks; ++k) {
         const double s = (double)k / (double)ticks;
         const double lat = k_from[0] + s * (k_to[0] - k_from[0]);
@@ -279,6 +293,10 @@ int main(int argc, char **argv)
         if (grid) {
             /* the selection above placed the view the frame would draw */
             coarser += ft_pgm_clip_eye_coarser(&pm->clip_view);
+        } else if (bintree) {
+            /* the selection above is the frame's tiles */
+            coarser += ft_btc_eye_coarser(&bm->btc, bm->eye_rel[0] + (double)bm->btc.origin[0],
+                                          bm->eye_rel[1] + (double)bm->btc.origin[1]);
         } else {
             ft_clip_box valid[FT_CLIP_LEVELS_MAX];
             for (uint32_t l = 0u; l < cl->levels; ++l) {
@@ -322,7 +340,7 @@ int main(int argc, char **argv)
             ft_test_measure(&g_app, &cs, &ess);
             ++steep_frames;
             steep_unbounded += !isfinite(fss.tau_achieved_px);
-            if (!isfinite(fss.tau_achieved_px) && !pgrid) {
+            if (!isfinite(fss.tau_achieved_px) && !pgrid && !bintree) {
                 const ft_cm_bound *cb = &cm->bound;
                 printf("  steep view without a bound: %llu pieces, %llu unbounded, worst level "
                        "%u, data past the coarsest box in view %d\n",
@@ -339,6 +357,16 @@ int main(int argc, char **argv)
         }
         east_frames += lon > 2.0;
         unmeasured_frames += fs.unmeasured_px > 0u;
+        if (bintree) {
+            tiles_most = fs.tiles > tiles_most ? fs.tiles : tiles_most;
+            budget_hits += fs.budget_hit != 0;
+            select_ms_max = fmax(select_ms_max, fs.select_ms);
+            gpu_ms_max = fmax(gpu_ms_max, fs.gpu_ms);
+            printf("  bintree: %u tiles, target %.2f px, bound %.2f px, budget hit %d, "
+                   "selection %.2f ms, frame %.2f ms\n",
+                   fs.tiles, fs.tau_target_px, fs.tau_achieved_px, fs.budget_hit, fs.select_ms,
+                   fs.gpu_ms);
+        }
         printf("tick %6u  %.4f N %.4f E  %s  max %.2f px p99.9 %.2f  bound %.2f px  "
                "mismatch %u+%u of %u  unmeasured %llu px  levels behind %u\n",
                k, lat, lon, lon > 2.0 ? "ETOPO5" : "SRTM3 ", es.max_px, es.p999_px,
@@ -368,6 +396,12 @@ int main(int argc, char **argv)
            "terrain, %llu with unmeasured pixels, %llu with a hole\n",
            err_max, (unsigned long long)east_frames, (unsigned long long)unmeasured_frames,
            (unsigned long long)holes);
+    if (bintree) {
+        printf("bintree frames: at most %u tiles, %u hit the tile budget, selection at most "
+               "%.2f ms, frame at most %.2f ms\n",
+               tiles_most, budget_hits, select_ms_max, gpu_ms_max);
+        CHECK(tiles_most > 0u);
+    }
     if (!pgm) {
         printf("reported bound: finite on %llu of %llu frames along the flight and %llu of "
                "%llu looking steeply down over SRTM3 (largest %.2f px, bound / measured at "

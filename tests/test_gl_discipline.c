@@ -162,19 +162,28 @@ int main(int argc, char **argv)
     }
     const char *backend = argv[1];
     /* pgrid-cache: pgrid over the clipmap cache, its tight bound's passes on
-     * the cache's levels and ray casting through them (GLES 3) */
+     * the cache's levels and ray casting through them (GLES 3); bintree-cache:
+     * the bintree's tiles over the cache (bintree.heights = clipmap), its
+     * updates and tables every frame (a level side of 128: the least for
+     * template_k 3 is 12 * 2^3 + 8) */
     const int pgrid_cache = strcmp(argv[2], "pgrid-cache") == 0;
-    const char *method = pgrid_cache ? "pgrid" : argv[2];
+    const int bintree_cache = strcmp(argv[2], "bintree-cache") == 0;
+    const char *method = pgrid_cache ? "pgrid" : bintree_cache ? "bintree" : argv[2];
     char scene[2048];
     (void)snprintf(scene, sizeof scene, "%s%s[scene]\nbackend = %s\nmethod = %s\n", k_scene,
-                   pgrid_cache ? "[pgrid]\nheights = clipmap\nerror_bound = residual\n"
-                                 "ray_casting = 1\n[budget]\nclip_bytes = 1M\n"
-                               : "",
+                   pgrid_cache     ? "[pgrid]\nheights = clipmap\nerror_bound = residual\n"
+                                     "ray_casting = 1\n[budget]\nclip_bytes = 1M\n"
+                   : bintree_cache ? "[bintree]\nheights = clipmap\nmorph = 0\n"
+                                     "[clipmap]\nside = 128\n[budget]\nclip_bytes = 2M\n"
+                                   : "",
                    backend, method);
     ft_test_app_init(&g_app, scene, method);
     if (pgrid_cache) {
         const ft_pgrid_method *pg = &g_app.renderer.method.u.pgrid;
         REQUIRE(pg->pgm.clip && pg->ray_casting && pg->tight);
+    }
+    if (bintree_cache) {
+        REQUIRE(g_app.renderer.method.u.bintree.clip);
     }
     ft_gl *gl = &g_app.gpu.gl;
     g_app.renderer.gl_error_checks = 0; /* the deployment frame loop */

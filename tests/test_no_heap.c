@@ -14,7 +14,9 @@
  * and a PNG write with counting on, and requires zero calls.
  * Usage: test_no_heap OUT.png [BACKEND [METHOD [replay]]] (METHOD as in
  * scene.method: brute, bintree, pgm, ..., or pgm-cache: pgm with pgm.heights =
- * clipmap, or pgrid-columns: pgrid with pgrid.columns = error; the path
+ * clipmap, or pgrid-cache: pgrid over the cache, or bintree-cache: the bintree
+ * with bintree.heights = clipmap, or pgrid-columns: pgrid with pgrid.columns =
+ * error; the path
  * changes the view every
  * frame, so a LOD method selects anew each frame). With
  * "replay", a candump log with a stall is then replayed too (decoder, pose
@@ -193,6 +195,17 @@ int main(int argc, char **argv)
         /* the ranges' staging (an update's cells) on top of the readback */
         REQUIRE(ft_scene_parse(&s, "[budget]\nmethod_bytes = 2M\n", "pgrid-cache", &err) ==
                 FT_OK);
+    } else if (argc >= 4 && strcmp(argv[3], "bintree-cache") == 0) {
+        /* the bintree's tiles over the clip cache: its tables folded and
+         * selected every frame, no geomorphing or sub-sample levels there;
+         * a level side of 128, the least for template_k 3 (12 * 2^3 + 8) */
+        s.method = FT_METHOD_BINTREE;
+        s.bintree_heights_clipmap = 1;
+        s.bintree_morph = 0;
+        s.bintree_subsample_levels = 0;
+        REQUIRE(ft_scene_parse(&s, "[clipmap]\nside = 128\n[budget]\nclip_bytes = 4M\n"
+                                   "method_bytes = 2M\n",
+                               "bintree-cache", &err) == FT_OK);
     } else if (argc >= 4 && strcmp(argv[3], "pgrid-columns") == 0) {
         s.method = FT_METHOD_PGRID; /* pgrid with its columns moved by the error */
         s.pgrid_columns_error = 1;

@@ -57,6 +57,7 @@ int main(void)
     CHECK_NEAR(a.bintree_tau_px, b.bintree_tau_px, 0.0);
     CHECK(a.bintree_morph == b.bintree_morph);
     CHECK(a.bintree_tiles_per_draw == b.bintree_tiles_per_draw);
+    CHECK(a.bintree_heights_clipmap == b.bintree_heights_clipmap && a.bintree_heights_clipmap == 0);
     CHECK(a.pgm_grid_cols == b.pgm_grid_cols && a.pgm_grid_rows == b.pgm_grid_rows);
     CHECK(a.pgrid_grid_cols == b.pgrid_grid_cols && a.pgrid_grid_rows == b.pgrid_grid_rows);
     CHECK(a.pgrid_view_distribution == b.pgrid_view_distribution);

@@ -41,7 +41,7 @@ ft_status bench_oracle_init(bench_oracle *o, ft_renderer *r, ft_error *err)
                        "(GL_OES_element_index_uint)");
     }
     const ft_bintree_method *bm = &r->method.u.bintree;
-    const uint32_t k = bm->bt.k;
+    const uint32_t k = bm->clip ? bm->btc.k : bm->bt.k;
     o->gl = gl;
     o->tmpl_verts = ft_bt_template_vertices(k);
     o->tmpl_indices = 3u * ft_bt_template_triangles(k);
@@ -125,11 +125,22 @@ ft_status bench_oracle_prepare(bench_oracle *o, ft_renderer *r, const ft_camera 
         return ft_fail(err, FT_ERR_BUDGET, "oracle: out of memory for %u tiles (%zu vertices)",
                        tiles, verts);
     }
-    ft_bt_mesh_uniforms u;
-    ft_bt_mesh_uniforms_for(r->terrain, cam, bm->sel.tau_used_px, bm->morph, &u);
-    u.vertex_table = bm->vertex_table;
-    if (ft_bt_mesh_build(&bm->bt, tiles, &u, o->tmpl_uv, o->tmpl_verts, o->verts, o->verts_cap) !=
-        verts) {
+    size_t built = 0u;
+    if (bm->clip) {
+        /* over the cache: its tiles, heights from the cache's copy of its levels */
+        built = ft_btc_mesh_build(&bm->btc, &bm->cl.cache, tiles,
+                                  bm->eye_rel[0] + (double)bm->btc.origin[0],
+                                  bm->eye_rel[1] + (double)bm->btc.origin[1], cam->eye_m[2],
+                                  r->terrain->curv_drop_per_m2, o->tmpl_uv, o->tmpl_verts,
+                                  o->verts, o->verts_cap);
+    } else {
+        ft_bt_mesh_uniforms u;
+        ft_bt_mesh_uniforms_for(r->terrain, cam, bm->sel.tau_used_px, bm->morph, &u);
+        u.vertex_table = bm->vertex_table;
+        built = ft_bt_mesh_build(&bm->bt, tiles, &u, o->tmpl_uv, o->tmpl_verts, o->verts,
+                                 o->verts_cap);
+    }
+    if (built != verts) {
         return ft_fail(err, FT_ERR_ARG, "oracle: mirror of %u tiles failed", tiles);
     }
     bind_oracle_vao(o);

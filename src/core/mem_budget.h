@@ -29,7 +29,7 @@
     X(FT_POOL_GPU_STAGING, "gpu_staging_bytes", "upload staging (packed heights, vertex tables)") \
     X(FT_POOL_METHOD, "method_bytes", "LOD method state (templates, tile lists)")  \
     X(FT_POOL_PNG, "png_bytes", "PNG encoder scratch (libpng + zlib)")            \
-    X(FT_POOL_CLIP, "clip_bytes", "clipmap cache: staging, bounds (method clipmap, pgrid over the cache, or a .ftd); over a .ftd, decoded tiles")
+    X(FT_POOL_CLIP, "clip_bytes", "clipmap cache: staging, bounds (method clipmap, pgrid or bintree over the cache, or a .ftd); over a .ftd, decoded tiles")
 
 typedef enum ft_pool_id {
 #define FT_POOL_ENUM(id, key, what) id,

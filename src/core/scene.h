@@ -128,6 +128,7 @@ typedef struct ft_scene {
     int bintree_vertex_table;          /* bintree.vertex_table (GLES 3 only) */
     int bintree_cull_back_faces;       /* bintree.cull_back_faces */
     uint32_t bintree_tiles_per_draw;   /* bintree.tiles_per_draw (0: the context's) */
+    int bintree_heights_clipmap;       /* bintree.heights: 0 window, 1 clipmap */
     uint32_t pgm_grid_cols;      /* pgm.grid_cols */
     uint32_t pgm_grid_rows;      /* pgm.grid_rows */
     int pgm_heights_clipmap;     /* pgm.heights: 0 pyramid, 1 clipmap */
@@ -259,6 +260,10 @@ typedef struct ft_scene {
     X(bintree, tiles_per_draw, U32, bintree_tiles_per_draw, 0, 1024, NULL, "0", "tiles",         \
       "tiles a draw, a uniform array in the vertex shader (0: 192 on GLES 3, 64 on GLES 2; 1 "  \
       "is fastest on llvmpipe's GLES 2)")                                                        \
+    X(bintree, heights, ENUM, bintree_heights_clipmap, 0, 0, "window|clipmap|", "window", "",    \
+      "where the tiles read heights: the scene's window, or the clipmap cache around the eye "   \
+      "(clipmap.* keys; over a .ftd it reads on past the window; needs morph = 0, "              \
+      "subsample_levels = 0 and clipmap.side >= 12 x 2^template_k + 8)")                         \
     X(pgm, grid_cols, U32, pgm_grid_cols, 2, 8192, NULL, "430", "vertices",                      \
       "persistent grid: vertices across the view")                                               \
     X(pgm, grid_rows, U32, pgm_grid_rows, 2, 8192, NULL, "430", "vertices",                      \

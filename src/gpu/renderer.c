@@ -322,7 +322,7 @@ ft_status ft_renderer_init(ft_renderer *r, ft_gpu_context *gpu, const ft_scene *
         return ft_fail(err, FT_ERR_ARG, "the colour shader's defines do not fit (%d bytes)", n);
     }
     ft_terrain_program_desc d = {
-        .vert_name = ft_method_vertex_shader(s->method),
+        .vert_name = ft_method_vertex_shader(s),
         .vert_defines = ft_method_vertex_defines(s, es3),
         .frag_name = "terrain.frag.glsl",
         .frag_defines = colour_defines,

@@ -291,3 +291,62 @@ size_t ft_bt_mesh_indices(uint32_t tiles, const uint16_t *tmpl_idx, uint32_t tmp
     }
     return n;
 }
+
+/* ---- over the clipmap cache (shaders/bintree_clip.vert.glsl) -------------------------- */
+
+static double btc_height(const ft_clip_cache *c, uint32_t d, int64_t a, int64_t b)
+{
+    const uint32_t side = c->desc.side;
+    const int64_t sa = ((a % (int64_t)side) + (int64_t)side) % (int64_t)side;
+    const int64_t sb = ((b % (int64_t)side) + (int64_t)side) % (int64_t)side;
+    return (double)c->mirror_m[d][(size_t)sb * side + (size_t)sa];
+}
+
+size_t ft_btc_mesh_build(const ft_bt_cache *bc, const ft_clip_cache *c, uint32_t tiles,
+                         double eye_i, double eye_j, double eye_z_m, double drop_per_m2,
+                         const float *tmpl_uv, uint32_t tmpl_verts, float *out,
+                         size_t out_floats)
+{
+    const size_t verts = (size_t)tiles * tmpl_verts;
+    if (tiles > bc->tiles_max || verts > out_floats / FT_BT_MESH_FLOATS) {
+        return 0u;
+    }
+    const double lo[2] = {(double)(bc->data[0] - bc->origin[0]),
+                          (double)(bc->data[1] - bc->origin[1])};
+    const double hi[2] = {(double)(bc->data[2] - bc->origin[0]),
+                          (double)(bc->data[3] - bc->origin[1])};
+    const double eye_rel[2] = {eye_i - (double)bc->origin[0], eye_j - (double)bc->origin[1]};
+    for (uint32_t i = 0; i < tiles; ++i) {
+        const ft_bt_tile *tile = &bc->tiles[i];
+        const int64_t leg[2] = {(int64_t)tile->left[0] - tile->apex[0],
+                                (int64_t)tile->left[1] - tile->apex[1]};
+        const uint32_t m = ft_btc_table_of(bc, tile->level);
+        const uint32_t d = (m < bc->top) ? m : bc->top;
+        const int64_t sp = (int64_t)1 << d;
+        for (uint32_t v = 0; v < tmpl_verts; ++v) {
+            /* g = apex + a leg + b (leg turned a quarter), exact */
+            const double a = (double)tmpl_uv[2u * v], b = (double)tmpl_uv[2u * v + 1u];
+            const int64_t gx = tile->apex[0] + (int64_t)llround(a * (double)leg[0] - b * (double)leg[1]);
+            const int64_t gy = tile->apex[1] + (int64_t)llround(a * (double)leg[1] + b * (double)leg[0]);
+            const int64_t sa = (bc->origin[0] + gx) / sp, sb = (bc->origin[1] + gy) / sp;
+            const double h = btc_height(c, d, sa, sb);
+            const double dhx = btc_height(c, d, sa + 1, sb) - btc_height(c, d, sa - 1, sb);
+            const double dhy = btc_height(c, d, sa, sb + 1) - btc_height(c, d, sa, sb - 1);
+            const double span[2] = {2.0 * (double)sp * bc->cell_m[0], 2.0 * (double)sp * bc->cell_m[1]};
+            double n[3] = {-dhx / span[0], -dhy / span[1], 1.0};
+            const double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            const double gp[2] = {clampd((double)gx, lo[0], hi[0]), clampd((double)gy, lo[1], hi[1])};
+            const double x = (gp[0] - eye_rel[0]) * bc->cell_m[0];
+            const double y = (gp[1] - eye_rel[1]) * bc->cell_m[1];
+            float *o = out + ((size_t)i * tmpl_verts + v) * FT_BT_MESH_FLOATS;
+            o[0] = (float)x;
+            o[1] = (float)y;
+            o[2] = (float)(h - eye_z_m - drop_per_m2 * (x * x + y * y));
+            o[3] = (float)(n[0] / nl);
+            o[4] = (float)(n[1] / nl);
+            o[5] = (float)(n[2] / nl);
+            o[6] = (float)h;
+        }
+    }
+    return verts;
+}

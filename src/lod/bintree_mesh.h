@@ -38,6 +38,7 @@
 
 #include "core/camera.h"
 #include "lod/bintree.h"
+#include "lod/bintree_cache.h"
 #include "terrain/terrain.h"
 
 /* Floats per vertex: position relative to the eye (3, metres), unit normal
@@ -101,5 +102,17 @@ size_t ft_bt_mesh_build(const ft_bintree *bt, uint32_t tiles, const ft_bt_mesh_u
  * out_count is too small or an index would not fit 32 bits. */
 size_t ft_bt_mesh_indices(uint32_t tiles, const uint16_t *tmpl_idx, uint32_t tmpl_indices,
                           uint32_t tmpl_verts, uint32_t *out, size_t out_count);
+
+/* The same for the tiles of the bintree over the clipmap cache
+ * (bc->tiles[0..tiles), bintree_cache.h), mirroring
+ * shaders/bintree_clip.vert.glsl: heights from the cache's CPU copy of the
+ * level each tile reads (exactly the texels), normals by its central
+ * differences, positions clamped into the data box, relative to the eye at
+ * (eye_i, eye_j) on the level-0 lattice and eye_z_m, lowered by the
+ * curvature drop. Returns the vertices written (0 when they do not fit). */
+size_t ft_btc_mesh_build(const ft_bt_cache *bc, const ft_clip_cache *c, uint32_t tiles,
+                         double eye_i, double eye_j, double eye_z_m, double drop_per_m2,
+                         const float *tmpl_uv, uint32_t tmpl_verts, float *out,
+                         size_t out_floats);
 
 #endif

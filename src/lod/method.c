@@ -43,10 +43,13 @@ const ft_method_ops *ft_method_ops_of(ft_method_kind kind)
     return ((unsigned)kind < FT_METHOD_COUNT) ? k_ops[kind] : NULL;
 }
 
-const char *ft_method_vertex_shader(ft_method_kind m)
+const char *ft_method_vertex_shader(const ft_scene *s)
 {
-    const ft_method_ops *o = ft_method_ops_of(m);
-    return (o != NULL) ? o->vertex_shader : "terrain.vert.glsl";
+    const ft_method_ops *o = ft_method_ops_of(s->method);
+    if (o == NULL) {
+        return "terrain.vert.glsl";
+    }
+    return (o->vertex_shader_of != NULL) ? o->vertex_shader_of(s) : o->vertex_shader;
 }
 
 const char *ft_method_vertex_defines(const ft_scene *s, int es3)
@@ -72,7 +75,8 @@ int ft_method_reads_cache(const ft_scene *s)
 {
     return s->method == FT_METHOD_CLIPMAP ||
            (s->method == FT_METHOD_PGM && s->pgm_heights_clipmap) ||
-           (s->method == FT_METHOD_PGRID && s->pgrid_heights_clipmap);
+           (s->method == FT_METHOD_PGRID && s->pgrid_heights_clipmap) ||
+           (s->method == FT_METHOD_BINTREE && s->bintree_heights_clipmap);
 }
 
 const ft_clip_cache *ft_method_cache(const ft_method *m)
@@ -85,6 +89,9 @@ const ft_clip_cache *ft_method_cache(const ft_method *m)
     }
     if (m->kind == FT_METHOD_PGRID && m->u.pgrid.pgm.clip) {
         return &m->u.pgrid.pgm.cl.cache;
+    }
+    if (m->kind == FT_METHOD_BINTREE && m->u.bintree.clip) {
+        return &m->u.bintree.cl.cache;
     }
     return NULL;
 }

@@ -13,6 +13,7 @@
 #include "gpu/gpu_texture.h"
 #include "gpu/program.h"
 #include "lod/bintree.h"
+#include "lod/bintree_cache.h"
 #include "lod/clip_levels.h"
 #include "lod/clipmap.h"
 #include "lod/pgm.h"
@@ -77,6 +78,16 @@ typedef struct ft_bintree_method {
     /* the last selection and the view it was made for */
     ft_view_key sel_view;
     ft_bt_select_stats sel;
+    /* bintree.heights = clipmap: the tiles over the clipmap cache's lattice
+     * (lod/bintree_cache.h) instead of bt (whose tables are not built), the
+     * cache's levels in one atlas on unit 1 (cl.tex[0]); inst then holds
+     * the tiles relative to btc.origin. eye_rel: the eye relative to that
+     * origin at the last selection (level-0 samples), which the shader gets
+     * split into an integer and a fractional part. */
+    int clip;
+    ft_clip_levels cl;
+    ft_bt_cache btc;
+    double eye_rel[2];
 } ft_bintree_method;
 
 /* Persistent grid mapping (src/lod/pgm.h, shaders/pgm.vert.glsl). The grid is
@@ -244,6 +255,9 @@ typedef struct ft_method_worst {
  * colour_defines (the colour fragment shader as it is). */
 typedef struct ft_method_ops {
     const char *vertex_shader; /* embedded name */
+    /* the scene's vertex shader when it is not always vertex_shader (bintree
+     * over the clipmap cache), else NULL */
+    const char *(*vertex_shader_of)(const ft_scene *s);
     ft_uniform_list uniforms;  /* its own uniforms: ft_terrain_program.method_u */
     const char *(*vertex_defines)(const ft_scene *s, int es3);
     const char *(*vertex_defines_coarse)(const ft_scene *s, int es3);
@@ -272,8 +286,8 @@ const ft_method_ops *ft_method_ops_of(ft_method_kind kind);
 
 /* The calls below go through the table of the scene's (or m's) method. */
 
-/* The vertex shader (embedded name) the method draws with. */
-const char *ft_method_vertex_shader(ft_method_kind m);
+/* The vertex shader (embedded name) the scene's method draws with. */
+const char *ft_method_vertex_shader(const ft_scene *s);
 /* Lines placed before the vertex shader's body: the compile-time variant
  * the scene needs (bintree: sub-sample levels, vertex table), "" for none. */
 const char *ft_method_vertex_defines(const ft_scene *s, int es3);
@@ -313,8 +327,8 @@ void ft_method_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns);
 int ft_method_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
                         double corner_cos);
 /* 1 when the scene's method reads its heights through the clipmap cache
- * (clipmap; pgm with pgm.heights = clipmap): over a .ftd it draws the
- * database on past the window. */
+ * (clipmap; pgm, pgrid and bintree with their heights = clipmap): over a
+ * .ftd it draws the database on past the window. */
 int ft_method_reads_cache(const ft_scene *s);
 /* The clipmap cache m reads its heights through, NULL for none. */
 const ft_clip_cache *ft_method_cache(const ft_method *m);

@@ -14,7 +14,17 @@
  *
  * Grids that are not (2^n+1)^2 are padded by clamping (see bintree.h): the
  * vertex shader clamps grid coordinates into the real grid, so the padded
- * area collapses onto the grid's edge and is never drawn. */
+ * area collapses onto the grid's edge and is never drawn.
+ *
+ * bintree.heights = clipmap: the same template, batches and slots, with the
+ * tiles of the bintree over the clipmap cache (lod/bintree_cache.h) on its
+ * level-0 lattice relative to the domain's origin, and heights from the
+ * cache's levels side by side in one atlas on unit 1 (lod/clip_levels.h),
+ * read by shaders/bintree_clip.vert.glsl from the level of each tile's
+ * template spacing. None of the window's tables or textures is built then;
+ * no geomorphing, no sub-sample levels, no back-face culling. The cache
+ * moves to the eye and runs its updates in every selection (a level that
+ * lags catches up while the eye hovers) and in the frame's spare time. */
 #include <stdio.h>
 #include <math.h>
 #include <string.h>
@@ -30,9 +40,10 @@
 #define FT_BT_FLOATS_PER_TILE 4u
 /* Tiles a draw (bintree.tiles_per_draw; 0: these): the length of the
  * shader's u_bt_tiles (one vec4 a tile). The vertex shader's other uniforms
- * take under 48 vectors, and the spec's least GL_MAX_VERTEX_UNIFORM_VECTORS
- * is 128 on GLES 2 and 256 on GLES 3, so the defaults link on every
- * conforming device (init checks the device's value). */
+ * take under 48 vectors (over the cache too: 16 levels and 10 more), and the
+ * spec's least GL_MAX_VERTEX_UNIFORM_VECTORS is 128 on GLES 2 and 256 on
+ * GLES 3, so the defaults link on every conforming device (init checks the
+ * device's value). */
 #define FT_BT_BATCH_TILES_ES2 64u
 #define FT_BT_BATCH_TILES_ES3 192u
 #define FT_BT_UNIFORM_VECTORS_OTHER 48u
@@ -50,7 +61,8 @@ static uint32_t batch_tiles_of(const ft_scene *s, int es3)
 
 /* The bintree's uniforms (shaders/bintree.vert.glsl): tile corners per draw
  * (one array), the diamond, height-block and twist textures, the morph, the
- * view axis and the vertical gain's caps (core/view_scale.h). */
+ * view axis and the vertical gain's caps (core/view_scale.h); over the cache
+ * (shaders/bintree_clip.vert.glsl) the tile array and the u_btc_ rows. */
 #define FT_BT_UNIFORMS(X)                                      \
     X(FT_BT_U_TILES, "u_bt_tiles", 1u)                        \
     X(FT_BT_U_DIA, "u_bt_dia", 1u)                            \
@@ -64,7 +76,13 @@ static uint32_t batch_tiles_of(const ft_scene *s, int es3)
     X(FT_BT_U_TWIST, "u_bt_twist", 1u)                        \
     X(FT_BT_U_TWIST_PACK, "u_bt_twist_pack", 1u)              \
     X(FT_BT_U_VTX, "u_bt_vtx", 1u)                            \
-    X(FT_BT_U_TWIST_OFF, "u_bt_twist_off", FT_BT_TWIST_LEVELS_MAX)
+    X(FT_BT_U_TWIST_OFF, "u_bt_twist_off", FT_BT_TWIST_LEVELS_MAX) \
+    X(FT_BTC_U_ATLAS, "u_btc_atlas", 1u)                           \
+    X(FT_BTC_U_LEVEL, "u_btc_level", FT_CLIP_LEVELS_MAX)           \
+    X(FT_BTC_U_EYE, "u_btc_eye", 1u)                               \
+    X(FT_BTC_U_MISC, "u_btc_misc", 1u)                             \
+    X(FT_BTC_U_PACK, "u_btc_pack", 1u)                             \
+    X(FT_BTC_U_DATA, "u_btc_data", 1u)
 enum { FT_BT_UNIFORMS(FT_UNIFORM_ENUM) FT_BT_U_COUNT };
 static const ft_uniform_name k_bt_uniforms[] = {FT_BT_UNIFORMS(FT_UNIFORM_ROW)};
 _Static_assert(FT_BT_U_COUNT <= FT_METHOD_UNIFORMS_MAX, "the bintree's uniforms fit the table");
@@ -102,6 +120,12 @@ static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     ft_arena_plan(a, FT_POOL_METHOD, (size_t)ft_bt_template_triangles(k) * 3u * sizeof(uint16_t));
     ft_arena_plan(a, FT_POOL_METHOD,
                   (size_t)s->bintree_tiles_max * FT_BT_FLOATS_PER_TILE * sizeof(float));
+    if (s->bintree_heights_clipmap) {
+        /* the cache's bounds are what its tiles' errors come from */
+        ft_clip_levels_plan(s, t, FT_CLIP_BOUNDS_ALWAYS, a);
+        ft_btc_plan(a, s->clipmap_side, s->clipmap_levels, k, s->bintree_tiles_max);
+        return;
+    }
     ft_bintree_plan(a, t->width, t->height, k, s->bintree_subsample_levels, s->bintree_tiles_max);
     if (s->bintree_vertex_table && s->backend != FT_BACKEND_EGL_GLES2) {
         const ft_texture_desc d = vertex_table_desc(t->width, t->height);
@@ -109,29 +133,39 @@ static void bintree_plan(const ft_scene *s, const ft_terrain *t, ft_arena *a)
     }
 }
 
-static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
-                              const ft_terrain *t, ft_arena *a, ft_error *err)
+/* Over the cache: what is not built there is refused, naming the keys. */
+static ft_status clip_check_scene(const ft_scene *s, ft_error *err)
+{
+    if (s->bintree_morph) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "bintree.heights = clipmap: geomorphing over the cache is not built: set "
+                       "bintree.morph = 0");
+    }
+    if (s->bintree_subsample_levels > 0u) {
+        return ft_fail(err, FT_ERR_CONFIG,
+                       "bintree.heights = clipmap: tiles below the cache's level-0 samples are "
+                       "not built: set bintree.subsample_levels = 0 (it is %u)",
+                       s->bintree_subsample_levels);
+    }
+    return FT_OK;
+}
+
+/* The template's batches (vbo, ibo), the tile list the draws read (inst) and
+ * the uniform vectors they need: the same over the window and the cache. */
+static ft_status template_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                               ft_arena *a, ft_error *err)
 {
     const uint32_t k = s->bintree_template_k;
-    memset(m, 0, sizeof *m);
-    m->tau_px = s->bintree_tau_px;
-    m->lod_scale = 1.0;
-    m->morph = s->bintree_morph;
-    m->cull_back_faces = s->bintree_cull_back_faces;
-    m->morph_width = s->bintree_morph_width;
-    m->es3 = (gl->api == FT_GL_API_ES3);
-    m->vertex_table = m->es3 && s->bintree_vertex_table;
-    ft_status st =
-        ft_bintree_init(&m->bt, t, k, s->bintree_subsample_levels, s->bintree_morph_width,
-                        s->bintree_tiles_max, a, err);
-    if (st != FT_OK) {
-        return st;
+    if (k < FT_BT_TEMPLATE_K_MIN || k > FT_BT_TEMPLATE_K_MAX) {
+        return ft_fail(err, FT_ERR_CONFIG, "bintree.template_k = %u outside %u..%u", k,
+                       FT_BT_TEMPLATE_K_MIN, FT_BT_TEMPLATE_K_MAX);
     }
     const uint32_t nv = ft_bt_template_vertices(k), nt = ft_bt_template_triangles(k);
     float *uv = NULL;
     uint16_t *idx = NULL;
     int16_t *scratch = NULL;
-    st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nv * 2u * sizeof(float), (void **)&uv, err);
+    ft_status st =
+        ft_arena_take(a, FT_POOL_METHOD, (size_t)nv * 2u * sizeof(float), (void **)&uv, err);
     if (st == FT_OK) {
         st = ft_arena_take(a, FT_POOL_METHOD, (size_t)nt * 3u * sizeof(uint16_t), (void **)&idx,
                            err);
@@ -201,6 +235,56 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
                           slot_i);
     }
     m->gpu_bytes = (uint64_t)(vbytes + ibytes) * m->batch_tiles;
+    return ft_gl_check(gl, "bintree template batches", err);
+}
+
+/* bintree.heights = clipmap: the cache (its bounds kept: the tiles' errors
+ * come from them) with its levels in one atlas on unit 1, which no other
+ * part of the method uses over the cache, and the tables over its lattice. */
+static ft_status clip_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                           const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    ft_status st = ft_clip_levels_init(&m->cl, gl, s, t, FT_CLIP_TEX_ATLAS, FT_CLIP_BOUNDS_ALWAYS,
+                                       GL_TEXTURE1, a, err);
+    if (st != FT_OK) {
+        return st;
+    }
+    m->clip = 1; /* shutdown deletes the cache's textures from here on */
+    st = ft_btc_init(&m->btc, &m->cl.cache, t, s->bintree_template_k, s->bintree_tiles_max, a,
+                     err);
+    if (st != FT_OK) {
+        return st;
+    }
+    return ft_gl_check(gl, "bintree over the clipmap cache init", err);
+}
+
+static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_scene *s,
+                              const ft_terrain *t, ft_arena *a, ft_error *err)
+{
+    memset(m, 0, sizeof *m);
+    m->tau_px = s->bintree_tau_px;
+    m->lod_scale = 1.0;
+    m->morph = s->bintree_morph;
+    m->cull_back_faces = s->bintree_cull_back_faces;
+    m->morph_width = s->bintree_morph_width;
+    m->es3 = (gl->api == FT_GL_API_ES3);
+    if (s->bintree_heights_clipmap) {
+        ft_status st = clip_check_scene(s, err);
+        if (st == FT_OK) {
+            st = template_init(m, gl, s, a, err);
+        }
+        return (st == FT_OK) ? clip_init(m, gl, s, t, a, err) : st;
+    }
+    m->vertex_table = m->es3 && s->bintree_vertex_table;
+    ft_status st =
+        ft_bintree_init(&m->bt, t, s->bintree_template_k, s->bintree_subsample_levels,
+                        s->bintree_morph_width, s->bintree_tiles_max, a, err);
+    if (st == FT_OK) {
+        st = template_init(m, gl, s, a, err);
+    }
+    if (st != FT_OK) {
+        return st;
+    }
     /* The geomorph reads each diamond's error and height range (its box,
      * bintree.h), and below the samples the height blocks, as float RGBA
      * texels: one fetch a diamond. */
@@ -278,8 +362,52 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     return ft_gl_check(gl, "bintree init (template batch, error textures)", err);
 }
 
+/* Floor of a / 2^d (a may be negative), mod side (a power of two). */
+static int64_t level_index_mod(int64_t a, uint32_t d, uint32_t side)
+{
+    const int64_t step = (int64_t)1 << d;
+    int64_t q = a / step;
+    if (a % step != 0 && a < 0) {
+        q -= 1;
+    }
+    const int64_t r = q % (int64_t)side;
+    return (r < 0) ? r + (int64_t)side : r;
+}
+
+/* Over the cache, every call: the cache moves to the eye and runs this
+ * frame's updates, its tables fold in what became resident and the domain
+ * follows the eye, then the tiles are selected. */
+static void clip_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
+{
+    ft_clip_levels_select(&m->cl, t, cam);
+    double ei = 0.0, ej = 0.0;
+    ft_clip_levels_eye(&m->cl, t, cam->eye_m, &ei, &ej);
+    ft_btc_update(&m->btc, &m->cl.cache, ei, ej);
+    ft_bt_view v;
+    ft_bt_view_from_camera(cam, t, 1, 0, &v);
+    ft_btc_select(&m->btc, &v, m->tau_px * m->lod_scale, &m->sel);
+    /* the eye may be below the cache's surface off the window's grid, which
+     * the rule for hidden back faces (bintree.h) does not cover */
+    m->sel.back_faces_hidden = 0;
+    m->eye_rel[0] = ei - (double)m->btc.origin[0];
+    m->eye_rel[1] = ej - (double)m->btc.origin[1];
+    for (uint32_t i = 0; i < m->sel.tiles; ++i) {
+        const ft_bt_tile *tile = &m->btc.tiles[i];
+        float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
+        o[0] = (float)tile->apex[0];
+        o[1] = (float)tile->apex[1];
+        o[2] = (float)tile->left[0];
+        o[3] = (float)tile->left[1];
+    }
+    ft_view_key_take(&m->sel_view, cam);
+}
+
 static void bintree_select(ft_bintree_method *m, const ft_terrain *t, const ft_camera *cam)
 {
+    if (m->clip) {
+        clip_select(m, t, cam);
+        return;
+    }
     if (ft_view_key_matches(&m->sel_view, cam)) {
         return;
     }
@@ -360,10 +488,80 @@ static uint32_t draw_tiles(const ft_bintree_method *m, const ft_gl *gl,
     return draws;
 }
 
+/* Over the cache: the atlas on unit 1 and the uniforms of
+ * shaders/bintree_clip.vert.glsl on program p (current). The eye is split
+ * into the integer and fractional parts of its offset from the domain's
+ * origin, so the shader's positions near the eye are differences of small
+ * numbers wherever the origin is. */
+static void clip_bind(const ft_bintree_method *m, const ft_gl *gl,
+                      const struct ft_terrain_program *p)
+{
+    const ft_clip_levels *c = &m->cl;
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, c->tex[0]);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->Uniform1i(p->method_u[FT_BTC_U_ATLAS], 1);
+    /* the origin is a multiple of 2^d for every level d <= Lc (bintree_cache.h) */
+    for (uint32_t d = 0; d < c->levels; ++d) {
+        gl->Uniform4f(p->method_u[FT_BTC_U_LEVEL + d], (float)c->origin_px[d][0],
+                      (float)c->origin_px[d][1],
+                      (float)level_index_mod(m->btc.origin[0], d, c->side),
+                      (float)level_index_mod(m->btc.origin[1], d, c->side));
+    }
+    const double fi = floor(m->eye_rel[0]), fj = floor(m->eye_rel[1]);
+    gl->Uniform4f(p->method_u[FT_BTC_U_EYE], (float)fi, (float)fj, (float)(m->eye_rel[0] - fi),
+                  (float)(m->eye_rel[1] - fj));
+    gl->Uniform4f(p->method_u[FT_BTC_U_MISC], (float)c->side, (float)m->btc.top,
+                  (float)m->btc.k, 0.0f);
+    /* the data box relative to the origin (far outside it over a database:
+     * clamping is then a no-op) */
+    const ft_bt_cache *bc = &m->btc;
+    gl->Uniform4f(p->method_u[FT_BTC_U_DATA], (float)(bc->data[0] - bc->origin[0]),
+                  (float)(bc->data[1] - bc->origin[1]), (float)(bc->data[2] - bc->origin[0]),
+                  (float)(bc->data[3] - bc->origin[1]));
+    gl->Uniform4f(p->method_u[FT_BTC_U_PACK], c->fmt.pack_min,
+                  c->fmt.format == FT_HEIGHT_FORMAT_PACKED ? c->fmt.pack_range : 0.0f,
+                  (float)c->tex_w, (float)c->tex_h);
+}
+
+/* Over the cache: the selection's tiles in the window path's batches. */
+static void clip_draw(ft_bintree_method *m, const ft_gl *gl, const struct ft_terrain_program *p,
+                      const ft_terrain *t, const ft_camera *cam, ft_method_draw_stats *st)
+{
+    /* a view the selection did not see (a set LOD scale too) is selected
+     * here, the cache moved with it, as clipmap's draw does */
+    if (!ft_view_key_matches(&m->sel_view, cam)) {
+        clip_select(m, t, cam);
+    }
+    clip_bind(m, gl, p);
+    gl->BindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    gl->EnableVertexAttribArray(FT_ATTRIB_UV);
+    gl->VertexAttribPointer(FT_ATTRIB_UV, 3, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    const uint32_t tiles = m->sel.tiles;
+    st->draw_calls = draw_tiles(m, gl, p, 0u, tiles);
+    st->triangles = (uint64_t)tiles * m->triangles_per_tile;
+    st->tiles = tiles;
+    st->tau_achieved_px = m->sel.tau_achieved_px;
+    st->tau_target_px = m->sel.tau_used_px;
+    st->budget_hit = m->sel.budget_hit;
+    st->back_faces_culled = 0;
+    st->cache_levels_behind = m->cl.cache.stats.levels_behind;
+    st->cache_samples_outstanding = m->cl.cache.stats.samples_outstanding;
+    /* level 0's usable box does not reach around the eye (bintree_cache.h) */
+    st->cache_coarser = ft_btc_eye_coarser(&m->btc, m->eye_rel[0] + (double)m->btc.origin[0],
+                                           m->eye_rel[1] + (double)m->btc.origin[1]);
+    st->cache_forced_updates = m->cl.forced_last;
+}
+
 static void bintree_draw(ft_bintree_method *m, const ft_gl *gl,
                          const struct ft_terrain_program *p, const ft_terrain *t,
                          const ft_camera *cam, ft_method_draw_stats *st)
 {
+    if (m->clip) {
+        clip_draw(m, gl, p, t, cam, st);
+        return;
+    }
     bintree_select(m, t, cam);
     if (m->morph) {
         gl->ActiveTexture(GL_TEXTURE1);
@@ -433,6 +631,9 @@ static void bintree_shutdown(ft_bintree_method *m, const ft_gl *gl)
     if (m->twist_tex) gl->DeleteTextures(1, &m->twist_tex);
     if (m->vtx_tex) gl->DeleteTextures(1, &m->vtx_tex);
     m->vbo = m->ibo = m->dia_tex = m->zb_tex = m->twist_tex = m->vtx_tex = 0u;
+    if (m->clip) {
+        ft_clip_levels_shutdown(&m->cl, gl);
+    }
 }
 
 /* ---- the method table ---------------------------------------------------------- */
@@ -451,8 +652,18 @@ static const char *vertex_defines(char *buf, size_t cap, int sub, int vtx, const
 static const char *ops_vertex_defines(const ft_scene *s, int es3)
 {
     static char buf[128];
+    if (s->bintree_heights_clipmap) {
+        /* bintree_clip.vert.glsl has one variant a batch length */
+        (void)snprintf(buf, sizeof buf, "#define FT_BT_BATCH %u\n", batch_tiles_of(s, es3));
+        return buf;
+    }
     return vertex_defines(buf, sizeof buf, s->bintree_subsample_levels > 0u,
                           es3 && s->bintree_vertex_table, s, es3);
+}
+
+static const char *ops_vertex_shader_of(const ft_scene *s)
+{
+    return s->bintree_heights_clipmap ? "bintree_clip.vert.glsl" : "bintree.vert.glsl";
 }
 
 /* Tiles with every vertex on a sample get a program without sub-sample code
@@ -460,7 +671,8 @@ static const char *ops_vertex_defines(const ft_scene *s, int es3)
 static const char *ops_vertex_defines_coarse(const ft_scene *s, int es3)
 {
     static char buf[128];
-    if (s->bintree_subsample_levels == 0u || !es3 || !s->bintree_vertex_table) {
+    if (s->bintree_subsample_levels == 0u || !es3 || !s->bintree_vertex_table ||
+        s->bintree_heights_clipmap) {
         return NULL;
     }
     return vertex_defines(buf, sizeof buf, 0, 1, s, es3);
@@ -490,14 +702,33 @@ static void ops_set_lod_scale(ft_method *m, double scale)
 
 static uint64_t ops_gpu_bytes(const ft_method *m)
 {
-    return m->u.bintree.gpu_bytes;
+    const ft_bintree_method *b = &m->u.bintree;
+    return b->gpu_bytes + (b->clip ? b->cl.gpu_bytes : 0u);
 }
 
 static void ops_worst(const ft_method *m, const ft_terrain *t, ft_method_worst *w)
 {
     (void)t;
-    w->triangles = (uint64_t)m->u.bintree.bt.tiles_max * m->u.bintree.triangles_per_tile;
+    const ft_bintree_method *b = &m->u.bintree;
+    const uint32_t tiles_max = b->clip ? b->btc.tiles_max : b->bt.tiles_max;
+    w->triangles = (uint64_t)tiles_max * b->triangles_per_tile;
     (void)snprintf(w->rule, sizeof w->rule, "bintree.tiles_max x 4^template_k");
+}
+
+/* Over the cache: its updates in the frame's spare time, and the depth range
+ * of what it holds (the window's grid does not bound what is drawn past it). */
+static void ops_spare(ft_method *m, uint64_t (*now)(void), uint64_t deadline_ns)
+{
+    if (m->u.bintree.clip) {
+        ft_clip_levels_spare(&m->u.bintree.cl, now, deadline_ns);
+    }
+}
+
+static int ops_fit_depth(const ft_method *m, const ft_terrain *t, ft_camera *cam,
+                         double corner_cos)
+{
+    const ft_bintree_method *b = &m->u.bintree;
+    return b->clip ? ft_clip_levels_fit_depth(&b->cl, t, cam, corner_cos) : 0;
 }
 
 static void ops_shutdown(ft_method *m, const ft_gl *gl)
@@ -507,6 +738,7 @@ static void ops_shutdown(ft_method *m, const ft_gl *gl)
 
 const ft_method_ops ft_bintree_ops = {
     .vertex_shader = "bintree.vert.glsl",
+    .vertex_shader_of = ops_vertex_shader_of,
     .uniforms = {k_bt_uniforms, sizeof k_bt_uniforms / sizeof k_bt_uniforms[0]},
     .vertex_defines = ops_vertex_defines,
     .vertex_defines_coarse = ops_vertex_defines_coarse,
@@ -515,6 +747,8 @@ const ft_method_ops ft_bintree_ops = {
     .select = ops_select,
     .draw = ops_draw,
     .set_lod_scale = ops_set_lod_scale,
+    .spare = ops_spare,
+    .fit_depth = ops_fit_depth,
     .gpu_bytes = ops_gpu_bytes,
     .worst = ops_worst,
     .shutdown = ops_shutdown,

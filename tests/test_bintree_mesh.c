@@ -45,7 +45,18 @@
  * 3. The oracle frame (the mirror's mesh, trivial vertex shader, the same
  *    fragment shader and target) against the real frame: almost every
  *    pixel equal (differences only where float rounding moves a triangle
- *    edge across a pixel centre).
+ *    edge across a pixel centre), and more than half of the real frame's
+ *    pixels terrain (not the clear colour).
+ * 4. The bintree over the clipmap cache (bintree.heights = clipmap,
+ *    k = 3, tau = 1, no geomorph, no sub-sample levels; clipmap.side 256):
+ *    the same views, the captures of shaders/bintree_clip.vert.glsl against
+ *    ft_btc_mesh_build (its mirror, the oracle's over the cache) for the
+ *    frame's tiles, with float texels and again with packed ones
+ *    (gpu.height_format = packed: 24-bit fixed point, which the mirror's
+ *    float copy of the levels differs from by up to half a step), then the
+ *    oracle frame as in 3 (view_cache). The views must read level 0 and
+ *    coarser levels and reach past the data box (the shader's clamp); a
+ *    mirror reading the wrong levels must mismatch.
  *
  * Usage: test_bintree_mesh DEM */
 #include <math.h>
@@ -68,6 +79,10 @@
  * its operands' size */
 #define Q_ULPS 16.0
 #define CAP_FLOATS 8u /* v_pos_rel_eye_m (3), v_normal (3), v_height_m, v_morph */
+/* over the cache with packed texels (24-bit fixed point over the cache's
+ * range): heights within this many steps of range / (2^24 - 1) (half a step
+ * of rounding on upload, a few ulps of the range in the float decode) */
+#define PACKED_STEPS 4.0
 /* oracle image: pixels whose colour differs from the real frame's by more
  * than PIXEL_DIFF in a channel, at most this fraction of the image */
 #define PIXEL_DIFF 2
@@ -85,7 +100,7 @@ static const char k_scene_fmt[] =
     "morph = %d\nmorph_width = %.4f\n"
     "[budget]\nheights_bytes = 6M\npyramids_bytes = 18M\ndem_io_bytes = 2M\n"
     "frame_rgba_bytes = 1M\nframe_pos_bytes = 1M\nreference_bytes = 1M\nmetric_bytes = 1M\n"
-    "gpu_staging_bytes = 8M\nmethod_bytes = 32M\npng_bytes = 512K\n";
+    "gpu_staging_bytes = 8M\nmethod_bytes = 32M\npng_bytes = 512K\n%s";
 
 typedef struct totals {
     uint64_t vertices, midmorph, triangles;
@@ -96,6 +111,11 @@ typedef struct totals {
     uint64_t closed_form;  /* morphing vertices whose diamond error is the closed form */
     uint64_t err_checked, err_bad; /* mirror's morph error vs the selection's diamond error */
     uint64_t oracle_px, oracle_diff_px, oracle_terrain_px;
+    /* over the cache (view_cache) */
+    double height_abs_max;
+    uint64_t clamped;         /* vertices the shader clamps into the data box */
+    uint64_t wrong_level_bad; /* mismatches against a mirror reading the wrong levels */
+    uint64_t level_vertices[FT_CLIP_LEVELS_MAX]; /* by the cache level they read */
 } totals;
 
 static double len3(const double *v)
@@ -183,12 +203,75 @@ static uint64_t capture(GLuint tmpl_vbo, uint32_t tmpl_verts, size_t verts, size
     return prims;
 }
 
+/* The views, each config's (poses: lat, lon, alt m, heading, pitch, roll) */
+#define VIEWS 7u
+static ft_pose view_pose(uint32_t i)
+{
+    static const double v[VIEWS][6] = {
+        {42.50, 1.50, 3600.0, 0.0, -20.0, 0.0},
+        {42.40, 1.30, 3300.0, 135.0, -8.0, 5.0},
+        {42.55, 1.65, 5000.0, 250.0, -45.0, 0.0},
+        {42.20, 1.10, 2400.0, 60.0, -12.0, -20.0},
+        {42.50, 1.50, 9000.0, 0.0, -90.0, 0.0},
+        {42.02, 1.97, 3000.0, 225.0, -15.0, 0.0}, /* near the grid corner */
+        /* low, over the last sample row, looking east along it to the far
+         * corner and the padding: sub-sample vertices on the last row and
+         * column (their cell is clamped to size - 2). Not lower: the morph
+         * weight's float rounding grows as the vertices near the eye (the
+         * shader's distance is a difference of ~1e5 m operands); here it is
+         * under half of MORPH_TOL */
+        {42.998, 1.98, 900.0, 80.0, -35.0, 0.0},
+    };
+    const double *a = v[i % VIEWS];
+    return ft_test_pose(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+
 typedef struct tmpl {
     uint32_t nv, nt;
     float *uv;     /* nv x (a, b) */
     uint16_t *idx; /* 3 nt */
     GLuint flat_vbo; /* the template expanded to triangle lists */
 } tmpl;
+
+/* The oracle frame (tools/bench_oracle.h: the mirror's mesh of the last
+ * frame's tiles) against the real frame in the renderer's image: adds the
+ * pixels, those differing by more than PIXEL_DIFF in a channel and the
+ * terrain pixels (not the clear colour) of the real one to tot; returns the
+ * differing pixels, *ms the oracle frame's time. */
+static uint64_t oracle_compare(bench_oracle *oracle, const ft_camera *cam, uint32_t tiles,
+                               size_t verts, double *ms, totals *tot)
+{
+    ft_renderer *r = &g_app.renderer;
+    const size_t px = (size_t)r->width_px * r->height_px;
+    uint8_t *real = malloc(px * 4u);
+    REQUIRE(real != NULL);
+    memcpy(real, r->rgba, px * 4u);
+    ft_error err;
+    *ms = 0.0;
+    REQUIRE(bench_oracle_prepare(oracle, r, cam, &err) == FT_OK);
+    CHECK(oracle->tiles == tiles && oracle->index_count == verts);
+    REQUIRE(bench_oracle_frame(oracle, r, cam, ms, &err) == FT_OK);
+    CHECK(*ms > 0.0);
+    uint64_t diff = 0, terrain = 0;
+    for (size_t i = 0; i < px; ++i) {
+        const uint8_t *a = real + 4u * i, *b = r->rgba + 4u * i;
+        int d = 0;
+        for (int ch = 0; ch < 3; ++ch) d = (abs(a[ch] - b[ch]) > d) ? abs(a[ch] - b[ch]) : d;
+        diff += (d > PIXEL_DIFF);
+        /* the clear colour within a unit: its 8 bits are the GPU's rounding of
+         * clear_rgb * 255 (0.7f * 255 is 178.5 in float, stored as 178) */
+        int sky = 1;
+        for (int ch = 0; ch < 3; ++ch) {
+            sky = sky && fabs((double)a[ch] - 255.0 * (double)r->clear_rgb[ch]) <= 1.0;
+        }
+        terrain += !sky;
+    }
+    tot->oracle_px += px;
+    tot->oracle_diff_px += diff;
+    tot->oracle_terrain_px += terrain;
+    free(real);
+    return diff;
+}
 
 static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, totals *tot)
 {
@@ -306,29 +389,9 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
     }
 
     /* 3. the oracle frame against the real one */
-    const size_t px = (size_t)r->width_px * r->height_px;
-    uint8_t *real = malloc(px * 4u);
-    REQUIRE(real != NULL);
-    memcpy(real, r->rgba, px * 4u);
-    ft_error err;
     double ms = 0.0;
-    REQUIRE(bench_oracle_prepare(oracle, &g_app.renderer, &cam, &err) == FT_OK);
-    CHECK(oracle->tiles == tiles && oracle->index_count == verts);
-    REQUIRE(bench_oracle_frame(oracle, &g_app.renderer, &cam, &ms, &err) == FT_OK);
-    CHECK(ms > 0.0);
-    uint64_t diff = 0, terrain = 0;
-    for (size_t i = 0; i < px; ++i) {
-        const uint8_t *a = real + 4u * i, *b = r->rgba + 4u * i;
-        int d = 0;
-        for (int ch = 0; ch < 3; ++ch) d = (abs(a[ch] - b[ch]) > d) ? abs(a[ch] - b[ch]) : d;
-        diff += (d > PIXEL_DIFF);
-        terrain += !(a[0] == (uint8_t)lround(r->clear_rgb[0] * 255.0f) &&
-                     a[1] == (uint8_t)lround(r->clear_rgb[1] * 255.0f) &&
-                     a[2] == (uint8_t)lround(r->clear_rgb[2] * 255.0f));
-    }
-    tot->oracle_px += px;
-    tot->oracle_diff_px += diff;
-    tot->oracle_terrain_px += terrain;
+    const uint64_t diff = oracle_compare(oracle, &cam, tiles, verts, &ms, tot);
+    const size_t px = (size_t)r->width_px * r->height_px;
     printf("  view (%.3f, %.3f, %.0f m, hdg %.0f, pitch %.0f): %u tiles, %llu triangles, "
            "%llu mismatches, %llu with the wrong morph rule; oracle %.2f ms (frame %.2f ms), "
            "%llu of %zu pixels differ\n",
@@ -338,10 +401,47 @@ static void view(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, tota
                                 tot->morph_bad - bad_before),
            (unsigned long long)(tot->wrong_rule_bad - wrong_before), ms, fs.gpu_ms,
            (unsigned long long)diff, px);
-    free(real);
     free(idx);
     free(mesh);
     free(cap);
+}
+
+/* After init: the colour program relinked to capture the shader's outputs,
+ * the template of k (the method's) and its expanded vertex buffer, and the
+ * oracle. */
+static void capture_begin(uint32_t k, tmpl *tp, bench_oracle *oracle)
+{
+    ft_error err;
+    static const char *const varyings[4] = {"v_pos_rel_eye_m", "v_normal", "v_height_m",
+                                            "v_morph"};
+    REQUIRE(ft_renderer_enable_capture_of(&g_app.renderer, varyings, 4u, &err) == FT_OK);
+    memset(tp, 0, sizeof *tp);
+    tp->nv = ft_bt_template_vertices(k);
+    tp->nt = ft_bt_template_triangles(k);
+    tp->uv = malloc((size_t)tp->nv * 2u * sizeof(float));
+    tp->idx = malloc((size_t)tp->nt * 3u * sizeof(uint16_t));
+    int16_t *scratch = malloc((size_t)ft_bt_template_scratch(k) * sizeof(int16_t));
+    float *flat = malloc((size_t)tp->nt * 6u * sizeof(float));
+    REQUIRE(tp->uv && tp->idx && scratch && flat);
+    REQUIRE(ft_bt_template_build(k, tp->uv, tp->idx, scratch, &err) == FT_OK);
+    for (uint32_t i = 0; i < tp->nt * 3u; ++i) {
+        flat[2u * i] = tp->uv[2u * tp->idx[i]];
+        flat[2u * i + 1u] = tp->uv[2u * tp->idx[i] + 1u];
+    }
+    tp->flat_vbo = ft_test_bintree_flat_vbo(&g_app, flat, tp->nt * 3u);
+    free(flat);
+    free(scratch);
+    REQUIRE(bench_oracle_init(oracle, &g_app.renderer, &err) == FT_OK);
+}
+
+/* capture_begin's undone, and the app shut down. */
+static void capture_end(tmpl *tp, bench_oracle *oracle)
+{
+    bench_oracle_shutdown(oracle);
+    g_app.renderer.gl->DeleteBuffers(1, &tp->flat_vbo);
+    free(tp->idx);
+    free(tp->uv);
+    ft_app_shutdown(&g_app);
 }
 
 typedef struct config {
@@ -355,54 +455,21 @@ typedef struct config {
 static void run_config(const char *dem, const config *cf)
 {
     (void)snprintf(g_text, sizeof g_text, k_scene_fmt, 256u, 192u, dem, cf->k, cf->sub,
-                   cf->tau, cf->morph, cf->morph_width);
+                   cf->tau, cf->morph, cf->morph_width, "");
     ft_test_app_init(&g_app, g_text, "bintree mesh");
     REQUIRE(g_app.renderer.method.u.bintree.bt.morph_width == cf->morph_width);
-    ft_error err;
-    static const char *const varyings[4] = {"v_pos_rel_eye_m", "v_normal", "v_height_m",
-                                            "v_morph"};
-    REQUIRE(ft_renderer_enable_capture_of(&g_app.renderer, varyings, 4u, &err) == FT_OK);
     tmpl tp;
-    memset(&tp, 0, sizeof tp);
-    tp.nv = ft_bt_template_vertices(cf->k);
-    tp.nt = ft_bt_template_triangles(cf->k);
-    tp.uv = malloc((size_t)tp.nv * 2u * sizeof(float));
-    tp.idx = malloc((size_t)tp.nt * 3u * sizeof(uint16_t));
-    int16_t *scratch = malloc((size_t)ft_bt_template_scratch(cf->k) * sizeof(int16_t));
-    float *flat = malloc((size_t)tp.nt * 6u * sizeof(float));
-    REQUIRE(tp.uv && tp.idx && scratch && flat);
-    REQUIRE(ft_bt_template_build(cf->k, tp.uv, tp.idx, scratch, &err) == FT_OK);
-    for (uint32_t i = 0; i < tp.nt * 3u; ++i) {
-        flat[2u * i] = tp.uv[2u * tp.idx[i]];
-        flat[2u * i + 1u] = tp.uv[2u * tp.idx[i] + 1u];
-    }
-    const ft_gl *gl = g_app.renderer.gl;
-    tp.flat_vbo = ft_test_bintree_flat_vbo(&g_app, flat, tp.nt * 3u);
     bench_oracle oracle;
-    REQUIRE(bench_oracle_init(&oracle, &g_app.renderer, &err) == FT_OK);
+    capture_begin(cf->k, &tp, &oracle);
 
-    const ft_pose views[] = {
-        ft_test_pose(42.50, 1.50, 3600.0, 0.0, -20.0, 0.0),
-        ft_test_pose(42.40, 1.30, 3300.0, 135.0, -8.0, 5.0),
-        ft_test_pose(42.55, 1.65, 5000.0, 250.0, -45.0, 0.0),
-        ft_test_pose(42.20, 1.10, 2400.0, 60.0, -12.0, -20.0),
-        ft_test_pose(42.50, 1.50, 9000.0, 0.0, -90.0, 0.0),
-        ft_test_pose(42.02, 1.97, 3000.0, 225.0, -15.0, 0.0), /* near the grid corner */
-        /* low, over the last sample row, looking east along it to the far
-         * corner and the padding: sub-sample vertices on the last row and
-         * column (their cell is clamped to size - 2). Not lower: the morph
-         * weight's float rounding grows as the vertices near the eye (the
-         * shader's distance is a difference of ~1e5 m operands); here it is
-         * under half of MORPH_TOL */
-        ft_test_pose(42.998, 1.98, 900.0, 80.0, -35.0, 0.0),
-    };
     totals tot;
     memset(&tot, 0, sizeof tot);
     REQUIRE(g_app.renderer.method.u.bintree.bt.sub == cf->sub);
     printf("k = %u, S = %u, tau = %.1f, morph = %d, morph_width %.4f:\n", cf->k, cf->sub,
            cf->tau, cf->morph, cf->morph_width);
-    for (size_t v = 0; v < sizeof views / sizeof views[0]; ++v) {
-        view(&views[v], &tp, &oracle, &tot);
+    for (uint32_t v = 0; v < VIEWS; ++v) {
+        const ft_pose pose = view_pose(v);
+        view(&pose, &tp, &oracle, &tot);
     }
     printf("k = %u S = %u tau = %.1f morph = %d: %llu vertices (%llu mid-morph; between "
            "samples %llu, %llu of them mid-morph), %llu triangles; morph errors: %llu checked "
@@ -458,13 +525,252 @@ static void run_config(const char *dem, const config *cf)
     }
     CHECK(tot.oracle_terrain_px > tot.oracle_px / 2u);
     CHECK((double)tot.oracle_diff_px <= PIXEL_FRACTION_MAX * (double)tot.oracle_px);
-    bench_oracle_shutdown(&oracle);
-    gl->DeleteBuffers(1, &tp.flat_vbo);
-    free(flat);
-    free(scratch);
-    free(tp.idx);
-    free(tp.uv);
-    ft_app_shutdown(&g_app);
+    capture_end(&tp, &oracle);
+}
+
+/* ---- the bintree over the clipmap cache ----------------------------------------------- */
+
+/* The cache's scene keys, appended to k_scene_fmt: bintree.heights =
+ * clipmap (morph and sub-sample levels off, which it needs), a level side
+ * of 256 (the least for template_k 3 is 12 * 2^3 + 8 = 104) and levels up
+ * to 2^4 samples apart (level 3 already spans the 1201-sample grid), their
+ * CPU mirrors (2 x 5 x 256^2 floats), blocks and staging in
+ * budget.clip_bytes (about 2.7 MB). Updates enough for a whole refill a
+ * frame (5 x 256^2 samples, update_samples_max 16384 each): each view jumps
+ * far from the last, and with the default 8 the cache would lag and the
+ * frames would draw few, coarse tiles. %s: gpu.height_format (auto or
+ * packed). */
+static const char k_cache_keys[] =
+    "[bintree]\nheights = clipmap\n[clipmap]\nside = 256\nlevels = 5\nupdates_per_frame = 64\n"
+    "[budget]\nclip_bytes = 3M\n[gpu]\nheight_format = %s\n";
+
+/* 1. and 3. over the cache: the frame's tiles (bm->btc.tiles) captured from
+ * shaders/bintree_clip.vert.glsl against ft_btc_mesh_build's mirror of
+ * them (bintree_mesh.h), and the oracle frame against the real one.
+ *   position  |gpu - cpu| <= POS_REL_TOL * max(|cpu|, 1 m) and
+ *             <= POS_TOL * (|(x, y)| + cell + |h| + |eye z|): the shader's
+ *             float operands (lattice offsets from the eye's integer part,
+ *             its fraction, the height and the eye's height), plus the
+ *             packed height's tolerance
+ *   normal    each component within NORMAL_TOL (plus, packed, the slope
+ *             the height's tolerance makes over the central difference)
+ *   height    exact with float texels (the mirror reads the very texels);
+ *             packed, within PACKED_STEPS steps of range / (2^24 - 1) plus
+ *             HEIGHT_REL_TOL of it
+ *   morph     exactly 1 (no geomorphing over the cache)
+ * The test can fail: the same captures against the mirror reading every
+ * level's neighbour (d xor 1) must mismatch almost everywhere. */
+static void view_cache(const ft_pose *pose, const tmpl *tp, bench_oracle *oracle, totals *tot)
+{
+    ft_camera cam;
+    ft_frame_stats fs;
+    ft_test_frame(&g_app, pose, &cam, &fs);
+    const ft_renderer *r = &g_app.renderer;
+    const ft_bintree_method *bm = &r->method.u.bintree;
+    const ft_bt_cache *bc = &bm->btc;
+    const ft_clip_levels *cl = &bm->cl;
+    const uint32_t tiles = bm->sel.tiles;
+    REQUIRE(tiles > 0u);
+    const size_t verts = (size_t)tiles * tp->nt * 3u, slack = 3u * tp->nt;
+    float *cap = malloc((verts + slack) * CAP_FLOATS * sizeof(float));
+    REQUIRE(cap != NULL);
+    const uint64_t prims = capture(tp->flat_vbo, tp->nt * 3u, verts, slack, cap);
+
+    /* the mirror, as the oracle calls it, and one reading the wrong levels */
+    const double eye_i = bm->eye_rel[0] + (double)bc->origin[0];
+    const double eye_j = bm->eye_rel[1] + (double)bc->origin[1];
+    const double drop = g_app.terrain.curv_drop_per_m2;
+    const size_t mverts = (size_t)tiles * tp->nv, mfloats = mverts * FT_BT_MESH_FLOATS;
+    float *mesh = malloc(mfloats * sizeof(float));
+    float *wrong_mesh = malloc(mfloats * sizeof(float));
+    uint32_t *idx = malloc(verts * sizeof(uint32_t));
+    REQUIRE(mesh != NULL && wrong_mesh != NULL && idx != NULL);
+    CHECK(ft_btc_mesh_build(bc, &cl->cache, tiles, eye_i, eye_j, cam.eye_m[2], drop, tp->uv,
+                            tp->nv, mesh, mfloats) == mverts);
+    CHECK(ft_btc_mesh_build(bc, &cl->cache, tiles, eye_i, eye_j, cam.eye_m[2], drop, tp->uv,
+                            tp->nv, mesh, mfloats - 1u) == 0u); /* too small: nothing */
+    static ft_clip_cache wrong; /* large: not on the stack */
+    wrong = cl->cache;
+    for (uint32_t d = 0; d < cl->levels; ++d) {
+        const uint32_t e = ((d ^ 1u) < cl->levels) ? (d ^ 1u) : d;
+        wrong.mirror_m[d] = cl->cache.mirror_m[e];
+    }
+    CHECK(ft_btc_mesh_build(bc, &wrong, tiles, eye_i, eye_j, cam.eye_m[2], drop, tp->uv, tp->nv,
+                            wrong_mesh, mfloats) == mverts);
+    CHECK(ft_bt_mesh_indices(tiles, tp->idx, tp->nt * 3u, tp->nv, idx, verts) == verts);
+    CHECK(verts / 3u == fs.triangles);
+    CHECK(prims == fs.triangles);
+    tot->triangles += fs.triangles;
+
+    const int packed = cl->fmt.format == FT_HEIGHT_FORMAT_PACKED;
+    const double step_m = packed ? (double)cl->fmt.pack_range / 16777215.0 : 0.0;
+    const double cell_lo = fmin(bc->cell_m[0], bc->cell_m[1]);
+    const double cell_hi = fmax(bc->cell_m[0], bc->cell_m[1]);
+    const double box[4] = {(double)(bc->data[0] - bc->origin[0]),
+                           (double)(bc->data[1] - bc->origin[1]),
+                           (double)(bc->data[2] - bc->origin[0]),
+                           (double)(bc->data[3] - bc->origin[1])};
+    const uint64_t bad_before = tot->pos_bad + tot->pos_rel_bad + tot->normal_bad +
+                                tot->height_bad + tot->morph_bad;
+    const uint64_t wrong_before = tot->wrong_level_bad, clamped_before = tot->clamped;
+    for (uint32_t t = 0; t < tiles; ++t) {
+        const ft_bt_tile *tile = &bc->tiles[t];
+        const double leg[2] = {(double)tile->left[0] - tile->apex[0],
+                               (double)tile->left[1] - tile->apex[1]};
+        const uint32_t tm = ft_btc_table_of(bc, tile->level); /* the level it reads: */
+        tot->level_vertices[tm < bc->top ? tm : bc->top] += 3u * tp->nt; /* min(m, Lc) */
+        for (uint32_t j = 0; j < tp->nt * 3u; ++j) {
+            const size_t ci = (size_t)t * tp->nt * 3u + j;
+            const uint32_t v = tp->idx[j];
+            REQUIRE(idx[ci] == (uint32_t)t * tp->nv + v);
+            const float *c = cap + ci * CAP_FLOATS;
+            const float *m = mesh + (size_t)idx[ci] * FT_BT_MESH_FLOATS;
+            const float *mw = wrong_mesh + (size_t)idx[ci] * FT_BT_MESH_FLOATS;
+            ++tot->vertices;
+            if (c[7] != c[7] || c[0] != c[0]) {
+                ++tot->unwritten;
+                continue;
+            }
+            /* the vertex on the lattice (the shader's g): past the data box? */
+            const double a = tp->uv[2u * v], b = tp->uv[2u * v + 1u];
+            const double g[2] = {tile->apex[0] + a * leg[0] - b * leg[1],
+                                 tile->apex[1] + a * leg[1] + b * leg[0]};
+            tot->clamped += (g[0] < box[0] || g[0] > box[2] || g[1] < box[1] || g[1] > box[3]);
+
+            const double h = m[6];
+            const double htol = packed ? PACKED_STEPS * step_m + HEIGHT_REL_TOL * fmax(fabs(h), 1.0)
+                                       : 0.0;
+            const double cpu[3] = {m[0], m[1], m[2]};
+            const double dp = dist3(c, cpu);
+            const double rel = dp / fmax(len3(cpu), 1.0);
+            const double scale =
+                sqrt(cpu[0] * cpu[0] + cpu[1] * cpu[1]) + cell_hi + fabs(h) + fabs(cam.eye_m[2]);
+            if (rel > tot->pos_rel_max) tot->pos_rel_max = rel;
+            if (dp > tot->pos_abs_max) tot->pos_abs_max = dp;
+            if (dp / scale > tot->pos_op_max) tot->pos_op_max = dp / scale;
+            tot->pos_rel_bad += !(rel <= POS_REL_TOL);
+            if (!(dp <= POS_TOL * scale + htol)) {
+                if (tot->pos_bad < 5u) {
+                    fprintf(stderr, "cache tile %u (tree level %u) vertex %u: gpu (%.6f %.6f %.6f) "
+                                    "cpu (%.6f %.6f %.6f)\n",
+                            t, tile->level, v, c[0], c[1], c[2], cpu[0], cpu[1], cpu[2]);
+                }
+                ++tot->pos_bad;
+            }
+            double dn = 0.0;
+            for (int i = 0; i < 3; ++i) dn = fmax(dn, fabs((double)c[3 + i] - m[3 + i]));
+            if (dn > tot->normal_max) tot->normal_max = dn;
+            tot->normal_bad += !(dn <= NORMAL_TOL + htol / cell_lo);
+            const double dh = fabs((double)c[6] - h);
+            if (dh > tot->height_abs_max) tot->height_abs_max = dh;
+            if (dh / fmax(fabs(h), 1.0) > tot->height_rel_max) {
+                tot->height_rel_max = dh / fmax(fabs(h), 1.0);
+            }
+            tot->height_bad += !(dh <= htol);
+            if (fabs(c[7] - 1.0) > tot->morph_max) tot->morph_max = fabs(c[7] - 1.0);
+            tot->morph_bad += !(c[7] == 1.0f);
+            /* the wrong levels' heights must be caught by the same tests */
+            const double cw[3] = {mw[0], mw[1], mw[2]};
+            tot->wrong_level_bad += !(dist3(c, cw) <= POS_TOL * scale + htol &&
+                                      fabs((double)c[6] - mw[6]) <= htol);
+        }
+    }
+    for (size_t i = verts * CAP_FLOATS; i < (verts + slack) * CAP_FLOATS; ++i) {
+        if (cap[i] == cap[i]) {
+            ++tot->overrun;
+            break;
+        }
+    }
+
+    double ms = 0.0;
+    const uint64_t diff = oracle_compare(oracle, &cam, tiles, verts, &ms, tot);
+    printf("  view (%.3f, %.3f, %.0f m, hdg %.0f, pitch %.0f): %u tiles, %llu triangles, "
+           "%llu clamped vertices, %llu mismatches, %llu with the wrong levels; oracle %.2f ms "
+           "(frame %.2f ms), %llu of %u pixels differ; cache levels behind %u\n",
+           pose->lat_deg, pose->lon_deg, pose->alt_m, pose->heading_deg, pose->pitch_deg, tiles,
+           (unsigned long long)fs.triangles, (unsigned long long)(tot->clamped - clamped_before),
+           (unsigned long long)(tot->pos_bad + tot->pos_rel_bad + tot->normal_bad +
+                                tot->height_bad + tot->morph_bad - bad_before),
+           (unsigned long long)(tot->wrong_level_bad - wrong_before), ms, fs.gpu_ms,
+           (unsigned long long)diff, r->width_px * r->height_px,
+           (unsigned)fs.cache_levels_behind);
+    free(idx);
+    free(wrong_mesh);
+    free(mesh);
+    free(cap);
+}
+
+/* packed: the cache's texels as 24-bit fixed point (gpu.height_format =
+ * packed), else as the context has them (float here) */
+static void run_cache_config(const char *dem, int packed)
+{
+    const config cf = {3, 0, 1.0, 0, 0.25};
+    char keys[256];
+    (void)snprintf(keys, sizeof keys, k_cache_keys, packed ? "packed" : "auto");
+    (void)snprintf(g_text, sizeof g_text, k_scene_fmt, 256u, 192u, dem, cf.k, cf.sub, cf.tau,
+                   cf.morph, cf.morph_width, keys);
+    ft_test_app_init(&g_app, g_text, "bintree mesh over the cache");
+    const ft_bintree_method *bm = &g_app.renderer.method.u.bintree;
+    REQUIRE(bm->clip && bm->btc.k == cf.k && bm->cl.side == 256u);
+    tmpl tp;
+    bench_oracle oracle;
+    capture_begin(cf.k, &tp, &oracle);
+    const ft_scalar_format *fmt = &bm->cl.fmt;
+    REQUIRE(!packed || fmt->format == FT_HEIGHT_FORMAT_PACKED);
+    printf("over the cache: k = %u, tau = %.1f, %u levels of %u^2 samples, texels %s",
+           bm->btc.k, cf.tau, bm->cl.levels, bm->cl.side,
+           fmt->format == FT_HEIGHT_FORMAT_PACKED ? "packed" : "float");
+    if (fmt->format == FT_HEIGHT_FORMAT_PACKED) {
+        printf(" over [%.1f, %.1f] m", fmt->pack_min, fmt->pack_min + fmt->pack_range);
+    }
+    printf(":\n");
+    totals tot;
+    memset(&tot, 0, sizeof tot);
+    for (uint32_t v = 0; v < VIEWS; ++v) {
+        const ft_pose pose = view_pose(v);
+        view_cache(&pose, &tp, &oracle, &tot);
+    }
+    char levels[FT_CLIP_LEVELS_MAX * 24u] = ""; /* 16 counts of up to 20 digits */
+    for (uint32_t d = 0, n = 0; d < bm->cl.levels; ++d) {
+        n += (uint32_t)snprintf(levels + n, sizeof levels - n, "%s%llu", d > 0u ? " " : "",
+                                (unsigned long long)tot.level_vertices[d]);
+    }
+    printf("over the cache (%s texels) k = %u tau = %.1f: %llu vertices (by the level they read "
+           "%s; %llu clamped into the data box), "
+           "%llu triangles; max position error %.3g m (relative to the distance %.3g, allowed "
+           "%.1g; to the operands %.3g, allowed %.1g), normal %.3g (%.1g), height %.3g m "
+           "(relative %.3g), morph weight %.3g; mismatches: position %llu (relative %llu), "
+           "normal %llu, height %llu, morph %llu; unwritten %llu, overrun %llu; the wrong "
+           "levels: %llu mismatches; oracle image: %llu of %llu pixels differ by more than %d "
+           "(%llu terrain pixels)\n",
+           fmt->format == FT_HEIGHT_FORMAT_PACKED ? "packed" : "float", bm->btc.k, cf.tau,
+           (unsigned long long)tot.vertices, levels, (unsigned long long)tot.clamped,
+           (unsigned long long)tot.triangles, tot.pos_abs_max, tot.pos_rel_max, POS_REL_TOL,
+           tot.pos_op_max, POS_TOL, tot.normal_max, NORMAL_TOL, tot.height_abs_max,
+           tot.height_rel_max, tot.morph_max, (unsigned long long)tot.pos_bad,
+           (unsigned long long)tot.pos_rel_bad, (unsigned long long)tot.normal_bad,
+           (unsigned long long)tot.height_bad, (unsigned long long)tot.morph_bad,
+           (unsigned long long)tot.unwritten, (unsigned long long)tot.overrun,
+           (unsigned long long)tot.wrong_level_bad, (unsigned long long)tot.oracle_diff_px,
+           (unsigned long long)tot.oracle_px, PIXEL_DIFF,
+           (unsigned long long)tot.oracle_terrain_px);
+    CHECK(tot.vertices > 10000u);
+    CHECK(tot.unwritten == 0u);
+    CHECK(tot.overrun == 0u);
+    CHECK(tot.pos_rel_bad == 0u);
+    CHECK(tot.pos_bad == 0u);
+    CHECK(tot.normal_bad == 0u);
+    CHECK(tot.height_bad == 0u);
+    CHECK(tot.morph_bad == 0u);
+    /* the comparison has teeth: the wrong levels move most vertices; and
+     * the views reach the data box's edge (the shader's clamp) and read
+     * level 0 and coarser levels */
+    CHECK(tot.wrong_level_bad > tot.vertices / 2u);
+    CHECK(tot.clamped > 1000u);
+    CHECK(tot.level_vertices[0] > 10000u && tot.level_vertices[1] > 10000u);
+    CHECK(tot.oracle_terrain_px > tot.oracle_px / 2u);
+    CHECK((double)tot.oracle_diff_px <= PIXEL_FRACTION_MAX * (double)tot.oracle_px);
+    capture_end(&tp, &oracle);
 }
 
 int main(int argc, char **argv)
@@ -483,5 +789,7 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof configs / sizeof configs[0]; ++i) {
         run_config(dem, &configs[i]);
     }
+    run_cache_config(dem, 0);
+    run_cache_config(dem, 1);
     return ft_test_result("test_bintree_mesh");
 }

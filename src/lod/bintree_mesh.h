@@ -106,7 +106,7 @@ size_t ft_bt_mesh_indices(uint32_t tiles, const uint16_t *tmpl_idx, uint32_t tmp
 /* The same for the tiles of the bintree over the clipmap cache
  * (bc->tiles[0..tiles), bintree_cache.h), mirroring
  * shaders/bintree_clip.vert.glsl: heights from the cache's CPU copy of the
- * level each tile reads (exactly the texels), normals by its central
+ * level each tile reads (the texels themselves with float texels; packed ones are up to half a 24-bit step off), normals by its central
  * differences, positions clamped into the data box, relative to the eye at
  * (eye_i, eye_j) on the level-0 lattice and eye_z_m, lowered by the
  * curvature drop. Returns the vertices written (0 when they do not fit). */

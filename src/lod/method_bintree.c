@@ -362,6 +362,18 @@ static ft_status bintree_init(ft_bintree_method *m, const ft_gl *gl, const ft_sc
     return ft_gl_check(gl, "bintree init (template batch, error textures)", err);
 }
 
+/* The selection's tiles as the draws' uniform rows: (apex, left) a tile. */
+static void pack_tiles(ft_bintree_method *m, const ft_bt_tile *tiles)
+{
+    for (uint32_t i = 0; i < m->sel.tiles; ++i) {
+        float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
+        o[0] = (float)tiles[i].apex[0];
+        o[1] = (float)tiles[i].apex[1];
+        o[2] = (float)tiles[i].left[0];
+        o[3] = (float)tiles[i].left[1];
+    }
+}
+
 /* Floor of a / 2^d (a may be negative), mod side (a power of two). */
 static int64_t level_index_mod(int64_t a, uint32_t d, uint32_t side)
 {
@@ -391,14 +403,7 @@ static void clip_select(ft_bintree_method *m, const ft_terrain *t, const ft_came
     m->sel.back_faces_hidden = 0;
     m->eye_rel[0] = ei - (double)m->btc.origin[0];
     m->eye_rel[1] = ej - (double)m->btc.origin[1];
-    for (uint32_t i = 0; i < m->sel.tiles; ++i) {
-        const ft_bt_tile *tile = &m->btc.tiles[i];
-        float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
-        o[0] = (float)tile->apex[0];
-        o[1] = (float)tile->apex[1];
-        o[2] = (float)tile->left[0];
-        o[3] = (float)tile->left[1];
-    }
+    pack_tiles(m, m->btc.tiles);
     ft_view_key_take(&m->sel_view, cam);
 }
 
@@ -414,14 +419,7 @@ static void bintree_select(ft_bintree_method *m, const ft_terrain *t, const ft_c
     ft_bt_view v;
     ft_bt_view_from_camera(cam, t, 1, m->morph, &v);
     ft_bintree_select(&m->bt, &v, m->tau_px * m->lod_scale, &m->sel);
-    for (uint32_t i = 0; i < m->sel.tiles; ++i) {
-        const ft_bt_tile *tile = &m->bt.tiles[i];
-        float *o = m->inst + (size_t)i * FT_BT_FLOATS_PER_TILE;
-        o[0] = (float)tile->apex[0];
-        o[1] = (float)tile->apex[1];
-        o[2] = (float)tile->left[0];
-        o[3] = (float)tile->left[1];
-    }
+    pack_tiles(m, m->bt.tiles);
     ft_view_key_take(&m->sel_view, cam);
 }
 
